@@ -1,0 +1,44 @@
+# Compiles compute shaders with glslangValidator at build time (with a
+# depfile, so edits to included files rebuild) and embeds the SPIR-V in a
+# static library. For each shaders/NAME.comp the library defines
+#   extern const std::uint32_t kSpirv_NAME[]; extern const std::size_t kSpirvSize_NAME;
+# (size in bytes) declared in <strata_spirv.h>. The .spv files stay in
+# ${CMAKE_BINARY_DIR}/spirv for spirv-val in the tests.
+find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
+
+function(strata_add_shaders target)
+  cmake_parse_arguments(ARG "" "" "SHADERS;INCLUDE_DIRS" ${ARGN})
+  set(spv_dir ${CMAKE_BINARY_DIR}/spirv)
+  file(MAKE_DIRECTORY ${spv_dir})
+  set(inc_flags "")
+  foreach(dir ${ARG_INCLUDE_DIRS})
+    list(APPEND inc_flags "-I${CMAKE_SOURCE_DIR}/${dir}")  # glslang 12 wants no space
+  endforeach()
+  set(gen_sources "")
+  set(decls "")
+  foreach(shader ${ARG_SHADERS})
+    get_filename_component(name ${shader} NAME_WE)
+    set(spv ${spv_dir}/${name}.spv)
+    set(hdr ${spv_dir}/${name}.spv.h)
+    add_custom_command(
+      OUTPUT ${spv} ${hdr}
+      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.1 ${inc_flags}
+              --depfile ${spv}.d -o ${spv} ${CMAKE_SOURCE_DIR}/${shader}
+      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.1 ${inc_flags}
+              --vn kSpirv_${name} -o ${hdr} ${CMAKE_SOURCE_DIR}/${shader}
+      DEPENDS ${CMAKE_SOURCE_DIR}/${shader}
+      DEPFILE ${spv}.d
+      COMMENT "glslangValidator ${shader}"
+      VERBATIM)
+    set(cpp ${spv_dir}/${name}.spv.cpp)
+    file(GENERATE OUTPUT ${cpp} CONTENT
+"#include <cstddef>\n#include <cstdint>\n#include \"${name}.spv.h\"\nextern const std::size_t kSpirvSize_${name} = sizeof(kSpirv_${name});\nextern const std::uint32_t* const kSpirvPtr_${name} = kSpirv_${name};\n")
+    set_source_files_properties(${cpp} PROPERTIES OBJECT_DEPENDS ${hdr})
+    list(APPEND gen_sources ${cpp})
+    string(APPEND decls "extern const std::size_t kSpirvSize_${name};\nextern const std::uint32_t* const kSpirvPtr_${name};\n")
+  endforeach()
+  file(GENERATE OUTPUT ${spv_dir}/strata_spirv.h CONTENT
+"#pragma once\n#include <cstddef>\n#include <cstdint>\n${decls}")
+  add_library(${target} STATIC ${gen_sources})
+  target_include_directories(${target} PUBLIC ${spv_dir})
+endfunction()

@@ -1,0 +1,35 @@
+// Descriptor set 0 bindings and specialization constant ids, shared by the
+// host and every shader.
+#ifndef STRATA_SHARED_BINDINGS_H
+#define STRATA_SHARED_BINDINGS_H
+
+#ifdef __cplusplus
+namespace strata::gpu {
+#define STRATA_BINDING(name, value) inline constexpr unsigned name = value
+#else
+#define STRATA_BINDING(name, value) const uint name = value
+#endif
+
+STRATA_BINDING(BINDING_FRAME, 0);         // uniform FrameUniforms
+STRATA_BINDING(BINDING_NODES, 1);         // storage BvhNode[]
+STRATA_BINDING(BINDING_TRIS, 2);          // storage TriVerts[]
+STRATA_BINDING(BINDING_SHADING, 3);       // storage TriShading[]
+STRATA_BINDING(BINDING_MATERIALS, 4);     // storage Material[]
+STRATA_BINDING(BINDING_EMITTERS, 5);      // storage Emitter[]
+STRATA_BINDING(BINDING_ACCUM, 6);         // storage vec4[] (kAccumVec4PerPixel per pixel)
+STRATA_BINDING(BINDING_COUNTERS, 7);      // storage RenderCounters
+STRATA_BINDING(BINDING_NODES_TEXEL, 8);   // usamplerBuffer over BINDING_NODES (RGBA32UI)
+STRATA_BINDING(BINDING_TRIS_TEXEL, 9);    // usamplerBuffer over BINDING_TRIS (RGBA32UI)
+STRATA_BINDING(BINDING_RAYS, 10);         // storage: trace kernel input rays
+STRATA_BINDING(BINDING_HITS, 11);         // storage: trace kernel output hits
+STRATA_BINDING(BINDING_COUNT, 12);
+
+// Specialization constant ids.
+STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // 1: read nodes/triangles through texel views
+STRATA_BINDING(SPEC_HAS_EMITTERS, 1);     // 0: no emissive triangles, NEE compiled out
+
+#ifdef __cplusplus
+}  // namespace strata::gpu
+#endif
+#undef STRATA_BINDING
+#endif

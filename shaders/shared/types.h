@@ -1,0 +1,151 @@
+// Buffer structs shared byte-for-byte by C++ (GLM) and GLSL (std430).
+// Every vec3 is paired with a 4-byte scalar so no member straddles padding.
+#ifndef STRATA_SHARED_TYPES_H
+#define STRATA_SHARED_TYPES_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace strata::gpu {
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using uint = std::uint32_t;
+#define STRATA_CONST(type, name, value) inline constexpr type name = value
+#else
+#define STRATA_CONST(type, name, value) const type name = value
+#endif
+
+// Flattened BVH2 node, depth-first: an interior node's left child is the next
+// node (index + 1); its right child is `leftOrFirst`. A leaf (count > 0)
+// holds triangles [leftOrFirst, leftOrFirst + count) of the reordered
+// triangle arrays.
+struct BvhNode {
+    vec3 bmin;
+    uint leftOrFirst;
+    vec3 bmax;
+    uint count;
+};
+
+// Triangle vertices in world space, in BVH order (w unused, kept 0).
+struct TriVerts {
+    vec4 v0;
+    vec4 v1;
+    vec4 v2;
+};
+
+// Per-triangle shading data in BVH order. Vertex normals are world space and
+// normalised; a triangle without normals repeats its geometric normal.
+struct TriShading {
+    vec3 n0;
+    uint material;   // index into the material buffer
+    vec3 n1;
+    uint light;      // index into the emitter buffer, or kNoLight
+    vec3 n2;
+    uint pad0;
+};
+
+STRATA_CONST(uint, kNoLight, 0xffffffffu);
+
+// Material flags.
+STRATA_CONST(uint, kMaterialDoubleSided, 1u);
+
+// glTF pbrMetallicRoughness factors. `emission` is emissiveFactor times
+// KHR_materials_emissive_strength (linear radiance, W sr^-1 m^-2 units).
+struct Material {
+    vec4 baseColor;   // linear RGB + alpha
+    vec3 emission;
+    float metallic;
+    float roughness;
+    float ior;
+    uint flags;       // kMaterial* bits
+    float alphaCutoff;
+};
+
+// An emissive triangle, selected through a Walker alias table built on the
+// host: pick slot i = floor(u * count), keep it if the second uniform is
+// below `aliasProb`, else take `alias`. `pmf` is the probability of choosing
+// this emitter (its share of total emitted power).
+struct Emitter {
+    vec3 v0;
+    uint triangle;    // index into TriVerts/TriShading (BVH order)
+    vec3 e1;          // v1 - v0
+    float area;
+    vec3 e2;          // v2 - v0
+    float pmf;
+    vec3 radiance;    // emitted radiance (material emission)
+    uint flags;       // kMaterialDoubleSided: emits from both sides
+    float aliasProb;
+    uint alias;
+    uint pad0;
+    uint pad1;
+};
+
+// Accumulation layout: per pixel, two vec4 — sum of sample rgb and the number
+// of finite samples (in .w), then the sum of squared rgb (.w unused).
+STRATA_CONST(uint, kAccumVec4PerPixel, 2u);
+
+// Camera and per-render constants (uniform buffer, std140-compatible: only
+// vec4-sized members).
+struct FrameUniforms {
+    vec4 camOrigin;     // xyz: eye position
+    vec4 camForward;    // xyz: unit view direction
+    vec4 camRight;      // xyz: right * tan(yfov/2) * aspect
+    vec4 camUp;         // xyz: up * tan(yfov/2)
+    uvec4 image;        // width, height, maxDepth, seed
+    uvec4 counts;       // emitterCount, triangleCount, nodeCount, 0
+    vec4 scene;         // x: total emitted power (for stats), yzw unused
+};
+
+// Per-dispatch constants (push constants).
+struct DispatchParams {
+    uint tileX;         // first pixel of this dispatch's tile
+    uint tileY;
+    uint tileW;         // tile size in pixels (<= image size)
+    uint tileH;
+    uint sampleIndex;   // index of the sample being taken (0-based)
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
+// Trace kernel (tests and `strata bench`): one ray in, one closest hit out.
+struct TraceRay {
+    vec3 origin;
+    float tmin;
+    vec3 dir;
+    float tmax;
+};
+
+struct TraceHit {
+    float t;            // hit distance, or -1 on a miss
+    uint triangle;      // BVH-order triangle index, kNoHit on a miss
+    float u;            // barycentrics of v1 and v2
+    float v;
+};
+
+STRATA_CONST(uint, kNoHit, 0xffffffffu);
+
+// Statistics written by the shader with atomics.
+struct RenderCounters {
+    uint nonFinite;     // samples dropped because a channel was NaN/Inf
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(BvhNode) == 32);
+static_assert(sizeof(TriVerts) == 48);
+static_assert(sizeof(TriShading) == 48);
+static_assert(sizeof(Material) == 48);
+static_assert(sizeof(Emitter) == 64);
+static_assert(sizeof(FrameUniforms) == 112);
+static_assert(sizeof(DispatchParams) == 32);
+static_assert(sizeof(RenderCounters) == 16);
+static_assert(sizeof(TraceRay) == 32);
+static_assert(sizeof(TraceHit) == 16);
+}  // namespace strata::gpu
+#endif
+
+#endif
