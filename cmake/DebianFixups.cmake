@@ -1,9 +1,5 @@
-# Debian 12's OpenImageIO target lists /usr/include/opencv4, which the
-# package does not depend on; drop it so configuring does not fail.
-if(TARGET OpenImageIO::OpenImageIO)
-  get_target_property(_oiio_inc OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
-  if(_oiio_inc)
-    list(FILTER _oiio_inc EXCLUDE REGEX "opencv")
-    set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_oiio_inc}")
-  endif()
-endif()
+# Debian 12's OpenImageIO CMake package cannot be used as shipped: its target
+# file references /usr/bin/iconvert (only in openimageio-tools) and its
+# include directories name a missing /usr/include/opencv4. Its pkg-config
+# file is complete, so strata takes OpenImageIO from there.
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)

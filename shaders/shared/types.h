@@ -126,6 +126,14 @@ struct TraceHit {
 
 STRATA_CONST(uint, kNoHit, 0xffffffffu);
 
+// Trace kernel push constants.
+struct TraceParams {
+    uint count;         // rays in this dispatch
+    uint anyHit;        // 0: closest hit; 1: any hit (t = 1 if occluded, else -1)
+    uint first;         // index of this dispatch's first ray
+    uint pad0;
+};
+
 // Statistics written by the shader with atomics.
 struct RenderCounters {
     uint nonFinite;     // samples dropped because a channel was NaN/Inf
@@ -139,12 +147,13 @@ static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
 static_assert(sizeof(Material) == 48);
-static_assert(sizeof(Emitter) == 64);
+static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(FrameUniforms) == 112);
 static_assert(sizeof(DispatchParams) == 32);
 static_assert(sizeof(RenderCounters) == 16);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
+static_assert(sizeof(TraceParams) == 16);
 }  // namespace strata::gpu
 #endif
 

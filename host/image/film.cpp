@@ -1,0 +1,42 @@
+#include "image/film.h"
+
+namespace strata {
+
+Film::Film(int w, int h)
+    : width(w), height(h), sum(pixels() * 3, 0.0), sumSq(pixels() * 3, 0.0), count(pixels(), 0) {}
+
+void Film::fold(const float* batch) {
+    const std::size_t n = pixels();
+    for (std::size_t i = 0; i < n; ++i) {
+        const float* p = batch + i * 8;
+        for (int c = 0; c < 3; ++c) {
+            sum[i * 3 + c] += p[c];
+            sumSq[i * 3 + c] += p[4 + c];
+        }
+        count[i] += static_cast<std::uint64_t>(p[3]);
+    }
+}
+
+std::vector<float> Film::mean() const {
+    std::vector<float> out(pixels() * 3, 0.0f);
+    for (std::size_t i = 0; i < pixels(); ++i)
+        if (count[i])
+            for (int c = 0; c < 3; ++c) out[i * 3 + c] = static_cast<float>(sum[i * 3 + c] / count[i]);
+    return out;
+}
+
+std::vector<float> Film::varianceOfMean() const {
+    std::vector<float> out(pixels() * 3, 0.0f);
+    for (std::size_t i = 0; i < pixels(); ++i) {
+        const double n = static_cast<double>(count[i]);
+        if (n < 2) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double m = sum[i * 3 + c] / n;
+            const double var = (sumSq[i * 3 + c] - n * m * m) / (n - 1.0);
+            out[i * 3 + c] = static_cast<float>(var > 0.0 ? var / n : 0.0);
+        }
+    }
+    return out;
+}
+
+}  // namespace strata

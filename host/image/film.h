@@ -1,0 +1,34 @@
+// The host-side accumulation of a render, in double precision. The device
+// accumulates float32 sums for a bounded batch of samples; the host folds
+// each batch in here, so the running sums do not drift however many samples
+// are taken.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace strata {
+
+struct Film {
+    int width = 0;
+    int height = 0;
+    std::vector<double> sum;          // rgb per pixel
+    std::vector<double> sumSq;        // rgb per pixel: sum of squared samples
+    std::vector<std::uint64_t> count; // finite samples per pixel
+
+    Film() = default;
+    Film(int w, int h);
+    std::size_t pixels() const { return static_cast<std::size_t>(width) * height; }
+
+    // Adds a device batch: per pixel two vec4 (sum rgb + count, sumSq rgb + 0),
+    // the layout of gpu::kAccumVec4PerPixel.
+    void fold(const float* batch);
+
+    // Per-pixel mean rgb (float, row-major, row 0 at the top); 0 where a pixel
+    // has no finite sample.
+    std::vector<float> mean() const;
+
+    // Per-pixel variance of the mean (sample variance / count), rgb.
+    std::vector<float> varianceOfMean() const;
+};
+
+}  // namespace strata

@@ -1,0 +1,35 @@
+// Image files through OpenImageIO. EXR: linear float RGB. PNG: sRGB-encoded
+// 8-bit, clamped. Every file appears whole or not at all: written under a
+// temporary name in the same directory, then renamed.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace strata {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<std::string> channelNames;
+    std::vector<float> pixels;  // row-major, interleaved channels, row 0 at the top
+};
+
+enum class ImageFormat { Exr, Png };
+
+// Format from the file extension (.exr, .png; case-insensitive). Throws
+// strata::Error ("<path>: error: ...") for anything else.
+ImageFormat outputFormat(const std::string& path);
+
+// Writes all `paths` from one linear RGB image (3 floats per pixel). Either
+// every file is written or none is (temporaries are removed on failure).
+void writeImages(const std::vector<std::string>& paths, int width, int height,
+                 const std::vector<float>& rgb);
+
+// Reads any image OpenImageIO can read, as float. Throws strata::Error.
+Image readImage(const std::string& path);
+
+// IEC 61966-2-1 sRGB transfer function (linear -> encoded), input clamped to [0,1].
+float linearToSrgb(float linear);
+
+}  // namespace strata

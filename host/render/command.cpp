@@ -1,0 +1,68 @@
+#include "render/command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "image/image_io.h"
+#include "render/gpu_scene.h"
+#include "render/stats.h"
+#include "scene/scene.h"
+#include "util/error.h"
+#include "vk/check.h"
+#include "vk/context.h"
+
+namespace strata {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int runRender(const RenderCommand& cmd) {
+    for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad names before any work
+
+    auto t0 = std::chrono::steady_clock::now();
+    Scene scene = loadGltf(cmd.scene);
+    const double loadMs = msSince(t0);
+    if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
+        fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist (the scene has " +
+                            std::to_string(scene.cameras.size()) + " camera(s))");
+
+    t0 = std::chrono::steady_clock::now();
+    GpuScene gpu = packScene(scene);
+    const double packMs = msSince(t0);
+
+    vk::Context ctx({cmd.device, cmd.validation});
+    if (!cmd.quiet)
+        std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
+                     ctx.info.type.c_str(), ctx.info.driver.c_str());
+
+    RenderResult result = render(ctx, gpu, scene.cameras[cmd.camera], cmd.settings);
+
+    StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs};
+    nlohmann::json stats = statsJson(in);
+    if (ctx.validation && vk::validationMessageCount() > 0)
+        throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
+                              " Vulkan validation message(s) during the render");
+
+    writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
+    if (!cmd.statsJson.empty()) {
+        const std::string tmp = cmd.statsJson + ".tmp";
+        {
+            std::ofstream f(tmp);
+            f << stats.dump(2) << "\n";
+            if (!f) fail(cmd.statsJson, "cannot write the stats file");
+        }
+        if (std::rename(tmp.c_str(), cmd.statsJson.c_str()) != 0)
+            fail(cmd.statsJson, "cannot write the stats file");
+    }
+    if (cmd.stats) std::fputs(statsText(stats).c_str(), stdout);
+    if (!cmd.quiet)
+        for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());
+    return 0;
+}
+
+}  // namespace strata

@@ -1,0 +1,27 @@
+// `strata render`: load -> pack -> render -> write, the one-way flow of
+// DESIGN.md, with the options of the command line.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace strata {
+
+struct RenderCommand {
+    std::string scene;
+    std::vector<std::string> outputs;   // .exr and/or .png
+    RenderSettings settings;
+    int camera = 0;
+    int device = -1;
+    bool quiet = false;
+    bool stats = false;
+    std::string statsJson;
+    bool validation = false;
+};
+
+// Returns the process exit status. Throws strata::Error for bad input and
+// vk::DeviceError for device failures; writes no output file on any error.
+int runRender(const RenderCommand& cmd);
+
+}  // namespace strata

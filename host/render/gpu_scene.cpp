@@ -1,0 +1,110 @@
+#include "render/gpu_scene.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace strata {
+
+std::vector<std::string> SceneFeatures::names() const {
+    std::vector<std::string> out;
+    if (emitters) out.push_back("emissive-triangles");
+    return out;
+}
+
+std::uint64_t GpuScene::bytes() const {
+    return nodes.size() * sizeof(gpu::BvhNode) + tris.size() * sizeof(gpu::TriVerts) +
+           shading.size() * sizeof(gpu::TriShading) + materials.size() * sizeof(gpu::Material) +
+           emitters.size() * sizeof(gpu::Emitter);
+}
+
+void buildAliasTable(const std::vector<double>& weights, std::vector<gpu::Emitter>& emitters) {
+    const std::size_t n = weights.size();
+    double total = 0.0;
+    for (double w : weights) total += w;
+    std::vector<double> scaled(n);
+    std::vector<std::uint32_t> small, large;
+    for (std::size_t i = 0; i < n; ++i) {
+        emitters[i].pmf = static_cast<float>(weights[i] / total);
+        scaled[i] = weights[i] / total * static_cast<double>(n);
+        (scaled[i] < 1.0 ? small : large).push_back(static_cast<std::uint32_t>(i));
+    }
+    // Vose 1991: pair each under-full slot with an over-full one.
+    while (!small.empty() && !large.empty()) {
+        std::uint32_t s = small.back(), l = large.back();
+        small.pop_back();
+        emitters[s].aliasProb = static_cast<float>(scaled[s]);
+        emitters[s].alias = l;
+        scaled[l] = (scaled[l] + scaled[s]) - 1.0;
+        if (scaled[l] < 1.0) {
+            large.pop_back();
+            small.push_back(l);
+        }
+    }
+    for (std::uint32_t i : large) emitters[i].aliasProb = 1.0f, emitters[i].alias = i;
+    for (std::uint32_t i : small) emitters[i].aliasProb = 1.0f, emitters[i].alias = i;
+}
+
+GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
+    GpuScene g;
+    const std::size_t n = scene.triangles.size();
+    std::vector<glm::vec3> v0(n), v1(n), v2(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        v0[i] = scene.triangles[i].v[0];
+        v1[i] = scene.triangles[i].v[1];
+        v2[i] = scene.triangles[i].v[2];
+    }
+    Bvh bvh = buildBvh(v0, v1, v2, options);
+    g.nodes = std::move(bvh.nodes);
+    g.bvh = bvh.stats;
+
+    for (const auto& m : scene.materials) {
+        gpu::Material gm{};
+        gm.baseColor = m.baseColor;
+        gm.emission = m.emission();
+        gm.metallic = m.metallic;
+        gm.roughness = m.roughness;
+        gm.ior = m.ior;
+        gm.flags = m.doubleSided ? gpu::kMaterialDoubleSided : 0u;
+        gm.alphaCutoff = m.alphaCutoff;
+        g.materials.push_back(gm);
+    }
+
+    g.tris.resize(n);
+    g.shading.resize(n);
+    std::vector<double> weights;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Triangle& t = scene.triangles[bvh.triIndices[i]];
+        g.tris[i] = {glm::vec4(t.v[0], 0.0f), glm::vec4(t.v[1], 0.0f), glm::vec4(t.v[2], 0.0f)};
+        gpu::TriShading& s = g.shading[i];
+        s.n0 = t.n[0];
+        s.n1 = t.n[1];
+        s.n2 = t.n[2];
+        s.material = t.material;
+        s.light = gpu::kNoLight;
+        const MaterialDesc& m = scene.materials[t.material];
+        const glm::vec3 le = m.emission();
+        const glm::vec3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
+        const double area = 0.5 * glm::length(glm::cross(glm::dvec3(e1), glm::dvec3(e2)));
+        const double lum = 0.2126 * le.r + 0.7152 * le.g + 0.0722 * le.b;
+        if (lum > 0.0 && area > 0.0 && std::isfinite(area)) {
+            gpu::Emitter e{};
+            e.v0 = t.v[0];
+            e.e1 = e1;
+            e.e2 = e2;
+            e.triangle = static_cast<std::uint32_t>(i);
+            e.area = static_cast<float>(area);
+            e.radiance = le;
+            e.flags = m.doubleSided ? gpu::kMaterialDoubleSided : 0u;
+            const double sides = m.doubleSided ? 2.0 : 1.0;
+            s.light = static_cast<std::uint32_t>(g.emitters.size());
+            g.emitters.push_back(e);
+            weights.push_back(lum * area * std::numbers::pi * sides);
+        }
+    }
+    for (double w : weights) g.totalPower += w;
+    if (!g.emitters.empty()) buildAliasTable(weights, g.emitters);
+    g.features.emitters = !g.emitters.empty();
+    return g;
+}
+
+}  // namespace strata

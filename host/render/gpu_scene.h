@@ -1,0 +1,40 @@
+// Scene + BVH packed into the exact structs the shaders read
+// (shaders/shared/types.h), ready to upload.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bvh/bvh.h"
+#include "scene/scene.h"
+
+namespace strata {
+
+// Scene features detected at pack time; each becomes a specialization
+// constant so a scene that does not use a feature pays nothing for it.
+struct SceneFeatures {
+    bool emitters = false;  // emissive triangles: next-event estimation compiled in
+    std::vector<std::string> names() const;
+};
+
+struct GpuScene {
+    std::vector<gpu::BvhNode> nodes;
+    std::vector<gpu::TriVerts> tris;        // BVH order
+    std::vector<gpu::TriShading> shading;   // BVH order
+    std::vector<gpu::Material> materials;
+    std::vector<gpu::Emitter> emitters;     // with the alias table filled in
+    double totalPower = 0.0;                // sum of luminance(Le) * area * pi * sides
+    SceneFeatures features;
+    BvhStats bvh;
+    std::uint64_t bytes() const;
+};
+
+// Builds the BVH and packs everything. Emitters are the triangles with a
+// material emission > 0 and area > 0.
+GpuScene packScene(const Scene& scene, const BvhBuildOptions& options = {});
+
+// Walker/Vose alias table over `weights` (all >= 0, sum > 0): fills
+// aliasProb/alias/pmf of `emitters` in place.
+void buildAliasTable(const std::vector<double>& weights, std::vector<gpu::Emitter>& emitters);
+
+}  // namespace strata

@@ -1,0 +1,173 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <unistd.h>
+
+#include <strata_spirv.h>
+
+#include "../../shaders/shared/bindings.h"
+#include "vk/check.h"
+#include "vk/kernel.h"
+
+namespace strata {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+gpu::FrameUniforms frameUniforms(const GpuScene& scene, const Camera& cam, const RenderSettings& s) {
+    gpu::FrameUniforms f{};
+    const float tanHalf = std::tan(cam.yfov * 0.5f);
+    const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
+    const glm::vec3 right = glm::normalize(glm::cross(cam.forward, cam.up));
+    const glm::vec3 up = glm::cross(right, cam.forward);
+    f.camOrigin = glm::vec4(cam.position, 0.0f);
+    f.camForward = glm::vec4(cam.forward, 0.0f);
+    f.camRight = glm::vec4(right * tanHalf * aspect, 0.0f);
+    f.camUp = glm::vec4(up * tanHalf, 0.0f);
+    f.image = glm::uvec4(s.width, s.height, s.maxDepth, s.seed);
+    f.counts = glm::uvec4(scene.emitters.size(), scene.tris.size(), scene.nodes.size(), 0);
+    f.scene = glm::vec4(static_cast<float>(scene.totalPower), 0.0f, 0.0f, 0.0f);
+    return f;
+}
+
+void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, double msps) {
+    const double eta = done ? elapsed / done * (total - done) : 0.0;
+    std::fprintf(stderr, "\rstrata: %u/%u spp  %.1f s  ETA %.1f s  %.2f Msamples/s   ", done, total,
+                 elapsed, eta, msps);
+    std::fflush(stderr);
+}
+
+}  // namespace
+
+RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
+                    const RenderSettings& s) {
+    using namespace gpu;
+    DeviceScene dev = uploadScene(ctx, scene, s.traversal);
+    const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
+    const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
+
+    vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
+    const FrameUniforms fu = frameUniforms(scene, camera, s);
+    std::memcpy(frame.mapped(), &fu, sizeof fu);
+    constexpr VkBufferUsageFlags xfer = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    vk::Buffer accum(ctx, accumBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | xfer, vk::MemoryUse::Device);
+    vk::Buffer readback(ctx, accumBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
+    vk::Buffer counters(ctx, sizeof(RenderCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | xfer,
+                        vk::MemoryUse::Device);
+    vk::Buffer countersBack(ctx, sizeof(RenderCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            vk::MemoryUse::Readback);
+
+    std::vector<vk::BindingDesc> bindings = {
+        {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {BINDING_NODES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_TRIS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_SHADING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_NODES_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+        {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+    };
+    std::vector<std::uint32_t> spec(2);
+    spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
+    spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
+    vk::Kernel kernel(ctx, {kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4},
+                      std::move(bindings), sizeof(DispatchParams), spec);
+    kernel.bind(BINDING_FRAME, frame);
+    bindTraversal(kernel, dev);
+    kernel.bind(BINDING_SHADING, dev.shading);
+    kernel.bind(BINDING_MATERIALS, dev.materials);
+    kernel.bind(BINDING_EMITTERS, dev.emitters);
+    kernel.bind(BINDING_ACCUM, accum);
+    kernel.bind(BINDING_COUNTERS, counters);
+
+    RenderResult result;
+    result.film = Film(s.width, s.height);
+    result.texelTraversal = dev.texel;
+    vk::OneShot submit(ctx);
+    {
+        VkCommandBuffer cmd = submit.begin();
+        vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
+        vkCmdFillBuffer(cmd, counters.handle(), 0, VK_WHOLE_SIZE, 0);
+        submit.submitAndWait();
+    }
+
+    const auto start = Clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
+    const std::uint32_t tile = std::max(8u, s.tileSize);
+    std::uint32_t batch = 1;                  // samples in the next submission
+    constexpr double kTargetSubmitSeconds = 0.25;
+
+    while (result.spp < s.spp) {
+        batch = std::clamp(batch, 1u, std::min(s.maxBatch, s.spp - result.spp));
+        VkCommandBuffer cmd = submit.begin();
+        for (std::uint32_t k = 0; k < batch; ++k) {
+            for (std::uint32_t ty = 0; ty < static_cast<std::uint32_t>(s.height); ty += tile)
+                for (std::uint32_t tx = 0; tx < static_cast<std::uint32_t>(s.width); tx += tile) {
+                    DispatchParams p{};
+                    p.tileX = tx;
+                    p.tileY = ty;
+                    p.tileW = std::min<std::uint32_t>(tile, s.width - tx);
+                    p.tileH = std::min<std::uint32_t>(tile, s.height - ty);
+                    p.sampleIndex = result.spp + k;
+                    kernel.dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
+                }
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                              VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                              VK_PIPELINE_STAGE_TRANSFER_BIT,
+                              VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                              VK_ACCESS_TRANSFER_READ_BIT);
+        }
+        VkBufferCopy region{0, 0, accumBytes};
+        vkCmdCopyBuffer(cmd, accum.handle(), readback.handle(), 1, &region);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+        vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        const auto t0 = Clock::now();
+        submit.submitAndWait();
+        const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+        readback.invalidate();
+        result.film.fold(static_cast<const float*>(readback.mapped()));
+        result.spp += batch;
+        ++result.submissions;
+
+        const double perSample = secs / batch;
+        if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
+        double target = kTargetSubmitSeconds;
+        if (s.timeLimit > 0.0) target = std::min(target, s.timeLimit - elapsed());
+        batch = static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
+        if (showProgress)
+            printProgress(result.spp, s.spp, elapsed(),
+                          static_cast<double>(pixels) * result.spp / elapsed() * 1e-6);
+    }
+    result.seconds = elapsed();
+    if (showProgress) std::fprintf(stderr, "\n");
+
+    {
+        VkCommandBuffer cmd = submit.begin();
+        VkBufferCopy region{0, 0, sizeof(RenderCounters)};
+        vkCmdCopyBuffer(cmd, counters.handle(), countersBack.handle(), 1, &region);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        submit.submitAndWait();
+        countersBack.invalidate();
+        RenderCounters c;
+        std::memcpy(&c, countersBack.mapped(), sizeof c);
+        result.nonFinite = c.nonFinite;
+    }
+    return result;
+}
+
+}  // namespace strata

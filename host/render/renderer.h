@@ -1,0 +1,42 @@
+// The progressive render loop: one path per pixel per dispatch, dispatches
+// batched into submissions, float32 batch sums folded into a double Film.
+#pragma once
+#include <cstdint>
+
+#include "image/film.h"
+#include "render/device_scene.h"
+#include "render/gpu_scene.h"
+#include "scene/scene.h"
+#include "vk/context.h"
+
+namespace strata {
+
+struct RenderSettings {
+    int width = 512;
+    int height = 512;
+    std::uint32_t spp = 64;
+    std::uint32_t seed = 0;
+    std::uint32_t maxDepth = 16;        // scattering events (pbrt's convention)
+    double timeLimit = 0.0;             // seconds; 0 = none. Stops after the submission in progress
+    bool progress = false;              // progress line on stderr
+    Traversal traversal = Traversal::Auto;
+    std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
+    std::uint32_t tileSize = 512;       // dispatch covers at most tileSize^2 pixels
+};
+
+struct RenderResult {
+    Film film;
+    std::uint32_t spp = 0;              // samples per pixel actually taken
+    double seconds = 0.0;               // wall time of the dispatch loop
+    std::uint64_t nonFinite = 0;        // samples dropped as NaN/Inf
+    std::uint32_t submissions = 0;
+    bool texelTraversal = false;
+    double msamplesPerSecond() const {
+        return seconds > 0 ? static_cast<double>(film.pixels()) * spp / seconds * 1e-6 : 0.0;
+    }
+};
+
+RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
+                    const RenderSettings& settings);
+
+}  // namespace strata

@@ -1,0 +1,78 @@
+#include "render/stats.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace strata {
+
+nlohmann::json statsJson(const StatsInput& in) {
+    nlohmann::json j;
+    const auto& dev = in.ctx->info;
+    j["device"] = {{"index", dev.index}, {"name", dev.name}, {"type", dev.type},
+                   {"driver", dev.driver}, {"api_version", dev.apiVersion}};
+    std::size_t emissiveTriangles = in.gpu->emitters.size();
+    j["scene"] = {{"file", in.scene->path},
+                  {"triangles", in.scene->triangles.size()},
+                  {"materials", in.scene->materials.size()},
+                  {"emissive_triangles", emissiveTriangles},
+                  {"dropped_zero_area_emitters", in.scene->droppedEmitters},
+                  {"cameras", in.scene->cameras.size()},
+                  {"features", in.gpu->features.names()},
+                  {"gpu_bytes", in.gpu->bytes()},
+                  {"load_ms", in.loadMs}};
+    const BvhStats& b = in.gpu->bvh;
+    j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
+                {"sah_cost", b.sahCost}, {"build_ms", b.buildMs}, {"bytes", b.bytes},
+                {"pack_ms", in.packMs}};
+    const RenderSettings& s = *in.settings;
+    const RenderResult& r = *in.result;
+    j["render"] = {{"width", s.width},
+                   {"height", s.height},
+                   {"spp_requested", s.spp},
+                   {"spp", r.spp},
+                   {"seed", s.seed},
+                   {"max_depth", s.maxDepth},
+                   {"seconds", r.seconds},
+                   {"msamples_per_second", r.msamplesPerSecond()},
+                   {"submissions", r.submissions},
+                   {"non_finite_samples", r.nonFinite},
+                   {"traversal", r.texelTraversal ? "texel" : "storage"}};
+    j["validation"] = {{"enabled", in.ctx->validation},
+                       {"messages", vk::validationMessageCount()}};
+    return j;
+}
+
+std::string statsText(const nlohmann::json& j) {
+    std::ostringstream o;
+    const auto& d = j["device"];
+    o << "device     " << d["index"].get<int>() << ": " << d["name"].get<std::string>() << " ("
+      << d["type"].get<std::string>() << ", " << d["driver"].get<std::string>() << ", Vulkan "
+      << d["api_version"].get<std::string>() << ")\n";
+    const auto& s = j["scene"];
+    std::string features;
+    for (const auto& f : s["features"]) features += (features.empty() ? "" : ", ") + f.get<std::string>();
+    o << "scene      " << s["file"].get<std::string>() << ": " << s["triangles"] << " triangles, "
+      << s["materials"] << " materials, " << s["emissive_triangles"] << " emissive triangles"
+      << " (load " << s["load_ms"].get<double>() << " ms)\n";
+    o << "features   " << (features.empty() ? "none" : features) << "\n";
+    const auto& b = j["bvh"];
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "bvh        %u nodes, %u leaves, max depth %u, SAH cost %.2f, build %.1f ms, %.2f MiB\n",
+                  b["nodes"].get<unsigned>(), b["leaves"].get<unsigned>(), b["max_depth"].get<unsigned>(),
+                  b["sah_cost"].get<double>(), b["build_ms"].get<double>(),
+                  b["bytes"].get<double>() / (1024.0 * 1024.0));
+    o << line;
+    const auto& r = j["render"];
+    std::snprintf(line, sizeof line,
+                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s, %.3f Msamples/s, %s traversal\n",
+                  r["width"].get<int>(), r["height"].get<int>(), r["spp"].get<unsigned>(),
+                  r["spp_requested"].get<unsigned>(), r["max_depth"].get<unsigned>(),
+                  r["seconds"].get<double>(), r["msamples_per_second"].get<double>(),
+                  r["traversal"].get<std::string>().c_str());
+    o << line;
+    o << "samples    " << r["non_finite_samples"] << " non-finite dropped\n";
+    return o.str();
+}
+
+}  // namespace strata

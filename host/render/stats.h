@@ -1,0 +1,27 @@
+// Render statistics as one JSON object (for --stats-json) and as text (--stats).
+#pragma once
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "vk/context.h"
+
+namespace strata {
+
+struct StatsInput {
+    const vk::Context* ctx = nullptr;
+    const Scene* scene = nullptr;
+    const GpuScene* gpu = nullptr;
+    const RenderSettings* settings = nullptr;
+    const RenderResult* result = nullptr;
+    double loadMs = 0.0;
+    double packMs = 0.0;   // BVH build + packing
+};
+
+nlohmann::json statsJson(const StatsInput& in);
+std::string statsText(const nlohmann::json& stats);
+
+}  // namespace strata

@@ -1,0 +1,78 @@
+// Buffers: a move-only RAII handle over VkBuffer + its own VkDeviceMemory,
+// persistently mapped when host-visible.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "vk/context.h"
+
+namespace strata::vk {
+
+enum class MemoryUse {
+    Device,    // device-local; filled through a staging copy
+    Upload,    // host-visible, coherent (staging, uniforms)
+    Readback,  // host-visible, cached when available
+};
+
+class Buffer {
+public:
+    Buffer() = default;
+    Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
+    ~Buffer();
+    Buffer(Buffer&& other) noexcept;
+    Buffer& operator=(Buffer&& other) noexcept;
+    Buffer(const Buffer&) = delete;
+    Buffer& operator=(const Buffer&) = delete;
+
+    VkBuffer handle() const { return buffer_; }
+    VkDeviceSize size() const { return size_; }
+    void* mapped() const { return mapped_; }
+    // Makes device writes visible to the host for non-coherent memory.
+    void invalidate() const;
+
+private:
+    void reset();
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkBuffer buffer_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    VkDeviceSize size_ = 0;
+    void* mapped_ = nullptr;
+    bool coherent_ = true;
+};
+
+// Records and submits one command buffer, waiting on a fence. A wait longer
+// than `timeoutSeconds` is reported as a hung device (DeviceError).
+class OneShot {
+public:
+    explicit OneShot(const Context& ctx);
+    ~OneShot();
+    OneShot(const OneShot&) = delete;
+    OneShot& operator=(const OneShot&) = delete;
+
+    VkCommandBuffer begin();
+    void submitAndWait(double timeoutSeconds = 120.0);
+
+private:
+    const Context& ctx_;
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+};
+
+// A device-local buffer filled with `bytes` through a staging buffer. Size is
+// rounded up to 16 bytes and never zero (texel views need >= 1 element).
+Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
+
+template <class T>
+Buffer uploadVector(const Context& ctx, const std::vector<T>& v, VkBufferUsageFlags usage) {
+    return uploadBuffer(ctx, std::as_bytes(std::span<const T>(v)), usage);
+}
+
+// Memory barrier between two compute/transfer stages on the whole queue.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dst, VkAccessFlags dstAccess);
+
+}  // namespace strata::vk

@@ -1,0 +1,61 @@
+// Vulkan instance, physical-device choice, logical device and its compute
+// queue. One Context per process; everything else borrows it.
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace strata::vk {
+
+struct DeviceInfo {
+    std::uint32_t index = 0;
+    std::string name;
+    std::string type;          // "discrete GPU", "integrated GPU", "CPU", ...
+    std::string driver;        // driver name and info
+    std::string apiVersion;    // "1.3.230"
+    VkPhysicalDeviceType vkType = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+};
+
+struct ContextOptions {
+    int deviceIndex = -1;      // -1: discrete, else integrated, else CPU, else first
+    bool validation = false;   // enable VK_LAYER_KHRONOS_validation + messenger
+};
+
+struct Context {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    std::uint32_t queueFamily = 0;
+    VkCommandPool commandPool = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties properties{};
+    VkPhysicalDeviceMemoryProperties memory{};
+    DeviceInfo info;
+    bool validation = false;
+
+    explicit Context(const ContextOptions& options);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags want) const;
+
+private:
+    void release();
+};
+
+// Messages from the validation layers (warnings and errors) since start-up.
+// Tests assert this stays zero.
+std::uint64_t validationMessageCount();
+
+// All Vulkan physical devices, in the loader's order.
+std::vector<DeviceInfo> listDevices();
+
+// True when STRATA_VALIDATION is set to a non-empty value other than "0".
+bool validationRequestedByEnvironment();
+
+}  // namespace strata::vk

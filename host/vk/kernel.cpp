@@ -1,0 +1,142 @@
+#include "vk/kernel.h"
+
+#include <map>
+#include <utility>
+
+#include "vk/check.h"
+
+namespace strata::vk {
+
+TexelView::TexelView(const Context& ctx, const Buffer& buffer, VkFormat format) : device_(ctx.device) {
+    VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    info.buffer = buffer.handle();
+    info.format = format;
+    info.offset = 0;
+    info.range = VK_WHOLE_SIZE;
+    VK_CHECK(vkCreateBufferView(device_, &info, nullptr, &view_));
+}
+
+TexelView::~TexelView() {
+    if (view_) vkDestroyBufferView(device_, view_, nullptr);
+}
+
+TexelView::TexelView(TexelView&& o) noexcept { *this = std::move(o); }
+
+TexelView& TexelView::operator=(TexelView&& o) noexcept {
+    std::swap(device_, o.device_);
+    std::swap(view_, o.view_);
+    return *this;
+}
+
+Kernel::Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
+               std::vector<BindingDesc> bindings, std::uint32_t pushConstantBytes,
+               std::vector<std::uint32_t> specConstants)
+    : ctx_(ctx), bindings_(std::move(bindings)), pushBytes_(pushConstantBytes) {
+    VkDevice dev = ctx.device;
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = spirv.size_bytes();
+    moduleInfo.pCode = spirv.data();
+    VK_CHECK(vkCreateShaderModule(dev, &moduleInfo, nullptr, &module_));
+
+    std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
+    std::map<VkDescriptorType, std::uint32_t> typeCounts;
+    for (const auto& b : bindings_) {
+        VkDescriptorSetLayoutBinding lb{};
+        lb.binding = b.binding;
+        lb.descriptorType = b.type;
+        lb.descriptorCount = 1;
+        lb.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+        layoutBindings.push_back(lb);
+        ++typeCounts[b.type];
+    }
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = static_cast<std::uint32_t>(layoutBindings.size());
+    setInfo.pBindings = layoutBindings.data();
+    VK_CHECK(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_));
+
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout_;
+    layoutInfo.pushConstantRangeCount = pushBytes_ ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    VK_CHECK(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_));
+
+    std::vector<VkSpecializationMapEntry> entries;
+    for (std::uint32_t i = 0; i < specConstants.size(); ++i)
+        entries.push_back({i, i * 4u, 4u});
+    VkSpecializationInfo spec{};
+    spec.mapEntryCount = static_cast<std::uint32_t>(entries.size());
+    spec.pMapEntries = entries.data();
+    spec.dataSize = specConstants.size() * 4u;
+    spec.pData = specConstants.data();
+
+    VkComputePipelineCreateInfo pipeInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    pipeInfo.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    pipeInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipeInfo.stage.module = module_;
+    pipeInfo.stage.pName = "main";
+    pipeInfo.stage.pSpecializationInfo = specConstants.empty() ? nullptr : &spec;
+    pipeInfo.layout = layout_;
+    VK_CHECK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &pipeInfo, nullptr, &pipeline_));
+
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (auto [type, count] : typeCounts) sizes.push_back({type, count});
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+    poolInfo.pPoolSizes = sizes.data();
+    VK_CHECK(vkCreateDescriptorPool(dev, &poolInfo, nullptr, &pool_));
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = pool_;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &setLayout_;
+    VK_CHECK(vkAllocateDescriptorSets(dev, &alloc, &set_));
+}
+
+Kernel::~Kernel() {
+    VkDevice dev = ctx_.device;
+    if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
+    if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
+    if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
+    if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
+    if (module_) vkDestroyShaderModule(dev, module_, nullptr);
+}
+
+VkDescriptorType Kernel::typeOf(std::uint32_t binding) const {
+    for (const auto& b : bindings_)
+        if (b.binding == binding) return b.type;
+    throw DeviceError("kernel has no binding " + std::to_string(binding));
+}
+
+void Kernel::bind(std::uint32_t binding, const Buffer& buffer) {
+    VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set_;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = typeOf(binding);
+    write.pBufferInfo = &info;
+    vkUpdateDescriptorSets(ctx_.device, 1, &write, 0, nullptr);
+}
+
+void Kernel::bind(std::uint32_t binding, const TexelView& view) {
+    VkBufferView handle = view.handle();
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set_;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = typeOf(binding);
+    write.pTexelBufferView = &handle;
+    vkUpdateDescriptorSets(ctx_.device, 1, &write, 0, nullptr);
+}
+
+void Kernel::dispatch(VkCommandBuffer cmd, const void* push, std::uint32_t gx, std::uint32_t gy,
+                      std::uint32_t gz) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    if (pushBytes_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_, push);
+    vkCmdDispatch(cmd, gx, gy, gz);
+}
+
+}  // namespace strata::vk

@@ -1,0 +1,41 @@
+// Emissive-triangle lights: choice in proportion to emitted power through
+// the host-built alias table (Walker 1977 / Vose 1991), then a uniform point
+// on the chosen triangle. Needs `emitters[]` declared by the includer.
+#ifndef STRATA_LIB_LIGHTS_GLSL
+#define STRATA_LIB_LIGHTS_GLSL
+
+#include "lib/sampling.glsl"
+
+struct LightSample {
+    vec3 position;
+    vec3 normal;       // unit geometric normal of the emitter (front side)
+    vec3 radiance;
+    float pmf;         // probability of having chosen this emitter
+    float area;
+    uint flags;
+};
+
+// uChoice picks the emitter (alias slot + coin), uPoint the point on it.
+LightSample sampleEmitter(uint emitterCount, vec2 uChoice, vec2 uPoint) {
+    uint slot = min(uint(uChoice.x * float(emitterCount)), emitterCount - 1u);
+    Emitter e = emitters[slot];
+    if (uChoice.y >= e.aliasProb) e = emitters[e.alias];
+    vec2 b = sampleTriangle(uPoint);
+    LightSample ls;
+    ls.position = e.v0 + b.x * e.e1 + b.y * e.e2;
+    ls.normal = normalize(cross(e.e1, e.e2));
+    ls.radiance = e.radiance;
+    ls.pmf = e.pmf;
+    ls.area = e.area;
+    ls.flags = e.flags;
+    return ls;
+}
+
+// Solid-angle density of reaching a point on an emitter (area `area`, chosen
+// with `pmf`) at distance `dist` whose normal makes |cosine| `cosLight` with
+// the direction to it.
+float emitterPdfSolidAngle(float pmf, float area, float dist, float cosLight) {
+    return cosLight > 0.0 ? pmf * dist * dist / (cosLight * area) : 0.0;
+}
+
+#endif

@@ -1,0 +1,38 @@
+// Scene buffers of descriptor set 0 and the fetch functions the BVH traversal
+// uses. SPEC_TEXEL_FETCH picks texel-view reads (fast on lavapipe, where a
+// divergent storage-buffer load becomes a scalar loop) or storage reads.
+#ifndef STRATA_LIB_SCENE_GLSL
+#define STRATA_LIB_SCENE_GLSL
+
+#include "shared/types.h"
+#include "shared/bindings.h"
+
+layout(constant_id = SPEC_TEXEL_FETCH) const uint kTexelFetch = 0u;
+
+layout(std430, set = 0, binding = BINDING_NODES) readonly buffer NodeBuffer { BvhNode nodes[]; };
+layout(std430, set = 0, binding = BINDING_TRIS) readonly buffer TriBuffer { TriVerts tris[]; };
+layout(set = 0, binding = BINDING_NODES_TEXEL) uniform usamplerBuffer nodesTexel;
+layout(set = 0, binding = BINDING_TRIS_TEXEL) uniform usamplerBuffer trisTexel;
+
+BvhNode bvhFetchNode(uint index) {
+    if (kTexelFetch != 0u) {
+        uvec4 a = texelFetch(nodesTexel, int(2u * index));
+        uvec4 b = texelFetch(nodesTexel, int(2u * index + 1u));
+        return BvhNode(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
+    }
+    return nodes[index];
+}
+
+TriVerts bvhFetchTri(uint index) {
+    if (kTexelFetch != 0u) {
+        int base = int(3u * index);
+        return TriVerts(uintBitsToFloat(texelFetch(trisTexel, base)),
+                        uintBitsToFloat(texelFetch(trisTexel, base + 1)),
+                        uintBitsToFloat(texelFetch(trisTexel, base + 2)));
+    }
+    return tris[index];
+}
+
+#include "lib/bvh.glsl"
+
+#endif

@@ -1,0 +1,145 @@
+#version 460
+// Progressive path tracer: one path per pixel of the dispatch's tile, one
+// sample per dispatch, added into the accumulation buffer (sum, count, sum of
+// squares). Lambertian BSDF with cosine sampling; next-event estimation on
+// emissive triangles combined with BSDF-sampled emission by the power
+// heuristic (Veach 1997); Russian roulette after depth 3.
+// maxDepth counts scattering events (pbrt's convention): 0 shows emitters
+// seen directly, 1 is direct lighting.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+#include "lib/scene.glsl"
+#include "lib/rng.glsl"
+
+layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
+
+layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
+layout(std430, set = 0, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { Material materials[]; };
+layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
+layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
+layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
+layout(push_constant) uniform Push { DispatchParams params; };
+
+#include "lib/lights.glsl"
+
+// Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex.
+const uint kDimsPerVertex = 7u;   // light choice (2), light point (2), BSDF (2), roulette (1)
+const float kRayMax = 3.0e38;
+
+vec3 cameraRay(vec2 pixel) {
+    vec2 ndc = vec2(2.0 * pixel.x / float(frame.image.x) - 1.0,
+                    1.0 - 2.0 * pixel.y / float(frame.image.y));
+    return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
+}
+
+vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
+    const uint maxDepth = frame.image.z;
+    const uint emitterCount = frame.counts.x;
+    vec3 L = vec3(0.0);
+    vec3 beta = vec3(1.0);
+    float prevBsdfPdf = 0.0;
+
+    for (uint depth = 0u;; ++depth) {
+        TraceHit hit;
+        if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) break;
+
+        TriVerts tv = bvhFetchTri(hit.triangle);
+        vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
+        vec3 ng = normalize(cross(e1, e2));
+        bool front = dot(dir, ng) < 0.0;
+        TriShading sh = shading[hit.triangle];
+        Material mat = materials[sh.material];
+
+        // Emission found by the previous vertex's BSDF sample (or directly).
+        if (kHasEmitters != 0u && sh.light != kNoLight) {
+            if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
+                float w = 1.0;
+                if (depth > 0u) {
+                    Emitter em = emitters[sh.light];
+                    float lightPdf = emitterPdfSolidAngle(em.pmf, em.area, hit.t, abs(dot(dir, ng)));
+                    w = powerHeuristic(prevBsdfPdf, lightPdf);
+                }
+                L += beta * w * mat.emission;
+            }
+        }
+        if (depth >= maxDepth) break;
+
+        vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
+        vec3 n = front ? ng : -ng;  // geometric normal on the incoming side
+        vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
+        if (dot(ns, n) < 0.0) ns = -ns;
+        vec3 albedo = mat.baseColor.rgb;
+        vec3 origin2 = offsetRayOrigin(p, n);
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex);
+
+        // Next-event estimation: one shadow ray to a point on an emitter.
+        if (kHasEmitters != 0u) {
+            vec2 uChoice = sample2D(smp);
+            vec2 uPoint = sample2D(smp);
+            LightSample ls = sampleEmitter(emitterCount, uChoice, uPoint);
+            vec3 toLight = ls.position - p;
+            float dist = length(toLight);
+            vec3 wi = toLight / dist;
+            float cosSigned = -dot(wi, ls.normal);
+            vec3 lightSide = cosSigned > 0.0 ? ls.normal : -ls.normal;  // faces p
+            bool emits = cosSigned > 0.0 || (ls.flags & kMaterialDoubleSided) != 0u;
+            float cosLight = abs(cosSigned);
+            float cosSurface = dot(ns, wi);
+            if (emits && cosSurface > 0.0 && dot(n, wi) > 0.0 && dist > 0.0) {
+                float lightPdf = emitterPdfSolidAngle(ls.pmf, ls.area, dist, cosLight);
+                if (lightPdf > 0.0) {
+                    vec3 target = offsetRayOrigin(ls.position, lightSide);
+                    vec3 seg = target - origin2;
+                    float segLen = length(seg);
+                    if (segLen > 0.0 && !bvhTraceAny(origin2, seg / segLen, 0.0, segLen)) {
+                        float bsdfPdf = cosSurface * kInvPi;
+                        float w = powerHeuristic(lightPdf, bsdfPdf);
+                        L += beta * (albedo * kInvPi * cosSurface) * ls.radiance * (w / lightPdf);
+                    }
+                }
+            }
+        }
+
+        // BSDF sampling: cosine-weighted, so f cos / pdf = albedo.
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex + 4u);
+        vec3 wi = toWorld(sampleCosineHemisphere(sample2D(smp)), ns);
+        float cosSurface = dot(ns, wi);
+        if (cosSurface <= 0.0 || dot(n, wi) <= 0.0) break;
+        beta *= albedo;
+        prevBsdfPdf = cosSurface * kInvPi;
+
+        // Russian roulette after depth 3, survival probability max(beta) (>= 0.05).
+        float u = sample1D(smp);
+        if (depth >= 3u) {
+            float q = max(0.05, 1.0 - max(beta.r, max(beta.g, beta.b)));
+            if (u < q) break;
+            beta /= 1.0 - q;
+        }
+        origin = origin2;
+        dir = wi;
+    }
+    return L;
+}
+
+void main() {
+    uvec2 local = gl_GlobalInvocationID.xy;
+    if (local.x >= params.tileW || local.y >= params.tileH) return;
+    uvec2 pixel = uvec2(params.tileX, params.tileY) + local;
+    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
+
+    Sampler smp = samplerInit(pixelIndex, params.sampleIndex, frame.image.w);
+    vec2 jitter = sample2D(smp);  // box filter: uniform over the pixel
+    vec3 dir = cameraRay(vec2(pixel) + jitter);
+    vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
+
+    if (any(isnan(L)) || any(isinf(L))) {
+        atomicAdd(counters.nonFinite, 1u);
+        return;
+    }
+    uint base = pixelIndex * kAccumVec4PerPixel;
+    accum[base] += vec4(L, 1.0);
+    accum[base + 1u] += vec4(L * L, 0.0);
+}

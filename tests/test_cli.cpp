@@ -1,0 +1,125 @@
+// The strata binary as a user runs it: exit codes, one-line errors, and no
+// output file after any error.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string output;  // stdout and stderr together
+};
+
+Run run(const std::string& args) {
+    Run r;
+    const std::string cmd = std::string(STRATA_EXE) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    REQUIRE(p != nullptr);
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+    const int raw = pclose(p);
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return r;
+}
+
+std::size_t lines(const std::string& s) {
+    std::size_t n = 0;
+    for (char c : s) n += c == '\n';
+    return n + (!s.empty() && s.back() != '\n');
+}
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() / ("strata-cli-" + std::to_string(::getpid()));
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+    bool empty() const { return fs::is_empty(path); }
+};
+
+const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
+
+}  // namespace
+
+TEST_CASE("every broken file gives one error line naming it, exit 2 and no output") {
+    const fs::path dir = fs::path(STRATA_SOURCE_DIR) / "tests/data/broken";
+    std::size_t checked = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string file = entry.path().string();
+        if (entry.path().filename() == "zero-area-emitter.gltf") continue;  // loads, with a warning
+        if (entry.path().extension() == ".bin") continue;
+        CAPTURE(file);
+        TempDir out;
+        const Run r = run(file + " -o " + (out.path / "a.exr").string() + " -o " +
+                          (out.path / "a.png").string() + kSmall);
+        CAPTURE(r.output);
+        CHECK(r.status == 2);
+        CHECK(lines(r.output) == 1);
+        CHECK(r.output.rfind(file + ": error: ", 0) == 0);
+        CHECK(out.empty());
+        ++checked;
+    }
+    CHECK(checked >= 12);
+}
+
+TEST_CASE("a zero-area emitter is dropped with a warning and the scene still renders") {
+    TempDir out;
+    const std::string file = std::string(STRATA_SOURCE_DIR) + "/tests/data/broken/zero-area-emitter.gltf";
+    const Run r = run(file + " -o " + (out.path / "a.exr").string() + kSmall);
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find(": warning: ") != std::string::npos);
+    CHECK(fs::exists(out.path / "a.exr"));
+}
+
+TEST_CASE("bad flags are one-line errors with exit 2 and write nothing") {
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    TempDir out;
+    const std::string o = " -o " + (out.path / "a.exr").string();
+    for (const std::string& args : std::vector<std::string>
+         {"render " + scene + o + " --spp 0", "render " + scene + o + " --spp ten",
+          "render " + scene + o + " --bogus", "render " + scene + o + " --width",
+          "render " + scene + " -o " + (out.path / "a.jpg").string(),
+          "render " + scene + o + " --camera 5", "render " + scene + o + " --time -1",
+          "render " + scene + o + " --traversal fast", "render", "frobnicate",
+          "render /nonexistent/scene.gltf" + o}) {
+        CAPTURE(args);
+        const Run r = run(args + kSmall);
+        CAPTURE(r.output);
+        CHECK(r.status == 2);
+        CHECK(lines(r.output) == 1);
+        CHECK(r.output.find("error: ") != std::string::npos);
+        CHECK(out.empty());
+    }
+}
+
+TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
+    TempDir out;
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    const Run r = run("render " + scene + " -o " + (out.path / "c.exr").string() + " -o " +
+                      (out.path / "c.png").string() + " --stats-json " +
+                      (out.path / "s.json").string() + kSmall);
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    CHECK(fs::file_size(out.path / "c.exr") > 0);
+    CHECK(fs::file_size(out.path / "c.png") > 0);
+    CHECK(fs::file_size(out.path / "s.json") > 0);
+    for (const auto& e : fs::directory_iterator(out.path))
+        CHECK(e.path().filename().string().find(".tmp") == std::string::npos);
+    const Run d = run("devices");
+    CHECK(d.status == 0);
+    CHECK(d.output.find("0: ") == 0);
+}

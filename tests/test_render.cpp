@@ -1,0 +1,110 @@
+// Render tests on the real shaders (lavapipe in CI), validation layers on.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "test_util.h"
+
+using namespace strata;
+using namespace strata::test;
+
+namespace {
+
+RenderSettings small(std::uint32_t spp, std::uint32_t maxDepth, std::uint32_t seed = 1) {
+    RenderSettings s;
+    s.width = 24;
+    s.height = 24;
+    s.spp = spp;
+    s.maxDepth = maxDepth;
+    s.seed = seed;
+    return s;
+}
+
+}  // namespace
+
+// Closed furnace (scenes/furnace.gltf): every surface has albedo a = 0.5 and
+// emits Le = 0.5, so L = Le (1 - a^(D+1)) / (1 - a) for max depth D
+// (the geometric series of D scattering events).
+TEST_CASE("closed furnace matches Le (1 - a^(D+1)) / (1 - a) within 4 standard errors") {
+    const double a = 0.5, le = 0.5;
+    for (std::uint32_t depth : {0u, 1u, 2u, 5u, 16u}) {
+        CAPTURE(depth);
+        Rendered r = renderFile("scenes/furnace.gltf", small(64, depth, 7 + depth));
+        const double expected = le * (1.0 - std::pow(a, depth + 1.0)) / (1.0 - a);
+        const ImageMean m = imageMean(r.result.film);
+        CAPTURE(m.mean);
+        CAPTURE(m.stdError);
+        CHECK(r.result.spp == 64);
+        CHECK(r.result.nonFinite == 0);
+        if (depth == 0) {
+            // Only the directly seen emission: no randomness at all.
+            CHECK(m.mean == doctest::Approx(expected).epsilon(1e-6));
+        } else {
+            CHECK(m.stdError > 0.0);
+            CHECK(std::abs(m.mean - expected) <= 4.0 * m.stdError);
+            // The standard error is small enough for the test to mean something.
+            CHECK(m.stdError < 0.01 * expected);
+        }
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("same seed and spp give a bit-identical image; another seed differs") {
+    const RenderSettings s = small(4, 16, 42);
+    Rendered a = renderFile("scenes/cornell-box.gltf", s);
+    Rendered b = renderFile("scenes/cornell-box.gltf", s);
+    RenderSettings s2 = s;
+    s2.seed = 43;
+    Rendered c = renderFile("scenes/cornell-box.gltf", s2);
+    const auto ma = a.result.film.mean(), mb = b.result.film.mean(), mc = c.result.film.mean();
+    REQUIRE(ma.size() == mb.size());
+    CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < ma.size(); ++i) differing += ma[i] != mc[i];
+    CHECK(differing > ma.size() / 2);
+    CHECK(a.result.nonFinite == 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texel and storage traversal render the same image") {
+    RenderSettings s = small(2, 4, 5);
+    s.traversal = Traversal::Texel;
+    Rendered t = renderFile("scenes/cornell-box.gltf", s);
+    s.traversal = Traversal::Storage;
+    Rendered st = renderFile("scenes/cornell-box.gltf", s);
+    CHECK(t.result.texelTraversal);
+    CHECK_FALSE(st.result.texelTraversal);
+    const auto mt = t.result.film.mean(), ms = st.result.film.mean();
+    CHECK(std::memcmp(mt.data(), ms.data(), mt.size() * sizeof(float)) == 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("an image larger than one dispatch tile is covered in full") {
+    RenderSettings s = small(1, 0, 3);
+    s.width = 37;
+    s.height = 29;
+    s.tileSize = 16;  // 3 x 2 tiles, ragged edges
+    Rendered r = renderFile("scenes/furnace.gltf", s);
+    for (std::uint64_t n : r.result.film.count) CHECK(n == 1);
+    const auto m = r.result.film.mean();
+    for (float v : m) CHECK(v == doctest::Approx(0.5).epsilon(1e-6));
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// 10^6 samples of a constant: the device sums float32 batches of at most 64
+// samples and the host folds them in double, so the mean does not drift.
+TEST_CASE("accumulation of 10^6 samples of a constant does not drift") {
+    RenderSettings s = small(1000000, 0, 1);
+    s.width = 8;
+    s.height = 8;
+    Rendered r = renderFile("scenes/furnace.gltf", s);
+    REQUIRE(r.result.spp == 1000000);
+    const double le = 0.5;  // exactly representable; the sums are not (past 2^24 in float32)
+    for (std::size_t i = 0; i < r.result.film.pixels(); ++i) {
+        CHECK(r.result.film.count[i] == 1000000);
+        const double mean = r.result.film.sum[i * 3] / r.result.film.count[i];
+        CHECK(std::abs(mean - le) / le < 1e-5);
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}

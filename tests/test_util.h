@@ -1,0 +1,55 @@
+// Shared helpers for the render tests: one Vulkan context per test process
+// (validation layers on when STRATA_VALIDATION is set, as ctest does), and
+// the statistics used to compare renders with known answers.
+#pragma once
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "render/gpu_scene.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+#include "vk/context.h"
+
+namespace strata::test {
+
+inline std::string sourcePath(const std::string& rel) { return std::string(STRATA_SOURCE_DIR) + "/" + rel; }
+
+inline vk::Context& context() {
+    static vk::Context ctx(vk::ContextOptions{-1, vk::validationRequestedByEnvironment()});
+    return ctx;
+}
+
+struct Rendered {
+    Scene scene;
+    GpuScene gpu;
+    RenderResult result;
+};
+
+inline Rendered renderFile(const std::string& relPath, const RenderSettings& settings, int camera = 0) {
+    Rendered r;
+    r.scene = loadGltf(sourcePath(relPath));
+    r.gpu = packScene(r.scene);
+    r.result = render(context(), r.gpu, r.scene.cameras.at(camera), settings);
+    return r;
+}
+
+// Mean over all pixels and channels of the image, and its estimated standard
+// error from the per-pixel variances (pixels are independent).
+struct ImageMean {
+    double mean = 0.0;
+    double stdError = 0.0;
+};
+
+inline ImageMean imageMean(const Film& film) {
+    const auto m = film.mean();
+    const auto v = film.varianceOfMean();
+    double sum = 0.0, var = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i) sum += m[i], var += v[i];
+    const double n = static_cast<double>(m.size());
+    // Channels of one pixel are correlated (same path); bound the variance of
+    // their average by treating them as fully correlated: var(sum of 3) <= 9 var.
+    return {sum / n, std::sqrt(3.0 * var) / n};
+}
+
+}  // namespace strata::test
