@@ -1,19 +1,21 @@
 // The scene as the host sees it after loading: flat arrays in world space.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/geometric.hpp>
 
 namespace strata {
 
 struct Camera {
     glm::vec3 position{0.0f};
     glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit, camera's local -Z
-    glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, camera's local +Y
+    glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, camera's local +Y, orthogonal to forward
     float yfov = 0.8f;                     // radians
-    std::string name;
+    std::string name;                      // glTF camera name, else its node's name
 };
 
 // glTF material, all factors kept even where the renderer does not use them
@@ -43,19 +45,44 @@ struct Triangle {
 struct Scene {
     std::string path;                 // file it was loaded from (for messages)
     std::vector<Triangle> triangles;
-    std::vector<MaterialDesc> materials;  // always at least one (the default)
+    // The file's materials in file order, then the glTF default material
+    // (spec defaults, name "default") when a primitive has none or the file
+    // has no materials: never empty.
+    std::vector<MaterialDesc> materials;
     std::vector<Camera> cameras;      // in node order (depth-first)
     std::vector<std::string> extensionsUsed;
-    std::size_t droppedEmitters = 0;  // zero-area emissive triangles dropped at load
+    // Triangles with an emissive material but zero area. They stay in
+    // `triangles` as geometry and are not emitters (see isEmitter).
+    std::size_t droppedEmitters = 0;
 };
+
+// Area in world units squared.
+inline float triangleArea(const Triangle& t) {
+    return 0.5f * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+}
+
+// True when some channel of emission() is > 0.
+inline bool isEmissive(const MaterialDesc& m) {
+    const glm::vec3 e = m.emission();
+    return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
+}
+
+// The one emitter rule shared by the loader and the renderer: an emissive
+// material and an area > 0 (computed in float as triangleArea does).
+inline bool isEmitter(const Scene& scene, const Triangle& t) {
+    return t.material < scene.materials.size() && isEmissive(scene.materials[t.material]) &&
+           triangleArea(t) > 0.0f;
+}
 
 struct LoadOptions {
     bool requireCamera = true;
     bool requireEmitter = true;
 };
 
-// Loads .gltf or .glb. Throws strata::Error with a one-line message naming the
-// file and the problem.
+// Loads .gltf or .glb (binary when the file starts with the 'glTF' magic).
+// Throws strata::Error with a one-line message naming the file and the
+// problem; warnings (unsupported used extensions, zero-area emitters) go to
+// strata::warn.
 Scene loadGltf(const std::string& path, const LoadOptions& options = {});
 
 }  // namespace strata

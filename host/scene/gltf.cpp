@@ -1,0 +1,478 @@
+// glTF 2.0 (.gltf / .glb) -> Scene: the default scene's node hierarchy is
+// flattened into world-space triangles and cameras.
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string_view>
+
+#include "scene/gltf_internal.h"
+#include "scene/scene.h"
+#include "util/error.h"
+
+namespace strata {
+
+namespace {
+
+using gltf::LocalPrimitive;
+using gltf::quoted;
+
+constexpr std::array<std::string_view, 2> kSupportedExtensions = {"KHR_materials_emissive_strength",
+                                                                  "KHR_materials_ior"};
+
+// Used where a normal cannot be computed (zero-area triangle, degenerate
+// transform); any unit vector is valid for a triangle that is never hit.
+constexpr glm::dvec3 kFallbackNormal{0.0, 0.0, 1.0};
+
+std::vector<unsigned char> readFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) fail(path, "cannot read file: is a directory");
+    errno = 0;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                         &std::fclose);
+    if (!file) fail(path, std::string("cannot open file: ") + std::strerror(errno));
+    std::vector<unsigned char> bytes;
+    unsigned char chunk[1 << 16];
+    std::size_t got = 0;
+    while ((got = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) {
+        bytes.insert(bytes.end(), chunk, chunk + got);
+    }
+    if (std::ferror(file.get()))
+        fail(path, std::string("cannot read file: ") + std::strerror(errno));
+    return bytes;
+}
+
+bool hasGlbMagic(const std::vector<unsigned char>& bytes) {
+    return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+bool hasGlbExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".glb";
+}
+
+// Files named by uris (buffers, images) are looked up next to the glTF file
+// only (tinygltf also tries the working directory); misses are recorded.
+struct FsContext {
+    std::string prefix;                // base directory ending in '/'
+    std::vector<std::string> missing;  // paths looked up and not found
+};
+
+bool fileExists(const std::string& file, void* user) {
+    auto* context = static_cast<FsContext*>(user);
+    if (file.rfind(context->prefix, 0) != 0) return false;
+    if (tinygltf::FileExists(file, nullptr)) return true;
+    context->missing.push_back(file);
+    return false;
+}
+
+std::string keepPath(const std::string& file, void*) { return file; }
+
+// Little-endian u32 at `offset`.
+std::uint32_t readU32(const std::vector<unsigned char>& bytes, std::size_t offset) {
+    return static_cast<std::uint32_t>(bytes[offset]) |
+           static_cast<std::uint32_t>(bytes[offset + 1]) << 8 |
+           static_cast<std::uint32_t>(bytes[offset + 2]) << 16 |
+           static_cast<std::uint32_t>(bytes[offset + 3]) << 24;
+}
+
+// GLB header: magic, version 2, total length <= file size.
+void checkGlbHeader(const std::string& path, const std::vector<unsigned char>& bytes) {
+    if (bytes.size() < 12)
+        fail(path, "truncated GLB: " + std::to_string(bytes.size()) +
+                       " bytes is shorter than the 12-byte header");
+    const std::uint32_t version = readU32(bytes, 4);
+    if (version != 2)
+        fail(path, "GLB version " + std::to_string(version) + " is not supported; only 2");
+    const std::uint32_t length = readU32(bytes, 8);
+    if (length > bytes.size()) {
+        fail(path, "truncated GLB: the header says " + std::to_string(length) +
+                       " bytes but the file has " + std::to_string(bytes.size()));
+    }
+}
+
+tinygltf::Model parseModel(const std::string& path) {
+    const std::vector<unsigned char> bytes = readFile(path);
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
+        fail(path, "file is larger than 4 GiB");
+    }
+    const bool binary = hasGlbMagic(bytes);
+    if (binary) {
+        checkGlbHeader(path, bytes);
+    } else if (hasGlbExtension(path)) {
+        fail(path, "not a binary glTF file: it does not start with the 'glTF' magic");
+    }
+    std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (baseDir.empty()) baseDir = ".";
+
+    FsContext fsContext;
+    fsContext.prefix = baseDir.back() == '/' ? baseDir : baseDir + "/";
+    tinygltf::TinyGLTF context;
+    context.SetFsCallbacks(
+        {&fileExists, &keepPath, &tinygltf::ReadWholeFile, &tinygltf::WriteWholeFile, &fsContext});
+    tinygltf::Model model;
+    std::string err;
+    std::string warnings;
+    bool ok = false;
+    try {
+        const auto size = static_cast<unsigned int>(bytes.size());
+        if (binary) {
+            ok = context.LoadBinaryFromMemory(&model, &err, &warnings, bytes.data(), size, baseDir);
+        } else {
+            ok = context.LoadASCIIFromString(&model, &err, &warnings,
+                                             reinterpret_cast<const char*>(bytes.data()), size,
+                                             baseDir);
+        }
+    } catch (const std::exception& e) {
+        fail(path, std::string("invalid glTF: ") + gltf::oneLine(e.what()));
+    }
+    if (!ok) {
+        if (!fsContext.missing.empty()) {
+            const std::string& file = fsContext.missing.front();
+            fail(path, "missing file: uri " + quoted(file.substr(fsContext.prefix.size())) +
+                           " refers to " + file + ", which does not exist");
+        }
+        const std::string why = gltf::oneLine(err);
+        fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
+    }
+    const std::string notes = gltf::oneLine(err.empty() ? warnings : err + "\n" + warnings);
+    if (!notes.empty()) warn(path, notes);
+    return model;
+}
+
+bool isSupported(const std::string& extension) {
+    return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), extension) !=
+           kSupportedExtensions.end();
+}
+
+void checkExtensions(const std::string& path, const tinygltf::Model& model) {
+    std::string required;
+    for (const auto& e : model.extensionsRequired) {
+        if (!isSupported(e)) required += (required.empty() ? "" : ", ") + e;
+    }
+    if (!required.empty()) {
+        fail(path, "unsupported required extension(s): " + gltf::oneLine(required) +
+                       " (supported: " + std::string(kSupportedExtensions[0]) + ", " +
+                       std::string(kSupportedExtensions[1]) + ")");
+    }
+    std::string used;
+    for (const auto& e : model.extensionsUsed) {
+        if (!isSupported(e)) used += (used.empty() ? "" : ", ") + e;
+    }
+    if (!used.empty()) warn(path, "unsupported extension(s) used, ignored: " + gltf::oneLine(used));
+}
+
+std::string nodeLabel(const tinygltf::Model& model, int node) {
+    std::string label = "node " + std::to_string(node);
+    const auto& name = model.nodes[static_cast<std::size_t>(node)].name;
+    if (!name.empty()) label += " (" + quoted(name) + ")";
+    return label;
+}
+
+// glTF node transform: `matrix` (column-major) or T * R * S.
+glm::dmat4 localTransform(const std::string& path, const tinygltf::Model& model, int index) {
+    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
+    glm::dmat4 m(1.0);
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16) {
+            fail(path, nodeLabel(model, index) + ": matrix has " +
+                           std::to_string(node.matrix.size()) + " numbers; expected 16");
+        }
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[static_cast<std::size_t>(c * 4 + r)];
+        }
+        return m;
+    }
+    auto checkSize = [&](const std::vector<double>& v, std::size_t n, const char* what) {
+        if (!v.empty() && v.size() != n) {
+            fail(path, nodeLabel(model, index) + ": " + what + " has " + std::to_string(v.size()) +
+                           " numbers; expected " + std::to_string(n));
+        }
+    };
+    checkSize(node.translation, 3, "translation");
+    checkSize(node.rotation, 4, "rotation");
+    checkSize(node.scale, 3, "scale");
+
+    glm::dmat3 rotation(1.0);
+    if (!node.rotation.empty()) {
+        // Unit quaternion (x, y, z, w) -> rotation matrix; m[column][row].
+        double x = node.rotation[0], y = node.rotation[1], z = node.rotation[2],
+               w = node.rotation[3];
+        const double len = std::sqrt(x * x + y * y + z * z + w * w);
+        if (!(len > 0.0) || !std::isfinite(len)) {
+            fail(path, nodeLabel(model, index) + ": rotation is not a valid quaternion");
+        }
+        x /= len, y /= len, z /= len, w /= len;
+        rotation[0] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+        rotation[1] = {2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)};
+        rotation[2] = {2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
+    }
+    const glm::dvec3 scale = node.scale.empty()
+                                 ? glm::dvec3(1.0)
+                                 : glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
+    for (int c = 0; c < 3; ++c) m[c] = glm::dvec4(rotation[c] * scale[c], 0.0);
+    if (!node.translation.empty()) {
+        m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+    }
+    return m;
+}
+
+std::optional<glm::dvec3> tryNormalize(const glm::dvec3& v) {
+    const double len = glm::length(v);
+    if (!(len > 0.0) || !std::isfinite(len)) return std::nullopt;
+    return v / len;
+}
+
+bool isFinite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+class SceneBuilder {
+public:
+    SceneBuilder(const std::string& path, const tinygltf::Model& model, Scene& scene)
+        : path_(path), model_(model), scene_(scene), meshes_(model.meshes.size()) {}
+
+    // Depth-first, parents before children, children in file order.
+    void walk(int sceneIndex) {
+        const tinygltf::Scene& s = model_.scenes[static_cast<std::size_t>(sceneIndex)];
+        std::vector<char> onPath(model_.nodes.size(), 0);
+        struct Frame {
+            int node;
+            glm::dmat4 world;
+            std::size_t nextChild;
+        };
+        std::vector<Frame> stack;
+        auto enter = [&](int node, const glm::dmat4& parent) {
+            if (onPath[static_cast<std::size_t>(node)]) {
+                fail(path_, nodeLabel(model_, node) +
+                                " is its own ancestor (cycle in the node hierarchy)");
+            }
+            const glm::dmat4 world = parent * localTransform(path_, model_, node);
+            visit(node, world);
+            onPath[static_cast<std::size_t>(node)] = 1;
+            stack.push_back({node, world, 0});
+        };
+        for (const int root : s.nodes) {
+            if (!validNode(root)) {
+                fail(path_, "scene " + std::to_string(sceneIndex) + ": node " +
+                                std::to_string(root) + " does not exist (" +
+                                std::to_string(model_.nodes.size()) + " nodes)");
+            }
+            enter(root, glm::dmat4(1.0));
+            while (!stack.empty()) {
+                Frame& top = stack.back();
+                const auto& children = model_.nodes[static_cast<std::size_t>(top.node)].children;
+                if (top.nextChild == children.size()) {
+                    onPath[static_cast<std::size_t>(top.node)] = 0;
+                    stack.pop_back();
+                    continue;
+                }
+                const int child = children[top.nextChild++];
+                if (!validNode(child)) {
+                    fail(path_, nodeLabel(model_, top.node) + ": child " + std::to_string(child) +
+                                    " does not exist (" + std::to_string(model_.nodes.size()) +
+                                    " nodes)");
+                }
+                const glm::dmat4 parent = top.world;
+                enter(child, parent);
+            }
+        }
+    }
+
+    bool usesDefaultMaterial() const { return usesDefault_; }
+
+private:
+    bool validNode(int node) const {
+        return node >= 0 && static_cast<std::size_t>(node) < model_.nodes.size();
+    }
+
+    void visit(int nodeIndex, const glm::dmat4& world) {
+        const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
+        if (node.camera >= 0 || node.camera < -1) addCamera(nodeIndex, world);
+        if (node.mesh >= 0 || node.mesh < -1) addMesh(nodeIndex, world);
+    }
+
+    void addCamera(int nodeIndex, const glm::dmat4& world) {
+        const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
+        if (static_cast<std::size_t>(node.camera) >= model_.cameras.size()) {
+            fail(path_, nodeLabel(model_, nodeIndex) + ": camera " + std::to_string(node.camera) +
+                            " does not exist (" + std::to_string(model_.cameras.size()) +
+                            " cameras)");
+        }
+        const tinygltf::Camera& src = model_.cameras[static_cast<std::size_t>(node.camera)];
+        std::string label = "camera " + std::to_string(node.camera);
+        if (!src.name.empty()) label += " (" + quoted(src.name) + ")";
+        if (src.type == "orthographic") {
+            fail(path_, label + " is orthographic; only perspective cameras are supported");
+        }
+        if (src.type != "perspective") {
+            fail(path_,
+                 label + ": type " + quoted(src.type) + " is not supported; only perspective");
+        }
+        const double yfov = src.perspective.yfov;
+        if (!(yfov > 0.0 && yfov < std::numbers::pi)) {
+            std::ostringstream msg;
+            msg << label << ": yfov " << yfov << " is outside (0, pi) radians";
+            fail(path_, msg.str());
+        }
+        // Camera space: looks down -Z, +Y up. Normalising removes any scale.
+        const glm::dmat3 linear(world);
+        const glm::dvec3 position(world[3]);
+        const auto forward = tryNormalize(linear * glm::dvec3(0.0, 0.0, -1.0));
+        const glm::dvec3 upRaw = linear * glm::dvec3(0.0, 1.0, 0.0);
+        const auto up =
+            forward ? tryNormalize(upRaw - glm::dot(upRaw, *forward) * *forward) : std::nullopt;
+        if (!forward || !up || !isFinite(position)) {
+            fail(path_, label + " on " + nodeLabel(model_, nodeIndex) +
+                            ": degenerate world transform (zero scale or not finite)");
+        }
+        Camera camera;
+        camera.position = glm::vec3(position);
+        camera.forward = glm::vec3(*forward);
+        camera.up = glm::vec3(*up);
+        camera.yfov = static_cast<float>(yfov);
+        camera.name = !src.name.empty() ? src.name : node.name;
+        scene_.cameras.push_back(camera);
+    }
+
+    void addMesh(int nodeIndex, const glm::dmat4& world) {
+        const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
+        if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
+            fail(path_, nodeLabel(model_, nodeIndex) + ": mesh " + std::to_string(node.mesh) +
+                            " does not exist (" + std::to_string(model_.meshes.size()) +
+                            " meshes)");
+        }
+        auto& decoded = meshes_[static_cast<std::size_t>(node.mesh)];
+        if (!decoded) decoded = gltf::decodeMesh(path_, model_, node.mesh);
+
+        const glm::dmat3 linear(world);
+        const double det = glm::determinant(linear);
+        // Cofactor matrix = det * inverse transpose; signed so it points the
+        // same way as the inverse transpose, and defined for det == 0.
+        const glm::dmat3 normalMatrix =
+            glm::dmat3(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]),
+                       glm::cross(linear[0], linear[1])) *
+            (det < 0.0 ? -1.0 : 1.0);
+        const bool flip = det < 0.0;
+
+        std::vector<glm::dvec3> positions;
+        std::vector<glm::dvec3> normals;
+        for (const LocalPrimitive& prim : *decoded) {
+            std::uint32_t material = 0;
+            if (prim.material >= 0) {
+                material = static_cast<std::uint32_t>(prim.material);
+            } else {
+                material = static_cast<std::uint32_t>(model_.materials.size());
+                usesDefault_ = true;
+            }
+            positions.resize(prim.positions.size());
+            for (std::size_t i = 0; i < prim.positions.size(); ++i) {
+                positions[i] = glm::dvec3(world * glm::dvec4(glm::dvec3(prim.positions[i]), 1.0));
+                if (!isFinite(positions[i])) {
+                    fail(path_, gltf::meshLabel(model_, node.mesh) + " on " +
+                                    nodeLabel(model_, nodeIndex) + ": vertex " + std::to_string(i) +
+                                    " is not finite in world space");
+                }
+            }
+            normals.resize(prim.normals.size());
+            for (std::size_t i = 0; i < prim.normals.size(); ++i) {
+                normals[i] = normalMatrix * glm::dvec3(prim.normals[i]);
+            }
+            for (std::size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
+                std::array<std::uint32_t, 3> idx = {prim.indices[t], prim.indices[t + 1],
+                                                    prim.indices[t + 2]};
+                // A mirroring transform reverses the winding; swapping two
+                // vertices keeps the front face (CCW) the front face.
+                if (flip) std::swap(idx[1], idx[2]);
+                Triangle tri;
+                tri.material = material;
+                const glm::dvec3 p0 = positions[idx[0]], p1 = positions[idx[1]],
+                                 p2 = positions[idx[2]];
+                const glm::dvec3 geometric =
+                    tryNormalize(glm::cross(p1 - p0, p2 - p0)).value_or(kFallbackNormal);
+                for (int k = 0; k < 3; ++k) {
+                    tri.v[k] = glm::vec3(positions[idx[static_cast<std::size_t>(k)]]);
+                    const glm::dvec3 n =
+                        normals.empty() ? geometric
+                                        : tryNormalize(normals[idx[static_cast<std::size_t>(k)]])
+                                              .value_or(geometric);
+                    tri.n[k] = glm::vec3(n);
+                }
+                scene_.triangles.push_back(tri);
+            }
+        }
+    }
+
+    const std::string& path_;
+    const tinygltf::Model& model_;
+    Scene& scene_;
+    std::vector<std::optional<std::vector<LocalPrimitive>>> meshes_;  // decoded on first use
+    bool usesDefault_ = false;
+};
+
+}  // namespace
+
+Scene loadGltf(const std::string& path, const LoadOptions& options) {
+    const tinygltf::Model model = parseModel(path);
+    checkExtensions(path, model);
+
+    if (model.scenes.empty()) fail(path, "no scenes: the file defines no scene to load");
+    const int sceneIndex = model.defaultScene == -1 ? 0 : model.defaultScene;
+    if (sceneIndex < 0 || static_cast<std::size_t>(sceneIndex) >= model.scenes.size()) {
+        fail(path, "default scene " + std::to_string(model.defaultScene) + " does not exist (" +
+                       std::to_string(model.scenes.size()) + " scenes)");
+    }
+
+    Scene scene;
+    scene.path = path;
+    scene.extensionsUsed = model.extensionsUsed;
+    for (std::size_t i = 0; i < model.materials.size(); ++i) {
+        scene.materials.push_back(gltf::convertMaterial(path, model, static_cast<int>(i)));
+    }
+    SceneBuilder builder(path, model, scene);
+    builder.walk(sceneIndex);
+    if (builder.usesDefaultMaterial() || scene.materials.empty()) {
+        MaterialDesc fallback;  // glTF defaults
+        fallback.name = "default";
+        scene.materials.push_back(fallback);
+    }
+
+    if (options.requireCamera && scene.cameras.empty()) {
+        fail(path, "no camera: no node of scene " + std::to_string(sceneIndex) +
+                       " has a perspective camera");
+    }
+    std::size_t emitters = 0;
+    for (const Triangle& t : scene.triangles) {
+        if (isEmitter(scene, t)) {
+            ++emitters;
+        } else if (isEmissive(scene.materials[t.material])) {
+            ++scene.droppedEmitters;
+        }
+    }
+    const std::string dropped =
+        std::to_string(scene.droppedEmitters) + " emissive triangle(s) have zero area";
+    if (options.requireEmitter && emitters == 0) {
+        std::string msg =
+            "no light: no triangle has an emissive material (emissiveFactor * emissiveStrength > 0)"
+            " and a non-zero area";
+        if (scene.droppedEmitters > 0) msg += "; " + dropped;
+        fail(path, msg);
+    }
+    if (scene.droppedEmitters > 0) {
+        warn(path, dropped + "; they are kept as geometry but emit no light");
+    }
+    return scene;
+}
+
+}  // namespace strata

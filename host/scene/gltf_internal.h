@@ -1,0 +1,47 @@
+// Internals of the glTF loader, shared by host/scene/gltf*.cpp only.
+// Every function throws strata::Error ("<path>: error: <what>", one line).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+#include "scene/scene.h"
+
+namespace strata::gltf {
+
+// A string as it appears in one message line: in double quotes, with
+// quotes, backslashes and control characters escaped.
+std::string quoted(const std::string& s);
+
+// Joins the non-empty lines of a multi-line text with "; ", other control
+// characters become spaces; data URIs are cut to their first 48 characters
+// followed by "...".
+std::string oneLine(const std::string& text);
+
+// `mesh 2 ("Cube")`, or `mesh 2` for an unnamed mesh.
+std::string meshLabel(const tinygltf::Model& model, int mesh);
+
+// One primitive of a mesh decoded in the mesh's local space. `indices` always
+// holds 3 entries per triangle (0,1,2,... for a non-indexed primitive), each
+// < positions.size(). `normals` is empty or the same size as `positions`.
+struct LocalPrimitive {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<std::uint32_t> indices;
+    int material = -1;  // glTF material index, -1 for none
+};
+
+// Decodes every primitive of `mesh`: TRIANGLES only, POSITION float VEC3
+// with finite values, NORMAL float VEC3 (optional), indices u8/u16/u32 in
+// range, every accessor inside its bufferView and buffer.
+std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::Model& model,
+                                       int mesh);
+
+// pbrMetallicRoughness factors, emissive factor, KHR_materials_emissive_strength,
+// KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.
+MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& model, int index);
+
+}  // namespace strata::gltf

@@ -1,0 +1,97 @@
+// glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
+// KHR_materials_emissive_strength and KHR_materials_ior.
+#include <cmath>
+#include <sstream>
+
+#include "scene/gltf_internal.h"
+#include "util/error.h"
+
+namespace strata::gltf {
+
+namespace {
+
+std::string materialLabel(const tinygltf::Model& model, int index) {
+    std::string label = "material " + std::to_string(index);
+    const auto& name = model.materials[static_cast<std::size_t>(index)].name;
+    if (!name.empty()) label += " (" + quoted(name) + ")";
+    return label;
+}
+
+// The number `key` of extension object `extension` of `material`, or
+// `fallback` when the extension or the key is absent.
+double extensionNumber(const std::string& path, const std::string& label,
+                       const tinygltf::Material& material, const char* extension, const char* key,
+                       double fallback) {
+    const auto it = material.extensions.find(extension);
+    if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) {
+        return fallback;
+    }
+    const tinygltf::Value& value = it->second.Get(key);
+    if (!value.IsNumber()) fail(path, label + ": " + extension + "." + key + " is not a number");
+    return value.GetNumberAsDouble();
+}
+
+std::string formatNumber(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+}  // namespace
+
+MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& model, int index) {
+    const tinygltf::Material& src = model.materials[static_cast<std::size_t>(index)];
+    const std::string label = materialLabel(model, index);
+    MaterialDesc m;
+    m.name = src.name;
+
+    const auto& pbr = src.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() != 4) {
+        fail(path, label + ": baseColorFactor has " + std::to_string(pbr.baseColorFactor.size()) +
+                       " numbers; expected 4");
+    }
+    m.baseColor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                            pbr.baseColorFactor[3]);
+    m.metallic = static_cast<float>(pbr.metallicFactor);
+    m.roughness = static_cast<float>(pbr.roughnessFactor);
+
+    if (!src.emissiveFactor.empty()) {
+        if (src.emissiveFactor.size() != 3) {
+            fail(path, label + ": emissiveFactor has " + std::to_string(src.emissiveFactor.size()) +
+                           " numbers; expected 3");
+        }
+        m.emissiveFactor =
+            glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
+    }
+    const double strength = extensionNumber(path, label, src, "KHR_materials_emissive_strength",
+                                            "emissiveStrength", 1.0);
+    if (!(strength >= 0.0) || !std::isfinite(strength)) {
+        fail(path, label + ": KHR_materials_emissive_strength.emissiveStrength " +
+                       formatNumber(strength) + " is not a finite number >= 0");
+    }
+    m.emissiveStrength = static_cast<float>(strength);
+
+    // KHR_materials_ior allows 0 (no refraction) or >= 1.
+    const double ior = extensionNumber(path, label, src, "KHR_materials_ior", "ior", 1.5);
+    if (!std::isfinite(ior) || !(ior == 0.0 || ior >= 1.0)) {
+        fail(path,
+             label + ": KHR_materials_ior.ior " + formatNumber(ior) + " is neither 0 nor >= 1");
+    }
+    m.ior = static_cast<float>(ior);
+
+    m.doubleSided = src.doubleSided;
+    if (src.alphaMode == "OPAQUE") {
+        m.alphaMode = MaterialDesc::AlphaMode::Opaque;
+    } else if (src.alphaMode == "MASK") {
+        m.alphaMode = MaterialDesc::AlphaMode::Mask;
+    } else if (src.alphaMode == "BLEND") {
+        m.alphaMode = MaterialDesc::AlphaMode::Blend;
+    } else {
+        fail(path,
+             label + ": alphaMode " + quoted(src.alphaMode) + " is not OPAQUE, MASK or BLEND");
+    }
+    m.alphaCutoff = static_cast<float>(src.alphaCutoff);
+    return m;
+}
+
+}  // namespace strata::gltf

@@ -1,0 +1,206 @@
+"""Minimal glTF 2.0 writer for the test data (Python 3 stdlib only).
+
+One GltfWriter collects JSON objects and a single binary buffer; write_gltf
+embeds the buffer as a base64 data URI (or writes a sibling .bin), write_glb
+writes a binary glTF. Output is deterministic: same calls, same bytes.
+"""
+
+import base64
+import json
+import os
+import struct
+
+BYTE = 5120
+UNSIGNED_BYTE = 5121
+UNSIGNED_SHORT = 5123
+UNSIGNED_INT = 5125
+FLOAT = 5126
+
+INDEX_FORMAT = {UNSIGNED_BYTE: "<B", UNSIGNED_SHORT: "<H", UNSIGNED_INT: "<I"}
+
+
+def f32(x):
+    """x rounded to float32, as the loader will read it."""
+    return struct.unpack("<f", struct.pack("<f", x))[0]
+
+
+def pack_vec3(points):
+    return b"".join(struct.pack("<3f", *p) for p in points)
+
+
+def to_json(value, level=0):
+    """JSON with one-space indents; arrays of numbers stay on one line."""
+    pad = " " * level
+    if isinstance(value, dict):
+        if not value:
+            return "{}"
+        items = [f'{pad} {json.dumps(k)}: {to_json(v, level + 1)}' for k, v in value.items()]
+        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+    if isinstance(value, list):
+        if all(not isinstance(v, (dict, list)) for v in value):
+            return "[" + ", ".join(json.dumps(v) for v in value) + "]"
+        items = [pad + " " + to_json(v, level + 1) for v in value]
+        return "[\n" + ",\n".join(items) + "\n" + pad + "]"
+    return json.dumps(value)
+
+
+class GltfWriter:
+    def __init__(self, generator="strata tests/data"):
+        self.doc = {"asset": {"version": "2.0", "generator": generator}}
+        self.blob = bytearray()
+
+    def _add(self, key, obj):
+        items = self.doc.setdefault(key, [])
+        items.append(obj)
+        return len(items) - 1
+
+    # Buffer data -------------------------------------------------------
+    def add_view(self, data, stride=None):
+        """Appends data (4-byte aligned) as a new bufferView; returns its index."""
+        while len(self.blob) % 4:
+            self.blob.append(0)
+        view = {"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data)}
+        if stride is not None:
+            view["byteStride"] = stride
+        self.blob += data
+        return self._add("bufferViews", view)
+
+    def add_accessor(self, view, component_type, count, type_, byte_offset=0,
+                     min_=None, max_=None):
+        acc = {"bufferView": view, "componentType": component_type, "count": count,
+               "type": type_}
+        if byte_offset:
+            acc["byteOffset"] = byte_offset
+        if min_ is not None:
+            acc["min"] = min_
+            acc["max"] = max_
+        return self._add("accessors", acc)
+
+    def add_vec3(self, points, with_bounds=True):
+        """Tightly packed float VEC3 accessor (POSITION bounds when with_bounds)."""
+        view = self.add_view(pack_vec3(points))
+        lo = hi = None
+        if with_bounds:
+            lo = [min(f32(p[i]) for p in points) for i in range(3)]
+            hi = [max(f32(p[i]) for p in points) for i in range(3)]
+        return self.add_accessor(view, FLOAT, len(points), "VEC3", 0, lo, hi)
+
+    def add_indices(self, indices, component_type=UNSIGNED_SHORT):
+        fmt = INDEX_FORMAT[component_type]
+        view = self.add_view(b"".join(struct.pack(fmt, i) for i in indices))
+        return self.add_accessor(view, component_type, len(indices), "SCALAR")
+
+    # Scene objects -------------------------------------------------------
+    def add_material(self, name, base_color=None, metallic=None, roughness=None,
+                     emissive=None, strength=None, ior=None, double_sided=False,
+                     alpha_mode=None, alpha_cutoff=None):
+        mat = {"name": name}
+        pbr = {}
+        if base_color is not None:
+            pbr["baseColorFactor"] = list(base_color)
+        if metallic is not None:
+            pbr["metallicFactor"] = metallic
+        if roughness is not None:
+            pbr["roughnessFactor"] = roughness
+        if pbr:
+            mat["pbrMetallicRoughness"] = pbr
+        if emissive is not None:
+            mat["emissiveFactor"] = list(emissive)
+        ext = {}
+        if strength is not None:
+            ext["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
+        if ior is not None:
+            ext["KHR_materials_ior"] = {"ior": ior}
+        if ext:
+            mat["extensions"] = ext
+        if double_sided:
+            mat["doubleSided"] = True
+        if alpha_mode is not None:
+            mat["alphaMode"] = alpha_mode
+        if alpha_cutoff is not None:
+            mat["alphaCutoff"] = alpha_cutoff
+        return self._add("materials", mat)
+
+    def primitive(self, position, normal=None, indices=None, material=None, mode=None):
+        prim = {"attributes": {"POSITION": position}}
+        if normal is not None:
+            prim["attributes"]["NORMAL"] = normal
+        if indices is not None:
+            prim["indices"] = indices
+        if material is not None:
+            prim["material"] = material
+        if mode is not None:
+            prim["mode"] = mode
+        return prim
+
+    def add_mesh(self, name, primitives):
+        return self._add("meshes", {"name": name, "primitives": primitives})
+
+    def add_triangles(self, name, points, normals=None, indices=None, material=None,
+                      index_type=UNSIGNED_SHORT):
+        """One mesh with one TRIANGLES primitive; returns the mesh index."""
+        pos = self.add_vec3(points)
+        nrm = self.add_vec3(normals, with_bounds=False) if normals is not None else None
+        idx = self.add_indices(indices, index_type) if indices is not None else None
+        return self.add_mesh(name, [self.primitive(pos, nrm, idx, material)])
+
+    def add_perspective(self, name, yfov, znear=0.01, zfar=None):
+        persp = {"yfov": yfov, "znear": znear}
+        if zfar is not None:
+            persp["zfar"] = zfar
+        return self._add("cameras", {"name": name, "type": "perspective",
+                                     "perspective": persp})
+
+    def add_orthographic(self, name, xmag=1.0, ymag=1.0, znear=0.01, zfar=100.0):
+        return self._add("cameras", {"name": name, "type": "orthographic",
+                                     "orthographic": {"xmag": xmag, "ymag": ymag,
+                                                      "znear": znear, "zfar": zfar}})
+
+    def add_node(self, name, **fields):
+        """fields: mesh, camera, children, translation, rotation, scale, matrix."""
+        node = {"name": name}
+        node.update(fields)
+        return self._add("nodes", node)
+
+    def set_scene(self, nodes):
+        self.doc["scenes"] = [{"nodes": list(nodes)}]
+        self.doc["scene"] = 0
+
+    def use_extensions(self, used, required=()):
+        self.doc["extensionsUsed"] = list(used)
+        if required:
+            self.doc["extensionsRequired"] = list(required)
+
+    # Output ------------------------------------------------------------
+    def _json(self, buffer):
+        doc = dict(self.doc)
+        if self.blob:
+            doc["buffers"] = [buffer]
+        return to_json(doc) + "\n"
+
+    def gltf_text(self, bin_uri=None):
+        """glTF JSON; the buffer is a data URI unless bin_uri names a file."""
+        uri = bin_uri or ("data:application/octet-stream;base64," +
+                          base64.b64encode(bytes(self.blob)).decode("ascii"))
+        return self._json({"byteLength": len(self.blob), "uri": uri})
+
+    def write_gltf(self, path, bin_name=None):
+        """Writes path; with bin_name the buffer goes to a sibling file."""
+        with open(path, "w", encoding="utf-8", newline="\n") as f:
+            f.write(self.gltf_text(bin_name))
+        if bin_name:
+            with open(os.path.join(os.path.dirname(path), bin_name), "wb") as f:
+                f.write(bytes(self.blob))
+
+    def glb_bytes(self):
+        text = self._json({"byteLength": len(self.blob)}).encode("utf-8")
+        text += b" " * (-len(text) % 4)
+        blob = bytes(self.blob) + b"\0" * (-len(self.blob) % 4)
+        chunks = struct.pack("<I4s", len(text), b"JSON") + text
+        if blob:
+            chunks += struct.pack("<I4s", len(blob), b"BIN\0") + blob
+        return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
+
+    def write_glb(self, path):
+        with open(path, "wb") as f:
+            f.write(self.glb_bytes())
