@@ -8,6 +8,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -63,7 +65,7 @@ TEST_CASE("every broken file gives one error line naming it, exit 2 and no outpu
         if (entry.path().extension() == ".bin") continue;
         CAPTURE(file);
         TempDir out;
-        const Run r = run(file + " -o " + (out.path / "a.exr").string() + " -o " +
+        const Run r = run("render " + file + " -o " + (out.path / "a.exr").string() + " -o " +
                           (out.path / "a.png").string() + kSmall);
         CAPTURE(r.output);
         CHECK(r.status == 2);
@@ -78,7 +80,7 @@ TEST_CASE("every broken file gives one error line naming it, exit 2 and no outpu
 TEST_CASE("a zero-area emitter is dropped with a warning and the scene still renders") {
     TempDir out;
     const std::string file = std::string(STRATA_SOURCE_DIR) + "/tests/data/broken/zero-area-emitter.gltf";
-    const Run r = run(file + " -o " + (out.path / "a.exr").string() + kSmall);
+    const Run r = run("render " + file + " -o " + (out.path / "a.exr").string() + kSmall);
     CAPTURE(r.output);
     CHECK(r.status == 0);
     CHECK(r.output.find(": warning: ") != std::string::npos);
@@ -122,4 +124,21 @@ TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
     const Run d = run("devices");
     CHECK(d.status == 0);
     CHECK(d.output.find("0: ") == 0);
+}
+
+TEST_CASE("--time stops early and records the spp actually reached") {
+    TempDir out;
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    const Run r = run("render " + scene + " -o " + (out.path / "t.exr").string() + " --stats-json " +
+                      (out.path / "s.json").string() +
+                      " --spp 1000000 --width 16 --height 16 --quiet --time 0.5");
+    CAPTURE(r.output);
+    REQUIRE(r.status == 0);
+    std::ifstream f(out.path / "s.json");
+    const std::string json((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const auto pos = json.find("\"spp\": ");
+    REQUIRE(pos != std::string::npos);
+    const unsigned long spp = std::stoul(json.substr(pos + 7));
+    CHECK(spp >= 1);
+    CHECK(spp < 1000000);
 }

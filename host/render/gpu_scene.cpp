@@ -82,23 +82,21 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
         s.material = t.material;
         s.light = gpu::kNoLight;
         const MaterialDesc& m = scene.materials[t.material];
-        const glm::vec3 le = m.emission();
-        const glm::vec3 e1 = t.v[1] - t.v[0], e2 = t.v[2] - t.v[0];
-        const double area = 0.5 * glm::length(glm::cross(glm::dvec3(e1), glm::dvec3(e2)));
-        const double lum = 0.2126 * le.r + 0.7152 * le.g + 0.0722 * le.b;
-        if (lum > 0.0 && area > 0.0 && std::isfinite(area)) {
+        if (isEmitter(scene, t)) {
+            const glm::vec3 le = m.emission();
+            const double lum = 0.2126 * le.r + 0.7152 * le.g + 0.0722 * le.b;
             gpu::Emitter e{};
             e.v0 = t.v[0];
-            e.e1 = e1;
-            e.e2 = e2;
+            e.e1 = t.v[1] - t.v[0];
+            e.e2 = t.v[2] - t.v[0];
             e.triangle = static_cast<std::uint32_t>(i);
-            e.area = static_cast<float>(area);
+            e.area = triangleArea(t);
             e.radiance = le;
             e.flags = m.doubleSided ? gpu::kMaterialDoubleSided : 0u;
             const double sides = m.doubleSided ? 2.0 : 1.0;
             s.light = static_cast<std::uint32_t>(g.emitters.size());
             g.emitters.push_back(e);
-            weights.push_back(lum * area * std::numbers::pi * sides);
+            weights.push_back(lum * e.area * std::numbers::pi * sides);
         }
     }
     for (double w : weights) g.totalPower += w;

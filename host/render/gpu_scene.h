@@ -29,8 +29,8 @@ struct GpuScene {
     std::uint64_t bytes() const;
 };
 
-// Builds the BVH and packs everything. Emitters are the triangles with a
-// material emission > 0 and area > 0.
+// Builds the BVH and packs everything. Emitters are the triangles for which
+// isEmitter (scene.h) holds.
 GpuScene packScene(const Scene& scene, const BvhBuildOptions& options = {});
 
 // Walker/Vose alias table over `weights` (all >= 0, sum > 0): fills

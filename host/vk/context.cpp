@@ -114,6 +114,8 @@ int preferenceRank(VkPhysicalDeviceType type) {
 
 std::uint64_t validationMessageCount() { return gValidationMessages.load(); }
 
+void resetValidationMessageCount() { gValidationMessages.store(0); }
+
 bool validationRequestedByEnvironment() {
     const char* v = std::getenv("STRATA_VALIDATION");
     return v && *v && std::strcmp(v, "0") != 0;

@@ -51,6 +51,8 @@ private:
 // Messages from the validation layers (warnings and errors) since start-up.
 // Tests assert this stays zero.
 std::uint64_t validationMessageCount();
+// Sets the count back to zero (for the test that provokes a message on purpose).
+void resetValidationMessageCount();
 
 // All Vulkan physical devices, in the loader's order.
 std::vector<DeviceInfo> listDevices();
