@@ -10,8 +10,14 @@
 
 namespace strata {
 
+// Entries of the fixed traversal stack (here and in shaders/lib/bvh.glsl). A
+// traversal holds at most maxDepth entries; buildBvh guarantees
+// stats.maxDepth < kBvhStackSize by splitting at the object median where
+// depth + ceil(log2(triangles)) would reach kBvhStackSize - 1.
+inline constexpr std::uint32_t kBvhStackSize = 64;
+
 struct BvhBuildOptions {
-    int bins = 16;            // SAH bins per axis (>= 16)
+    int bins = 16;            // SAH bins per axis (16 or more; clamped to [2, 256])
     int maxLeafSize = 8;      // a node with more triangles is always split
     float traversalCost = 1.0f;  // SAH cost of an interior node, relative to
                                  // one triangle intersection
@@ -20,7 +26,7 @@ struct BvhBuildOptions {
 struct BvhStats {
     std::uint32_t nodes = 0;
     std::uint32_t leaves = 0;
-    std::uint32_t maxDepth = 0;
+    std::uint32_t maxDepth = 0;  // edges from the root to the deepest leaf
     double sahCost = 0.0;     // expected cost per ray, relative to the root area
     double buildMs = 0.0;
     std::uint64_t bytes = 0;  // nodes only
@@ -33,7 +39,12 @@ struct Bvh {
 };
 
 // Builds over triangles given by their three vertices. Degenerate triangles
-// (zero area, collinear) are kept; they are never hit.
+// (zero area, collinear) are kept; they are never hit. Output depends only on
+// the input (a second thread, if used, does not change it).
+// No triangles: nodes holds one node with an empty box (bmin = +inf,
+// bmax = -inf), count 0 and leftOrFirst 0; stats.leaves is 0. An interior
+// node always has leftOrFirst >= 2, so traversals treat a root with
+// count == 0 && leftOrFirst == 0 as a miss before testing its box.
 Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
              const std::vector<glm::vec3>& v2, const BvhBuildOptions& options = {});
 
@@ -51,13 +62,17 @@ struct Hit {
     bool hit() const { return triangle != gpu::kNoHit; }
 };
 
-// Watertight ray/triangle test (Woop, Benthin, Wald 2013). Returns true and
-// fills t/u/v when the ray hits within (tmin, tmax).
+// Watertight ray/triangle test (Woop, Benthin, Wald 2013), both faces. Returns
+// true and fills t/u/v (barycentric weights of b and c) when the ray hits with
+// tmin < t < tmax. A triangle whose float cross((b - a), (c - a)) is exactly
+// zero is degenerate and never hit.
 bool intersectTriangle(const Ray& ray, const glm::vec3& a, const glm::vec3& b,
                        const glm::vec3& c, float& t, float& u, float& v);
 
 // Closest hit, CPU reference traversal of the flattened BVH. `tris` are in BVH
-// order (tris[i] = input triangle bvh.triIndices[i]).
+// order (tris[i] = input triangle bvh.triIndices[i]). Among hits at equal t the
+// lowest BVH-order index wins, here and in traceBruteForce, so both agree
+// exactly.
 Hit traceClosest(const Bvh& bvh, const std::vector<gpu::TriVerts>& tris, const Ray& ray);
 
 // Closest hit by testing every triangle (BVH order), for tests.
