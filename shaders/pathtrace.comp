@@ -67,12 +67,12 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         }
         if (depth >= maxDepth) break;
 
-        vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         vec3 n = front ? ng : -ng;  // geometric normal on the incoming side
         vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
         if (dot(ns, n) < 0.0) ns = -ns;
         vec3 albedo = mat.baseColor.rgb;
-        vec3 origin2 = offsetRayOrigin(p, n);
+        vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
+        vec3 origin2 = spawnOrigin(tv, hit.u, hit.v, n);
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
 
         // Next-event estimation: one shadow ray to a point on an emitter.

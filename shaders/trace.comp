@@ -7,6 +7,7 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 #include "lib/scene.glsl"
+#include "lib/sampling.glsl"
 
 layout(std430, set = 0, binding = BINDING_RAYS) readonly buffer RayBuffer { TraceRay rays[]; };
 layout(std430, set = 0, binding = BINDING_HITS) writeonly buffer HitBuffer { TraceHit hits[]; };
@@ -17,9 +18,21 @@ void main() {
     uint i = params.first + gl_GlobalInvocationID.x;
     TraceRay r = rays[i];
     TraceHit h;
-    if (params.anyHit != 0u) {
+    if (params.mode == kTraceAny) {
         bool occluded = bvhTraceAny(r.origin, r.dir, r.tmin, r.tmax);
         h = TraceHit(occluded ? 1.0 : -1.0, occluded ? 0u : kNoHit, 0.0, 0.0);
+    } else if (params.mode == kTraceSpawn) {
+        if ((i & 1u) != 0u) return;  // the pair's first invocation writes both
+        bvhTraceClosest(r.origin, r.dir, r.tmin, r.tmax, h);
+        TraceHit h2 = TraceHit(-1.0, kNoHit, 0.0, 0.0);
+        if (h.triangle != kNoHit) {
+            TriVerts tv = bvhFetchTri(h.triangle);
+            vec3 ng = cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz);
+            vec3 dir2 = rays[i + 1u].dir;
+            vec3 side = normalize(dot(dir2, ng) > 0.0 ? ng : -ng);
+            bvhTraceClosest(spawnOrigin(tv, h.u, h.v, side), dir2, 0.0, rays[i + 1u].tmax, h2);
+        }
+        hits[i + 1u] = h2;
     } else {
         bvhTraceClosest(r.origin, r.dir, r.tmin, r.tmax, h);
     }

@@ -51,8 +51,8 @@ std::vector<gpu::TraceRay> randomRays(std::size_t count, std::uint32_t seed) {
 void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, Traversal mode) {
     Bvh bvh;
     bvh.nodes = g.nodes;
-    const auto hits = traceOnDevice(context(), g, rays, mode, false);
-    const auto occluded = traceOnDevice(context(), g, rays, mode, true);
+    const auto hits = traceOnDevice(context(), g, rays, mode, gpu::kTraceClosest);
+    const auto occluded = traceOnDevice(context(), g, rays, mode, gpu::kTraceAny);
     std::size_t mismatches = 0, hitCount = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         Ray r{rays[i].origin, rays[i].dir, rays[i].tmin, rays[i].tmax};

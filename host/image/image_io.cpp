@@ -34,12 +34,23 @@ float linearToSrgb(float x) {
 namespace {
 
 void writeOne(const std::string& path, const std::string& tmp, int w, int h,
-              const std::vector<float>& rgb) {
+              const std::vector<float>& rgb, const std::vector<float>* variance) {
     auto out = OIIO::ImageOutput::create(path);  // format chosen by the real name
     if (!out) fail(path, "cannot create an image writer: " + OIIO::geterror());
     const ImageFormat format = outputFormat(path);
     bool ok;
-    if (format == ImageFormat::Exr) {
+    if (format == ImageFormat::Exr && variance) {
+        OIIO::ImageSpec spec(w, h, 6, OIIO::TypeDesc::FLOAT);
+        spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+        spec.attribute("compression", "zip");
+        std::vector<float> six(rgb.size() * 2);
+        for (std::size_t i = 0; i < rgb.size() / 3; ++i)
+            for (int c = 0; c < 3; ++c) {
+                six[i * 6 + c] = rgb[i * 3 + c];
+                six[i * 6 + 3 + c] = (*variance)[i * 3 + c];
+            }
+        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, six.data());
+    } else if (format == ImageFormat::Exr) {
         OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
         spec.attribute("compression", "zip");
         ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, rgb.data());
@@ -59,7 +70,7 @@ void writeOne(const std::string& path, const std::string& tmp, int w, int h,
 }  // namespace
 
 void writeImages(const std::vector<std::string>& paths, int width, int height,
-                 const std::vector<float>& rgb) {
+                 const std::vector<float>& rgb, const std::vector<float>* variance) {
     std::vector<std::string> temps;
     auto cleanup = [&] {
         std::error_code ec;
@@ -72,7 +83,7 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
                            ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) +
                             p.extension().string());
             temps.push_back(tmp.string());
-            writeOne(path, tmp.string(), width, height, rgb);
+            writeOne(path, tmp.string(), width, height, rgb, variance);
         }
         for (std::size_t i = 0; i < paths.size(); ++i) {
             std::error_code ec;
@@ -103,6 +114,37 @@ Image readImage(const std::string& path) {
         fail(path, "cannot read image: " + in->geterror());
     in->close();
     return img;
+}
+
+RgbImage readRgb(const std::string& path) {
+    const Image img = readImage(path);
+    auto channel = [&](const std::string& name) {
+        for (int c = 0; c < img.channels; ++c)
+            if (img.channelNames[c] == name) return c;
+        return -1;
+    };
+    const int r = channel("R"), g = channel("G"), b = channel("B");
+    if (r < 0 || g < 0 || b < 0) fail(path, "image has no R, G and B channels");
+    const int vr = channel("variance.R"), vg = channel("variance.G"), vb = channel("variance.B");
+    const bool hasVariance = vr >= 0 && vg >= 0 && vb >= 0;
+    RgbImage out;
+    out.width = img.width;
+    out.height = img.height;
+    const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+    out.rgb.resize(n * 3);
+    if (hasVariance) out.variance.resize(n * 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float* p = &img.pixels[i * img.channels];
+        out.rgb[i * 3 + 0] = p[r];
+        out.rgb[i * 3 + 1] = p[g];
+        out.rgb[i * 3 + 2] = p[b];
+        if (hasVariance) {
+            out.variance[i * 3 + 0] = p[vr];
+            out.variance[i * 3 + 1] = p[vg];
+            out.variance[i * 3 + 2] = p[vb];
+        }
+    }
+    return out;
 }
 
 }  // namespace strata

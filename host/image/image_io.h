@@ -23,8 +23,23 @@ ImageFormat outputFormat(const std::string& path);
 
 // Writes all `paths` from one linear RGB image (3 floats per pixel). Either
 // every file is written or none is (temporaries are removed on failure).
+// With `variance` (3 floats per pixel: the variance of each pixel's mean),
+// EXR files get three more channels, variance.R/G/B; PNG files ignore it.
 void writeImages(const std::vector<std::string>& paths, int width, int height,
-                 const std::vector<float>& rgb);
+                 const std::vector<float>& rgb, const std::vector<float>* variance = nullptr);
+
+// An RGB image and, when the file has variance.R/G/B channels, the variance
+// of each pixel's mean (as `strata reference` writes it).
+struct RgbImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb;       // 3 floats per pixel
+    std::vector<float> variance;  // empty, or 3 floats per pixel
+};
+
+// Reads channels R, G, B (and variance.R/G/B when present) by name; a file
+// without R, G and B is an error naming it.
+RgbImage readRgb(const std::string& path);
 
 // Reads any image OpenImageIO can read, as float. Throws strata::Error.
 Image readImage(const std::string& path);

@@ -48,7 +48,12 @@ int runRender(const RenderCommand& cmd) {
         throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
                               " Vulkan validation message(s) during the render");
 
-    writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
+    if (cmd.variance) {
+        const std::vector<float> var = result.film.varianceOfMean();
+        writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), &var);
+    } else {
+        writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
+    }
     if (!cmd.statsJson.empty()) {
         const std::string tmp = cmd.statsJson + ".tmp";
         {

@@ -18,6 +18,7 @@ struct RenderCommand {
     bool stats = false;
     std::string statsJson;
     bool validation = false;
+    bool variance = false;              // EXR outputs get variance.R/G/B channels
 };
 
 // Returns the process exit status. Throws strata::Error for bad input and

@@ -13,6 +13,7 @@
 #include "../../shaders/shared/bindings.h"
 #include "vk/check.h"
 #include "vk/kernel.h"
+#include "vk/timer.h"
 
 namespace strata {
 namespace {
@@ -45,7 +46,7 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 }  // namespace
 
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
-                    const RenderSettings& s) {
+                    const RenderSettings& s, const Checkpoints& checkpoints) {
     using namespace gpu;
     DeviceScene dev = uploadScene(ctx, scene, s.traversal);
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
@@ -104,10 +105,18 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     const std::uint32_t tile = std::max(8u, s.tileSize);
     std::uint32_t batch = 1;                  // samples in the next submission
     constexpr double kTargetSubmitSeconds = 0.25;
+    vk::DeviceTimer timer(ctx);
+    std::size_t nextCheckpoint = 0;
 
     while (result.spp < s.spp) {
-        batch = std::clamp(batch, 1u, std::min(s.maxBatch, s.spp - result.spp));
+        while (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] <= result.spp)
+            ++nextCheckpoint;
+        std::uint32_t limit = std::min(s.maxBatch, s.spp - result.spp);
+        if (nextCheckpoint < checkpoints.spp.size())
+            limit = std::min(limit, checkpoints.spp[nextCheckpoint] - result.spp);
+        batch = std::clamp(batch, 1u, limit);
         VkCommandBuffer cmd = submit.begin();
+        timer.begin(cmd);
         for (std::uint32_t k = 0; k < batch; ++k) {
             for (std::uint32_t ty = 0; ty < static_cast<std::uint32_t>(s.height); ty += tile)
                 for (std::uint32_t tx = 0; tx < static_cast<std::uint32_t>(s.width); tx += tile) {
@@ -125,6 +134,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                               VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                               VK_ACCESS_TRANSFER_READ_BIT);
         }
+        timer.end(cmd);
         VkBufferCopy region{0, 0, accumBytes};
         vkCmdCopyBuffer(cmd, accum.handle(), readback.handle(), 1, &region);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
@@ -138,10 +148,16 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         const auto t0 = Clock::now();
         submit.submitAndWait();
         const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+        result.deviceSeconds += timer.supported() ? timer.seconds() : secs;
         readback.invalidate();
         result.film.fold(static_cast<const float*>(readback.mapped()));
         result.spp += batch;
         ++result.submissions;
+        if (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] == result.spp &&
+            checkpoints.onReached) {
+            result.seconds = elapsed();
+            checkpoints.onReached(result);
+        }
 
         const double perSample = secs / batch;
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;

@@ -2,6 +2,8 @@
 // batched into submissions, float32 batch sums folded into a double Film.
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <vector>
 
 #include "image/film.h"
 #include "render/device_scene.h"
@@ -24,10 +26,22 @@ struct RenderSettings {
     std::uint32_t tileSize = 512;       // dispatch covers at most tileSize^2 pixels
 };
 
+struct RenderResult;
+
+// Called when the render has taken exactly `checkpoint` spp (ascending values
+// <= spp); submissions are cut so every checkpoint is hit exactly.
+struct Checkpoints {
+    std::vector<std::uint32_t> spp;
+    std::function<void(const RenderResult&)> onReached;
+};
+
 struct RenderResult {
     Film film;
     std::uint32_t spp = 0;              // samples per pixel actually taken
     double seconds = 0.0;               // wall time of the dispatch loop
+    double deviceSeconds = 0.0;         // device time of the path-tracing dispatches (timestamps),
+                                        // excluding upload and the readback of each batch;
+                                        // equals `seconds` where the queue has no timestamps
     std::uint64_t nonFinite = 0;        // samples dropped as NaN/Inf
     std::uint32_t submissions = 0;
     bool texelTraversal = false;
@@ -37,6 +51,6 @@ struct RenderResult {
 };
 
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
-                    const RenderSettings& settings);
+                    const RenderSettings& settings, const Checkpoints& checkpoints = {});
 
 }  // namespace strata

@@ -33,6 +33,7 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"seed", s.seed},
                    {"max_depth", s.maxDepth},
                    {"seconds", r.seconds},
+                   {"device_seconds", r.deviceSeconds},
                    {"msamples_per_second", r.msamplesPerSecond()},
                    {"submissions", r.submissions},
                    {"non_finite_samples", r.nonFinite},
@@ -65,10 +66,10 @@ std::string statsText(const nlohmann::json& j) {
     o << line;
     const auto& r = j["render"];
     std::snprintf(line, sizeof line,
-                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s, %.3f Msamples/s, %s traversal\n",
+                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s (device %.3f s), %.3f Msamples/s, %s traversal\n",
                   r["width"].get<int>(), r["height"].get<int>(), r["spp"].get<unsigned>(),
                   r["spp_requested"].get<unsigned>(), r["max_depth"].get<unsigned>(),
-                  r["seconds"].get<double>(), r["msamples_per_second"].get<double>(),
+                  r["seconds"].get<double>(), r["device_seconds"].get<double>(), r["msamples_per_second"].get<double>(),
                   r["traversal"].get<std::string>().c_str());
     o << line;
     o << "samples    " << r["non_finite_samples"] << " non-finite dropped\n";

@@ -10,7 +10,7 @@ namespace strata {
 
 std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
                                          const std::vector<gpu::TraceRay>& rays,
-                                         Traversal traversal, bool anyHit) {
+                                         Traversal traversal, std::uint32_t mode) {
     using namespace gpu;
     DeviceScene dev = uploadScene(ctx, scene, traversal);
     vk::Buffer rayBuf = vk::uploadVector(ctx, rays, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -35,11 +35,11 @@ std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene&
 
     vk::OneShot submit(ctx);
     VkCommandBuffer cmd = submit.begin();
-    constexpr std::size_t kRaysPerDispatch = 1u << 18;  // bounds one dispatch's work
+    constexpr std::size_t kRaysPerDispatch = 1u << 18;  // bounds one dispatch's work; even (spawn pairs)
     for (std::size_t first = 0; first < rays.size(); first += kRaysPerDispatch) {
         TraceParams p{};
         p.count = static_cast<std::uint32_t>(std::min(kRaysPerDispatch, rays.size() - first));
-        p.anyHit = anyHit ? 1u : 0u;
+        p.mode = mode;
         p.first = static_cast<std::uint32_t>(first);
         kernel.dispatch(cmd, &p, (p.count + 63) / 64);
     }

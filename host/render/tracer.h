@@ -9,8 +9,9 @@
 
 namespace strata {
 
+// `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h).
 std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
                                          const std::vector<gpu::TraceRay>& rays,
-                                         Traversal traversal, bool anyHit);
+                                         Traversal traversal, std::uint32_t mode);
 
 }  // namespace strata

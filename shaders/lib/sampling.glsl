@@ -70,4 +70,12 @@ vec3 offsetRayOrigin(vec3 p, vec3 n) {
                 abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
 }
 
+// Origin for a ray leaving the hit (barycentrics u, v of v1, v2) of triangle
+// tv into the side of unit geometric normal `side`: the hit point from
+// barycentrics (more accurate than o + t d), moved off the surface.
+vec3 spawnOrigin(TriVerts tv, float u, float v, vec3 side) {
+    vec3 p = tv.v0.xyz + u * (tv.v1.xyz - tv.v0.xyz) + v * (tv.v2.xyz - tv.v0.xyz);
+    return offsetRayOrigin(p, side);
+}
+
 #endif
