@@ -91,7 +91,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
             if (emits && cosSurface > 0.0 && dot(n, wi) > 0.0 && dist > 0.0) {
                 float lightPdf = emitterPdfSolidAngle(ls.pmf, ls.area, dist, cosLight);
                 if (lightPdf > 0.0) {
-                    vec3 target = offsetRayOrigin(ls.position, lightSide);
+                    vec3 target = spawnOriginOnEmitter(ls.position, ls.v0, ls.e1, ls.e2, lightSide);
                     vec3 seg = target - origin2;
                     float segLen = length(seg);
                     if (segLen > 0.0 && !bvhTraceAny(origin2, seg / segLen, 0.0, segLen)) {

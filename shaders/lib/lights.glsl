@@ -8,6 +8,7 @@
 
 struct LightSample {
     vec3 position;
+    vec3 v0, e1, e2;   // the emitter triangle (for the shadow ray's end point)
     vec3 normal;       // unit geometric normal of the emitter (front side)
     vec3 radiance;
     float pmf;         // probability of having chosen this emitter
@@ -23,6 +24,9 @@ LightSample sampleEmitter(uint emitterCount, vec2 uChoice, vec2 uPoint) {
     vec2 b = sampleTriangle(uPoint);
     LightSample ls;
     ls.position = e.v0 + b.x * e.e1 + b.y * e.e2;
+    ls.v0 = e.v0;
+    ls.e1 = e.e1;
+    ls.e2 = e.e2;
     ls.normal = normalize(cross(e.e1, e.e2));
     ls.radiance = e.radiance;
     ls.pmf = e.pmf;

@@ -53,29 +53,51 @@ float powerHeuristic(float a, float b) {
     return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
 }
 
-// Moves a ray origin off a surface along the geometric normal `n` (pointing to
-// the side the ray leaves into), in integer ulps so the offset scales with
-// |p| (Wächter & Binder 2019, "A Fast and Robust Method for Avoiding
-// Self-Intersection", Ray Tracing Gems ch. 6).
-vec3 offsetRayOrigin(vec3 p, vec3 n) {
-    const float kOrigin = 1.0 / 32.0;
-    const float kFloatScale = 1.0 / 65536.0;
-    const float kIntScale = 256.0;
-    ivec3 ofs = ivec3(kIntScale * n);
-    vec3 pi = vec3(intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -ofs.x : ofs.x)),
-                   intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0 ? -ofs.y : ofs.y)),
-                   intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0 ? -ofs.z : ofs.z)));
-    return vec3(abs(p.x) < kOrigin ? p.x + kFloatScale * n.x : pi.x,
-                abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pi.y,
-                abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
+// Ray origins that do not re-hit their own surface at any scale. `p` carries
+// an absolute error of at most `err` per component; moving it by the error
+// projected on the unit normal `n` (pointing to the side the ray leaves into)
+// and rounding each component one float further away puts it strictly on
+// that side (Pharr, Jakob & Humphreys, "Physically Based Rendering", 4th ed.,
+// sec. 6.8.6). The offset scales with the coordinates' magnitude, so a scene
+// moved far from the origin or scaled down keeps its look; a fixed count of
+// ulps (Wächter & Binder 2019) shifted a 2-unit box moved to 1e4 by 0.25
+// units and failed the invariance test.
+const float kGamma7 = 7.0 * 5.9604645e-8 / (1.0 - 7.0 * 5.9604645e-8);  // gamma(7), u = 2^-24
+const float kUlp = 1.1920929e-7;                                         // 2^-23
+
+float nextFloatAway(float x, float direction) {
+    if (direction == 0.0) return x;
+    if (x == 0.0) return direction > 0.0 ? 1.0e-45 : -1.0e-45;
+    int bits = floatBitsToInt(x);
+    bool up = direction > 0.0;
+    bits += (x > 0.0) == up ? 1 : -1;
+    return intBitsToFloat(bits);
+}
+
+vec3 offsetRayOrigin(vec3 p, vec3 err, vec3 n) {
+    float d = dot(abs(n), err);
+    vec3 o = p + d * n;
+    return vec3(nextFloatAway(o.x, n.x), nextFloatAway(o.y, n.y), nextFloatAway(o.z, n.z));
 }
 
 // Origin for a ray leaving the hit (barycentrics u, v of v1, v2) of triangle
-// tv into the side of unit geometric normal `side`: the hit point from
-// barycentrics (more accurate than o + t d), moved off the surface.
+// tv into the side of unit geometric normal `side`. The point is the
+// barycentric sum; its error is bounded by gamma(7) times the sum of the
+// terms' magnitudes, plus one ulp of the largest vertex for the rounding of
+// b0 = 1 - u - v.
 vec3 spawnOrigin(TriVerts tv, float u, float v, vec3 side) {
-    vec3 p = tv.v0.xyz + u * (tv.v1.xyz - tv.v0.xyz) + v * (tv.v2.xyz - tv.v0.xyz);
-    return offsetRayOrigin(p, side);
+    float b0 = 1.0 - u - v;
+    precise vec3 p = b0 * tv.v0.xyz + u * tv.v1.xyz + v * tv.v2.xyz;
+    vec3 err = kGamma7 * (abs(b0 * tv.v0.xyz) + abs(u * tv.v1.xyz) + abs(v * tv.v2.xyz)) +
+               kUlp * max(abs(tv.v0.xyz), max(abs(tv.v1.xyz), abs(tv.v2.xyz)));
+    return offsetRayOrigin(p, err, side);
+}
+
+// The same for a point v0 + b1 e1 + b2 e2 sampled on an emitter stored as a
+// vertex and two edges (the edges were rounded on the host: counted once more).
+vec3 spawnOriginOnEmitter(vec3 p, vec3 v0, vec3 e1, vec3 e2, vec3 side) {
+    vec3 err = kGamma7 * (abs(v0) + abs(e1) + abs(e2));
+    return offsetRayOrigin(p, err, side);
 }
 
 #endif
