@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "measure/compare.h"
+#include "measure/converge.h"
+#include "image/image_io.h"
 #include "render/command.h"
 #include "util/error.h"
 #include "vk/check.h"
@@ -22,10 +25,16 @@ constexpr const char* kUsage =
     "                     [--max-depth D] [--width W] [--height H] [--camera I] [--device I]\n"
     "                     [--time SECONDS] [--traversal auto|texel|storage] [--quiet]\n"
     "                     [--stats] [--stats-json FILE] [--validation]\n"
+    "       strata reference SCENE --spp N -o REF.exr [render options]\n"
+    "       strata compare IMAGE.exr REFERENCE.exr [--json FILE]\n"
+    "       strata converge SCENE --reference REF.exr -o REPORT.csv|.json [--spp 1,2,4,...]\n"
+    "                       [--seeds K] [--plot PLOT.png] [--seed S] [--max-depth D] [--camera I]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
-    "  0 shows emitters only, 1 is direct lighting; default 16.\n";
+    "  0 shows emitters only, 1 is direct lighting; default 16.\n"
+    "  reference writes EXR with variance.R/G/B channels (variance of each pixel's mean).\n"
+    "  relMSE = mean (x - r)^2 / (r^2 + 0.01).\n";
 
 [[noreturn]] void badFlag(const std::string& what) { throw Error("strata: error: " + what); }
 
@@ -88,6 +97,79 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
     return cmd;
 }
 
+std::vector<std::uint32_t> parseSppList(const std::string& value) {
+    std::vector<std::uint32_t> out;
+    std::size_t start = 0;
+    while (start <= value.size()) {
+        const std::size_t comma = value.find(',', start);
+        const std::string item = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        const auto v = static_cast<std::uint32_t>(parseUnsigned("--spp", item, 1, 1u << 30));
+        if (!out.empty() && v <= out.back()) badFlag("--spp values must be ascending, got '" + value + "'");
+        out.push_back(v);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+int runReference(const std::vector<std::string>& args) {
+    strata::RenderCommand cmd = parseRender(args);
+    bool sppGiven = false, exrGiven = false;
+    for (const auto& a : args) sppGiven |= a == "--spp";
+    for (const auto& o : cmd.outputs) exrGiven |= strata::outputFormat(o) == strata::ImageFormat::Exr;
+    if (!sppGiven) badFlag("reference needs --spp N (a high sample count)");
+    if (!exrGiven) badFlag("reference needs an .exr output (-o REF.exr) to store the variance");
+    cmd.variance = true;
+    return strata::runRender(cmd);
+}
+
+int runCompare(const std::vector<std::string>& args) {
+    std::vector<std::string> files;
+    std::string json;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--json") {
+            if (i + 1 >= args.size()) badFlag("--json needs a value");
+            json = args[++i];
+        } else if (!args[i].empty() && args[i][0] == '-') {
+            badFlag("unknown option '" + args[i] + "' (see 'strata --help')");
+        } else {
+            files.push_back(args[i]);
+        }
+    }
+    if (files.size() != 2) badFlag("compare needs IMAGE and REFERENCE");
+    return strata::runCompare(files[0], files[1], json);
+}
+
+int runConverge(const std::vector<std::string>& args) {
+    strata::ConvergeCommand cmd;
+    for (std::uint32_t s = 1; s <= 256; s *= 2) cmd.spp.push_back(s);
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) badFlag(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "-o" || a == "--output") cmd.report = value();
+        else if (a == "--reference") cmd.reference = value();
+        else if (a == "--spp") cmd.spp = parseSppList(value());
+        else if (a == "--seeds") cmd.seeds = parseUnsigned(a, value(), 1, 1000);
+        else if (a == "--plot") cmd.plot = value();
+        else if (a == "--seed") cmd.settings.seed = parseUnsigned(a, value(), 0, 0xffffffffu);
+        else if (a == "--max-depth") cmd.settings.maxDepth = parseUnsigned(a, value(), 0, 1024);
+        else if (a == "--camera") cmd.camera = parseUnsigned(a, value(), 0, 1u << 20);
+        else if (a == "--device") cmd.device = parseUnsigned(a, value(), 0, 1024);
+        else if (a == "--validation") cmd.validation = true;
+        else if (a == "--quiet") cmd.quiet = true;
+        else if (!a.empty() && a[0] == '-') badFlag("unknown option '" + a + "' (see 'strata --help')");
+        else if (cmd.scene.empty()) cmd.scene = a;
+        else badFlag("unexpected argument '" + a + "'");
+    }
+    if (cmd.scene.empty()) badFlag("converge needs a scene file");
+    if (cmd.reference.empty()) badFlag("converge needs --reference REF.exr");
+    if (cmd.report.empty()) badFlag("converge needs -o REPORT.csv or REPORT.json");
+    return strata::runConverge(cmd);
+}
+
 int listDevices() {
     for (const auto& d : strata::vk::listDevices())
         std::printf("%u: %s | %s | %s | Vulkan %s\n", d.index, d.name.c_str(), d.type.c_str(),
@@ -103,11 +185,14 @@ int run(const std::vector<std::string>& args) {
     const std::string& command = args[0];
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     if (command == "render") return strata::runRender(parseRender(rest));
+    if (command == "reference") return runReference(rest);
+    if (command == "compare") return runCompare(rest);
+    if (command == "converge") return runConverge(rest);
     if (command == "devices") {
         if (!rest.empty()) badFlag("devices takes no arguments");
         return listDevices();
     }
-    badFlag("unknown command '" + command + "' (commands: render, devices)");
+    badFlag("unknown command '" + command + "' (commands: render, reference, compare, converge, devices)");
 }
 
 }  // namespace

@@ -1,0 +1,176 @@
+#include "measure/converge.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "image/image_io.h"
+#include "image/metrics.h"
+#include "measure/plot.h"
+#include "render/gpu_scene.h"
+#include "scene/scene.h"
+#include "stats/stats.h"
+#include "util/error.h"
+#include "vk/context.h"
+
+namespace strata {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp);
+        f << text;
+        if (!f) fail(path, "cannot write the report");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(path, "cannot write the report");
+}
+
+std::string csv(const ConvergeReport& r) {
+    std::string out = "spp,device_seconds,relmse_mean,relmse_std,relmse_trimmed_mean,rmse_mean,efficiency\n";
+    char line[256];
+    for (const auto& l : r.levels) {
+        std::snprintf(line, sizeof line, "%u,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", l.spp, l.seconds, l.relMse,
+                      l.relMseStd, l.relMseTrimmed, l.rmse, l.efficiency);
+        out += line;
+    }
+    return out;
+}
+
+void plot(const std::string& path, const ConvergeReport& r, const std::string& sceneName) {
+    Series measured{"strata (mean of " + std::to_string(r.seeds) + " seeds)", {}, {}, {0.1f, 0.3f, 0.8f}};
+    Series perTime = measured;
+    Series slope{"slope -1", {}, {}, {0.5f, 0.5f, 0.5f}, true, false};
+    Series slopeT = slope;
+    for (const auto& l : r.levels) {
+        measured.x.push_back(l.spp);
+        measured.y.push_back(l.relMse);
+        perTime.x.push_back(l.seconds);
+        perTime.y.push_back(l.relMse);
+    }
+    const auto& first = r.levels.front();
+    const auto& last = r.levels.back();
+    slope.x = {static_cast<double>(first.spp), static_cast<double>(last.spp)};
+    slope.y = {first.relMse, first.relMse * first.spp / last.spp};
+    slopeT.x = {first.seconds, last.seconds};
+    slopeT.y = {first.relMse, first.relMse * first.seconds / last.seconds};
+    char t1[128], t2[128];
+    std::snprintf(t1, sizeof t1, "%s: relMSE vs spp (slope %.2f)", sceneName.c_str(), r.slopeSpp);
+    std::snprintf(t2, sizeof t2, "relMSE vs device seconds (slope %.2f)", r.slopeTime);
+    Panel a{t1, "samples per pixel", "relMSE", true, true, {measured, slope}};
+    Panel b{t2, "device seconds", "relMSE", true, true, {perTime, slopeT}};
+    writeChart(path, {a, b});
+}
+
+}  // namespace
+
+nlohmann::json ConvergeReport::toJson() const {
+    nlohmann::json j;
+    j["seeds"] = seeds;
+    j["relmse_eps"] = eps;
+    j["slope_relmse_vs_spp"] = slopeSpp;
+    j["slope_relmse_vs_seconds"] = slopeTime;
+    j["bias_floor_b2"] = biasFloor;
+    j["variance_constant_c"] = varianceConstant;
+    j["reference_noise_floor"] = referenceFloor;
+    for (const auto& l : levels)
+        j["levels"].push_back({{"spp", l.spp},
+                               {"device_seconds", l.seconds},
+                               {"relmse_mean", l.relMse},
+                               {"relmse_std", l.relMseStd},
+                               {"relmse_trimmed_mean", l.relMseTrimmed},
+                               {"rmse_mean", l.rmse},
+                               {"efficiency", l.efficiency}});
+    return j;
+}
+
+ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
+    if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
+    const RgbImage ref = readRgb(cmd.reference);
+    Scene scene = loadGltf(cmd.scene);
+    if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
+        fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist");
+    GpuScene gpu = packScene(scene);
+    vk::Context ctx({cmd.device, cmd.validation});
+
+    RenderSettings s = cmd.settings;
+    s.width = ref.width;
+    s.height = ref.height;
+    s.spp = cmd.spp.back();
+    s.progress = false;
+    const std::size_t levels = cmd.spp.size();
+    std::vector<std::vector<ErrorMetrics>> metrics(levels);
+    std::vector<std::vector<double>> seconds(levels);
+    for (std::uint32_t k = 0; k < cmd.seeds; ++k) {
+        s.seed = cmd.settings.seed + k;
+        std::size_t level = 0;
+        Checkpoints checkpoints{cmd.spp, [&](const RenderResult& r) {
+                                    const std::vector<float> mean = r.film.mean();
+                                    metrics[level].push_back(compareImages(mean.data(), ref.rgb.data(), mean.size()));
+                                    seconds[level].push_back(r.deviceSeconds);
+                                    ++level;
+                                }};
+        render(ctx, gpu, scene.cameras[cmd.camera], s, checkpoints);
+        if (!cmd.quiet) std::fprintf(stderr, "strata: converge: seed %u of %u done\n", k + 1, cmd.seeds);
+    }
+
+    ConvergeReport report;
+    report.seeds = cmd.seeds;
+    std::vector<double> spp, rel, secs;
+    for (std::size_t i = 0; i < levels; ++i) {
+        ConvergeLevel l;
+        l.spp = cmd.spp[i];
+        const double n = static_cast<double>(metrics[i].size());
+        for (std::size_t k = 0; k < metrics[i].size(); ++k) {
+            l.relMse += metrics[i][k].relMse / n;
+            l.relMseTrimmed += metrics[i][k].relMseTrimmed / n;
+            l.rmse += metrics[i][k].rmse / n;
+            l.seconds += seconds[i][k] / n;
+        }
+        for (const auto& m : metrics[i]) l.relMseStd += (m.relMse - l.relMse) * (m.relMse - l.relMse);
+        l.relMseStd = n > 1 ? std::sqrt(l.relMseStd / (n - 1)) : 0.0;
+        l.efficiency = l.relMse > 0 && l.seconds > 0 ? 1.0 / (l.relMse * l.seconds) : 0.0;
+        report.eps = metrics[i].front().eps;
+        report.levels.push_back(l);
+        spp.push_back(l.spp);
+        rel.push_back(l.relMse);
+        secs.push_back(l.seconds);
+    }
+    if (levels >= 2) {
+        report.slopeSpp = stats::fitLogLogSlope(spp, rel);
+        report.slopeTime = stats::fitLogLogSlope(secs, rel);
+        const stats::BiasFit fit = stats::fitBiasFloor(spp, rel);
+        report.biasFloor = fit.b2;
+        report.varianceConstant = fit.c;
+    }
+    if (!ref.variance.empty()) {
+        double sum = 0.0;
+        for (std::size_t i = 0; i < ref.rgb.size(); ++i)
+            sum += ref.variance[i] / (static_cast<double>(ref.rgb[i]) * ref.rgb[i] + report.eps);
+        report.referenceFloor = sum / static_cast<double>(ref.rgb.size());
+    }
+    return report;
+}
+
+int runConverge(const ConvergeCommand& cmd) {
+    const std::string ext = lowerExtension(cmd.report);
+    if (ext != ".csv" && ext != ".json") fail(cmd.report, "converge report must be .csv or .json");
+    if (!cmd.plot.empty()) outputFormat(cmd.plot);
+    const ConvergeReport r = measureConvergence(cmd);
+    if (!cmd.plot.empty()) plot(cmd.plot, r, std::filesystem::path(cmd.scene).stem().string());
+    writeTextAtomically(cmd.report, ext == ".csv" ? csv(r) : r.toJson().dump(2) + "\n");
+    std::printf("%s", csv(r).c_str());
+    std::printf("slope relMSE vs spp %.3f, vs device seconds %.3f; bias floor b^2 %.3g (c %.3g); "
+                "reference noise floor %.3g; relMSE eps %g\n",
+                r.slopeSpp, r.slopeTime, r.biasFloor, r.varianceConstant, r.referenceFloor, r.eps);
+    return 0;
+}
+
+}  // namespace strata
