@@ -22,7 +22,7 @@ TEST_CASE("the Cornell box moved by 1e4 and scaled by 1e-3 and 1e3 matches the o
     const auto refMean = original.result.film.mean();
     const auto refVar = original.result.film.varianceOfMean();
     int seed = 200;
-    for (const std::string file : std::vector<std::string>{"tests/data/invariance/cornell-moved.gltf", "tests/data/invariance/cornell-small.gltf",
+    for (const std::string& file : std::vector<std::string>{"tests/data/invariance/cornell-moved.gltf", "tests/data/invariance/cornell-small.gltf",
                              "tests/data/invariance/cornell-large.gltf"}) {
         CAPTURE(file);
         s.seed = seed++;  // independent samples: the test has its full power
