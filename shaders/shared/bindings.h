@@ -22,7 +22,8 @@ STRATA_BINDING(BINDING_NODES_TEXEL, 8);   // usamplerBuffer over BINDING_NODES (
 STRATA_BINDING(BINDING_TRIS_TEXEL, 9);    // usamplerBuffer over BINDING_TRIS (RGBA32UI)
 STRATA_BINDING(BINDING_RAYS, 10);         // storage: trace kernel input rays
 STRATA_BINDING(BINDING_HITS, 11);         // storage: trace kernel output hits
-STRATA_BINDING(BINDING_COUNT, 12);
+STRATA_BINDING(BINDING_SAMPLES, 12);      // storage vec4[]: sampling test kernel output
+STRATA_BINDING(BINDING_COUNT, 13);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // 1: read nodes/triangles through texel views

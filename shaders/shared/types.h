@@ -142,6 +142,19 @@ struct TraceParams {
     uint pad0;
 };
 
+// Sampling test kernel (sample_test.comp): draws `count` samples of one GLSL
+// sampling routine, each from its own counter-based random numbers.
+STRATA_CONST(uint, kSampleCosineHemisphere, 0u);  // out: direction xyz
+STRATA_CONST(uint, kSampleTriangle, 1u);          // out: barycentrics (b1, b2)
+STRATA_CONST(uint, kSampleEmitterChoice, 2u);     // out: x = chosen emitter index
+
+struct SampleTestParams {
+    uint count;
+    uint routine;       // kSample*
+    uint seed;
+    uint emitterCount;  // for kSampleEmitterChoice
+};
+
 // Statistics written by the shader with atomics.
 struct RenderCounters {
     uint nonFinite;     // samples dropped because a channel was NaN/Inf
@@ -162,6 +175,7 @@ static_assert(sizeof(RenderCounters) == 16);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
+static_assert(sizeof(SampleTestParams) == 16);
 }  // namespace strata::gpu
 #endif
 

@@ -1,0 +1,129 @@
+// Chi-square goodness-of-fit of the GLSL sampling routines, run on the device
+// (shaders/sample_test.comp), against their densities (host/stats).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <strata_spirv.h>
+
+#include "../shaders/shared/bindings.h"
+#include "render/gpu_scene.h"
+#include "stats/stats.h"
+#include "test_util.h"
+#include "vk/kernel.h"
+
+using namespace strata;
+using namespace strata::test;
+
+namespace {
+
+constexpr double kAlpha = 0.01;
+constexpr std::size_t kTests = 3;  // chi-square tests in this file (Sidak correction)
+
+std::vector<glm::vec4> drawSamples(std::uint32_t routine, std::uint32_t count, std::uint32_t seed,
+                                   const std::vector<gpu::Emitter>& emitters = {}) {
+    const vk::Context& ctx = context();
+    using namespace gpu;
+    vk::Buffer em = vk::uploadVector(ctx, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const VkDeviceSize bytes = static_cast<VkDeviceSize>(count) * sizeof(glm::vec4);
+    vk::Buffer out(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                   vk::MemoryUse::Device);
+    vk::Buffer back(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
+    vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
+                      {{BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                       {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                      sizeof(SampleTestParams), {});
+    kernel.bind(BINDING_EMITTERS, em);
+    kernel.bind(BINDING_SAMPLES, out);
+    vk::OneShot submit(ctx);
+    VkCommandBuffer cmd = submit.begin();
+    SampleTestParams p{count, routine, seed, static_cast<std::uint32_t>(emitters.size())};
+    kernel.dispatch(cmd, &p, (count + 63) / 64);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, out.handle(), back.handle(), 1, &region);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    submit.submitAndWait();
+    back.invalidate();
+    std::vector<glm::vec4> samples(count);
+    std::memcpy(samples.data(), back.mapped(), bytes);
+    return samples;
+}
+
+}  // namespace
+
+TEST_CASE("GLSL cosine-weighted hemisphere sampling matches cos(theta)/pi (chi-square)") {
+    const std::uint32_t n = 1000000;
+    const auto s = drawSamples(gpu::kSampleCosineHemisphere, n, 11);
+    // Coordinates (phi / 2pi, cos theta) in [0,1]^2: the density there is 2 cos theta.
+    std::vector<std::pair<double, double>> xy;
+    for (const auto& d : s) {
+        CHECK(std::abs(glm::length(glm::vec3(d)) - 1.0f) < 1e-5f);
+        double phi = std::atan2(static_cast<double>(d.y), static_cast<double>(d.x));
+        if (phi < 0.0) phi += 2.0 * std::numbers::pi;
+        xy.emplace_back(phi / (2.0 * std::numbers::pi), d.z);
+    }
+    const int rx = 33, ry = 17;  // odd resolutions
+    const auto observed = stats::histogram2D(xy, rx, ry, 0.0, 1.0, 0.0, 1.0);
+    const auto expected = stats::integrateExpected([](double, double c) { return 2.0 * c; }, rx, ry, 0.0, 1.0,
+                                                   0.0, 1.0, n);
+    const auto r = stats::chiSquareTest(observed, expected, kAlpha, kTests);
+    MESSAGE(r.detail);
+    CHECK(r.passed);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("GLSL uniform triangle sampling is uniform over the triangle (chi-square)") {
+    const std::uint32_t n = 1000000;
+    const auto s = drawSamples(gpu::kSampleTriangle, n, 12);
+    std::vector<std::pair<double, double>> xy;
+    for (const auto& b : s) xy.emplace_back(b.x, b.y);
+    const int r = 31;
+    const auto observed = stats::histogram2D(xy, r, r, 0.0, 1.0, 0.0, 1.0);
+    // Density 2 on b1 + b2 <= 1. Quadrature of that discontinuous density is
+    // wrong on the cells the diagonal cuts, so each cell's probability is its
+    // exact area under the diagonal: the integral over x of the covered length
+    // clamp(1 - x - y0, 0, y1 - y0), piecewise linear in x with breaks at
+    // x = 1 - y1 and x = 1 - y0, which the trapezoid rule integrates exactly.
+    std::vector<double> expected(r * r);
+    for (int iy = 0; iy < r; ++iy)
+        for (int ix = 0; ix < r; ++ix) {
+            const double x0 = double(ix) / r, x1 = double(ix + 1) / r;
+            const double y0 = double(iy) / r, y1 = double(iy + 1) / r;
+            auto len = [&](double x) { return std::clamp(1.0 - x - y0, 0.0, y1 - y0); };
+            std::vector<double> xs = {x0, x1};
+            for (double b : {1.0 - y1, 1.0 - y0})
+                if (b > x0 && b < x1) xs.push_back(b);
+            std::sort(xs.begin(), xs.end());
+            double area = 0.0;
+            for (std::size_t k = 1; k < xs.size(); ++k) area += 0.5 * (len(xs[k - 1]) + len(xs[k])) * (xs[k] - xs[k - 1]);
+            expected[iy * r + ix] = n * 2.0 * area;
+        }
+    const auto res = stats::chiSquareTest(observed, expected, kAlpha, kTests);
+    MESSAGE(res.detail);
+    CHECK(res.passed);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("GLSL emitter choice through the alias table follows the power pmf (chi-square)") {
+    std::vector<double> weights = {5.0, 1.0, 0.5, 3.0, 0.0, 8.0, 0.25, 2.0, 1.5};
+    std::vector<gpu::Emitter> emitters(weights.size());
+    buildAliasTable(weights, emitters);
+    for (std::size_t i = 0; i < emitters.size(); ++i) emitters[i].radiance.x = static_cast<float>(i);
+    const std::uint32_t n = 500000;
+    const auto s = drawSamples(gpu::kSampleEmitterChoice, n, 13, emitters);
+    std::vector<double> observed(weights.size(), 0.0), expected(weights.size());
+    double total = 0.0;
+    for (double w : weights) total += w;
+    for (std::size_t i = 0; i < weights.size(); ++i) expected[i] = n * weights[i] / total;
+    for (const auto& v : s) observed.at(static_cast<std::size_t>(v.x)) += 1.0;
+    CHECK(observed[4] == 0.0);  // zero power: never chosen
+    const auto r = stats::chiSquareTest(observed, expected, kAlpha, kTests);
+    MESSAGE(r.detail);
+    CHECK(r.passed);
+    CHECK(vk::validationMessageCount() == 0);
+}
