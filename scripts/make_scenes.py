@@ -1,25 +1,31 @@
 #!/usr/bin/env python3
-"""Writes the scenes strata ships (scenes/*.gltf); Python 3 stdlib only.
+"""Writes the scenes strata ships (scenes/*.gltf) and the invariance test
+scenes (tests/data/invariance/*.gltf); Python 3 stdlib only.
 
 Each scene is one .gltf with its buffer embedded as a base64 data URI. The
 output is deterministic: running this again rewrites identical bytes. All
 geometry and numbers are our own (CC0). Front faces are counter-clockwise;
 the renderer emits light from the front face only unless doubleSided.
 
-    python3 scripts/make_scenes.py [OUTDIR]     (default: scenes/)
+    python3 scripts/make_scenes.py [OUTDIR]
+        default: scenes/ and tests/data/invariance/;
+        with OUTDIR: OUTDIR/ and OUTDIR/invariance/
 """
 
-import base64
-import json
 import math
 import os
-import struct
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.dont_write_bytecode = True  # keep the tree free of __pycache__
+sys.path.insert(0, HERE)
 
-FLOAT = 5126
-UNSIGNED_SHORT = 5123
+import square_light as analytic  # noqa: E402
+from gltf_writer import GltfWriter, f32  # noqa: E402
+
+GENERATOR = "strata scripts/make_scenes.py"
+COPYRIGHT = "CC0 1.0 (public domain), the strata authors"
 
 
 def sub(a, b):
@@ -43,10 +49,6 @@ def normalize(a):
     return tuple(x / n for x in a)
 
 
-def f32(x):
-    return struct.unpack("<f", struct.pack("<f", x))[0]
-
-
 class Quads:
     """Flat-shaded quads collected into one indexed TRIANGLES primitive."""
 
@@ -65,6 +67,19 @@ class Quads:
         self.normals += [normal] * 4
         self.indices += [base, base + 1, base + 2, base, base + 2, base + 3]
         return self
+
+    def mapped(self, transform):
+        """The quads with every corner mapped by `transform` (affine, det > 0)
+        on its own, so corners shared between quads stay shared; normals
+        recomputed from the mapped corners."""
+        out = Quads()
+        for i in range(0, len(self.positions), 4):
+            p = [transform(x) for x in self.positions[i:i + 4]]
+            base = len(out.positions)
+            out.positions += p
+            out.normals += [normalize(cross(sub(p[1], p[0]), sub(p[3], p[0])))] * 4
+            out.indices += [base, base + 1, base + 2, base, base + 2, base + 3]
+        return out
 
 
 def box_faces(inward):
@@ -90,84 +105,23 @@ def box_faces(inward):
     return q
 
 
-class Writer:
-    def __init__(self):
-        self.doc = {"asset": {"version": "2.0", "generator": "strata scripts/make_scenes.py",
-                              "copyright": "CC0 1.0 (public domain), the strata authors"}}
-        self.blob = bytearray()
-
-    def _add(self, key, obj):
-        items = self.doc.setdefault(key, [])
-        items.append(obj)
-        return len(items) - 1
-
-    def _accessor(self, data, component_type, count, type_, target, bounds=None):
-        while len(self.blob) % 4:
-            self.blob.append(0)
-        view = self._add("bufferViews", {"buffer": 0, "byteOffset": len(self.blob),
-                                         "byteLength": len(data), "target": target})
-        self.blob += data
-        acc = {"bufferView": view, "componentType": component_type, "count": count,
-               "type": type_}
-        if bounds:
-            acc["min"], acc["max"] = bounds
-        return self._add("accessors", acc)
-
-    def mesh(self, name, quads, material):
-        pts = quads.positions
-        bounds = ([min(f32(p[i]) for p in pts) for i in range(3)],
-                  [max(f32(p[i]) for p in pts) for i in range(3)])
-        pos = self._accessor(b"".join(struct.pack("<3f", *p) for p in pts), FLOAT, len(pts),
-                             "VEC3", 34962, bounds)
-        nrm = self._accessor(b"".join(struct.pack("<3f", *n) for n in quads.normals), FLOAT,
-                             len(pts), "VEC3", 34962)
-        ind = self._accessor(b"".join(struct.pack("<H", i) for i in quads.indices),
-                             UNSIGNED_SHORT, len(quads.indices), "SCALAR", 34963)
-        prim = {"attributes": {"POSITION": pos, "NORMAL": nrm}, "indices": ind,
-                "material": material}
-        return self._add("meshes", {"name": name, "primitives": [prim]})
-
-    def material(self, name, base_color, emissive=None, strength=None):
-        mat = {"name": name,
-               "pbrMetallicRoughness": {"baseColorFactor": list(base_color) + [1.0],
-                                        "metallicFactor": 0.0, "roughnessFactor": 1.0}}
-        if emissive is not None:
-            mat["emissiveFactor"] = list(emissive)
-        if strength is not None:
-            mat["extensions"] = {"KHR_materials_emissive_strength":
-                                 {"emissiveStrength": strength}}
-        return self._add("materials", mat)
-
-    def camera(self, name, yfov_degrees):
-        return self._add("cameras", {"name": name, "type": "perspective",
-                                     "perspective": {"yfov": math.radians(yfov_degrees),
-                                                     "znear": 0.01, "aspectRatio": 1.0}})
-
-    def node(self, name, **fields):
-        node = {"name": name}
-        node.update(fields)
-        return self._add("nodes", node)
-
-    def text(self, roots):
-        self.doc["scene"] = 0
-        self.doc["scenes"] = [{"name": "Scene", "nodes": roots}]
-        uri = "data:application/octet-stream;base64," + base64.b64encode(bytes(self.blob)).decode()
-        self.doc["buffers"] = [{"byteLength": len(self.blob), "uri": uri}]
-        return to_json(self.doc) + "\n"
+def writer():
+    return GltfWriter(GENERATOR, copyright=COPYRIGHT)
 
 
-def to_json(value, level=0):
-    """JSON with one-space indents; arrays of numbers stay on one line."""
-    pad = " " * level
-    if isinstance(value, dict):
-        items = [f"{pad} {json.dumps(k)}: {to_json(v, level + 1)}" for k, v in value.items()]
-        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
-    if isinstance(value, list):
-        if all(not isinstance(v, (dict, list)) for v in value):
-            return "[" + ", ".join(json.dumps(v) for v in value) + "]"
-        items = [pad + " " + to_json(v, level + 1) for v in value]
-        return "[\n" + ",\n".join(items) + "\n" + pad + "]"
-    return json.dumps(value)
+def lambert(w, name, rgb, emissive=None, strength=None):
+    """Metallic 0, roughness 1: shaded as Lambertian with baseColor rgb."""
+    return w.add_material(name, base_color=list(rgb) + [1.0], metallic=0.0, roughness=1.0,
+                          emissive=emissive, strength=strength)
+
+
+def mesh(w, name, quads, material):
+    return w.add_triangles(name, quads.positions, normals=quads.normals,
+                           indices=quads.indices, material=material)
+
+
+def camera(w, name, yfov_degrees, znear=0.01):
+    return w.add_perspective(name, math.radians(yfov_degrees), znear=znear, aspect_ratio=1.0)
 
 
 def rotation_y(degrees):
@@ -176,24 +130,45 @@ def rotation_y(degrees):
     return [0.0, math.sin(h), 0.0, math.cos(h)]
 
 
-def cornell_box():
-    """Room x in [-1, 1], y in [0, 2], z in [-1, 1], open towards +Z."""
-    w = Writer()
-    white = w.material("White", (0.73, 0.73, 0.73))
-    red = w.material("Red", (0.63, 0.065, 0.05))
-    green = w.material("Green", (0.14, 0.45, 0.09))
-    light = w.material("Light", (0.73, 0.73, 0.73), emissive=(1.0, 1.0, 1.0), strength=15.0)
-    w.doc["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+def rotation_x(radians):
+    """Quaternion (x, y, z, w) for a rotation about +X."""
+    return [math.sin(radians / 2), 0.0, 0.0, math.cos(radians / 2)]
 
+
+def trs(translation, y_degrees, scale):
+    """The map p -> T R_y S p of a glTF node (translation, rotation about +Y, scale)."""
+    c, s = math.cos(math.radians(y_degrees)), math.sin(math.radians(y_degrees))
+
+    def apply(p):
+        x, y, z = (p[i] * scale[i] for i in range(3))
+        return (c * x + s * z + translation[0], y + translation[1], -s * x + c * z + translation[2])
+    return apply
+
+
+# Cornell box: room x in [-1, 1], y in [0, 2], z in [-1, 1], open towards +Z.
+CORNELL_CAMERA = (0.0, 1.0, 3.8)   # looks down -Z (the glTF camera default), yfov 40 deg
+CORNELL_BOXES = (                  # node name, translation, rotation about +Y (deg), scale
+    ("ShortBox", (0.4, 0.0, 0.4), -18.0, (0.6, 0.6, 0.6)),
+    ("TallBox", (-0.4, 0.0, -0.35), 17.0, (0.6, 1.2, 0.6)),
+)
+
+
+def cornell_room():
+    """(name, quads, material name) of the room and the lamp, in world space."""
     up, down = (0, 1, 0), (0, -1, 0)
-    floor = Quads().add((-1, 0, -1), (0, 0, 2), (2, 0, 0), up)
-    ceiling = Quads().add((-1, 2, -1), (2, 0, 0), (0, 0, 2), down)
-    back = Quads().add((-1, 0, -1), (2, 0, 0), (0, 2, 0), (0, 0, 1))
-    left = Quads().add((-1, 0, -1), (0, 2, 0), (0, 0, 2), (1, 0, 0))
-    right = Quads().add((1, 0, -1), (0, 0, 2), (0, 2, 0), (-1, 0, 0))
-    # 0.46 x 0.46 (23% of the ceiling width), 0.02 below the ceiling, facing down.
-    lamp = Quads().add((-0.23, 1.98, -0.23), (0.46, 0, 0), (0, 0, 0.46), down)
-    # Unit box x, z in [-0.5, 0.5], y in [0, 1], no bottom face; front faces out.
+    return (
+        ("Floor", Quads().add((-1, 0, -1), (0, 0, 2), (2, 0, 0), up), "White"),
+        ("Ceiling", Quads().add((-1, 2, -1), (2, 0, 0), (0, 0, 2), down), "White"),
+        ("BackWall", Quads().add((-1, 0, -1), (2, 0, 0), (0, 2, 0), (0, 0, 1)), "White"),
+        ("LeftWall", Quads().add((-1, 0, -1), (0, 2, 0), (0, 0, 2), (1, 0, 0)), "Red"),
+        ("RightWall", Quads().add((1, 0, -1), (0, 0, 2), (0, 2, 0), (-1, 0, 0)), "Green"),
+        # 0.46 x 0.46 (23% of the ceiling width), 0.02 below the ceiling, facing down.
+        ("Light", Quads().add((-0.23, 1.98, -0.23), (0.46, 0, 0), (0, 0, 0.46), down), "Light"),
+    )
+
+
+def cornell_unit_box():
+    """Unit box x, z in [-0.5, 0.5], y in [0, 1], no bottom face; front faces out."""
     cube = box_faces(inward=False)
     box = Quads()
     for i in range(0, len(cube.positions), 4):
@@ -202,52 +177,170 @@ def cornell_box():
             continue  # bottom
         p = [(x * 0.5, y * 0.5 + 0.5, z * 0.5) for x, y, z in cube.positions[i:i + 4]]
         box.add(p[0], sub(p[1], p[0]), sub(p[3], p[0]), n)
+    return box
 
-    roots = [
-        w.node("Floor", mesh=w.mesh("Floor", floor, white)),
-        w.node("Ceiling", mesh=w.mesh("Ceiling", ceiling, white)),
-        w.node("BackWall", mesh=w.mesh("BackWall", back, white)),
-        w.node("LeftWall", mesh=w.mesh("LeftWall", left, red)),
-        w.node("RightWall", mesh=w.mesh("RightWall", right, green)),
-    ]
-    box_white = w.mesh("Box", box, white)
-    roots += [
-        w.node("ShortBox", mesh=box_white, translation=[0.4, 0.0, 0.4],
-               rotation=rotation_y(-18.0), scale=[0.6, 0.6, 0.6]),
-        w.node("TallBox", mesh=box_white, translation=[-0.4, 0.0, -0.35],
-               rotation=rotation_y(17.0), scale=[0.6, 1.2, 0.6]),
-        w.node("Light", mesh=w.mesh("Light", lamp, light)),
-        # Looks down -Z (the glTF camera default) through the open front.
-        w.node("Camera", camera=w.camera("Camera", 40.0), translation=[0.0, 1.0, 3.8]),
-    ]
-    return w.text(roots)
+
+def cornell_materials(w):
+    mats = {
+        "White": lambert(w, "White", (0.73, 0.73, 0.73)),
+        "Red": lambert(w, "Red", (0.63, 0.065, 0.05)),
+        "Green": lambert(w, "Green", (0.14, 0.45, 0.09)),
+        "Light": lambert(w, "Light", (0.73, 0.73, 0.73), emissive=(1.0, 1.0, 1.0), strength=15.0),
+    }
+    w.use_extensions(["KHR_materials_emissive_strength"])
+    return mats
+
+
+def cornell_box():
+    """The shipped scene: the two boxes are one mesh instanced by two TRS nodes."""
+    w = writer()
+    mats = cornell_materials(w)
+    room = cornell_room()
+    walls = [w.add_node(name, mesh=mesh(w, name, q, mats[m])) for name, q, m in room[:-1]]
+    box = mesh(w, "Box", cornell_unit_box(), mats["White"])
+    boxes = [w.add_node(name, mesh=box, translation=list(t), rotation=rotation_y(deg),
+                        scale=list(s)) for name, t, deg, s in CORNELL_BOXES]
+    name, q, m = room[-1]
+    lamp = w.add_node(name, mesh=mesh(w, name, q, mats[m]))
+    cam = w.add_node("Camera", camera=camera(w, "Camera", 40.0),
+                     translation=list(CORNELL_CAMERA))
+    w.set_scene(walls + boxes + [lamp, cam], name="Scene")
+    return w.gltf_text()
+
+
+def cornell_box_baked(transform, znear, lamp_grid=None):
+    """The Cornell box with `transform` (affine, det > 0, no rotation) baked
+    into the vertex data: every node has the identity transform, so the
+    renderer sees the transformed world coordinates. The boxes are baked
+    as two meshes; the camera moves with the scene. With lamp_grid, the
+    lamp's corner and edges are rounded to multiples of lamp_grid (see
+    snapped)."""
+    w = writer()
+    mats = cornell_materials(w)
+    room = cornell_room()
+    parts = [(name, q.mapped(transform), m) for name, q, m in room[:-1]]
+    unit = cornell_unit_box()
+    for name, t, deg, s in CORNELL_BOXES:
+        local = trs(t, deg, s)
+        parts.append((name, unit.mapped(lambda p, local=local: transform(local(p))), "White"))
+    name, q, m = room[-1]
+    lamp = q.mapped(transform)
+    parts.append((name, lamp if lamp_grid is None else snapped(lamp, lamp_grid), m))
+    roots = [w.add_node(name, mesh=mesh(w, name, q, mats[m])) for name, q, m in parts]
+    roots.append(w.add_node("Camera", camera=camera(w, "Camera", 40.0, znear),
+                            translation=list(transform(CORNELL_CAMERA))))
+    w.set_scene(roots, name="Scene")
+    return w.gltf_text()
+
+
+def snap(v, grid):
+    return tuple(round(c / grid) * grid for c in v)
+
+
+def snapped(quads, grid):
+    """Quads with each quad's first corner and its two edge vectors rounded
+    to multiples of grid: where grid is the float32 spacing, every corner is
+    exact in float32 and the edges keep their length to within grid / 2,
+    where rounding each corner independently can change it by a full grid."""
+    out = Quads()
+    for i in range(0, len(quads.positions), 4):
+        p = quads.positions[i:i + 4]
+        u, v = snap(sub(p[1], p[0]), grid), snap(sub(p[3], p[0]), grid)
+        out.add(snap(p[0], grid), u, v, cross(u, v))
+    return out
 
 
 def furnace(albedo=0.5, le=0.5):
     """Closed cube [-1, 1]^3 facing inward, emissive and diffuse everywhere."""
-    w = Writer()
-    wall = w.material("Furnace", (albedo, albedo, albedo), emissive=(le, le, le))
+    w = writer()
+    wall = lambert(w, "Furnace", (albedo, albedo, albedo), emissive=(le, le, le))
     roots = [
-        w.node("Cube", mesh=w.mesh("Cube", box_faces(inward=True), wall)),
-        w.node("Camera", camera=w.camera("Camera", 60.0)),  # at the centre, looking at -Z
+        w.add_node("Cube", mesh=mesh(w, "Cube", box_faces(inward=True), wall)),
+        w.add_node("Camera", camera=camera(w, "Camera", 60.0)),  # at the centre, looking at -Z
     ]
-    return w.text(roots)
+    w.set_scene(roots, name="Scene")
+    return w.gltf_text()
+
+
+SQUARE_LIGHT_CAMERA = (0.0, 0.6, 2.5)   # looks at the origin, yfov 30 deg
+
+
+def square_light():
+    """Known answer for direct lighting (scripts/square_light.py): a 20 x 20
+    Lambertian plane y = 0 under a black, one-sided square emitter."""
+    w = writer()
+    a, le = analytic.ALBEDO, analytic.LE
+    hw, h = analytic.HALF_SIDE, analytic.HEIGHT
+    plane = lambert(w, "Plane", (a, a, a))
+    light = lambert(w, "Light", (0.0, 0.0, 0.0), emissive=(le, le, le))
+    floor = Quads().add((-10, 0, -10), (0, 0, 20), (20, 0, 0), (0, 1, 0))
+    lamp = Quads().add((-hw, h, -hw), (2 * hw, 0, 0), (0, 0, 2 * hw), (0, -1, 0))
+    x, y, z = SQUARE_LIGHT_CAMERA
+    assert x == 0.0, "the camera only pitches"
+    pitch = -math.atan2(y, z)  # about +X: -Z turns towards -Y
+    roots = [
+        w.add_node("Plane", mesh=mesh(w, "Plane", floor, plane)),
+        w.add_node("Light", mesh=mesh(w, "Light", lamp, light)),
+        w.add_node("Camera", camera=camera(w, "Camera", 30.0),
+                   translation=list(SQUARE_LIGHT_CAMERA), rotation=rotation_x(pitch)),
+    ]
+    w.set_scene(roots, name="Scene")
+    return w.gltf_text()
+
+
+def translate(offset):
+    return lambda p: tuple(x + o for x, o in zip(p, offset))
+
+
+def scale(factor):
+    return lambda p: tuple(x * factor for x in p)
+
+
+def write(directory, name, text):
+    os.makedirs(directory, exist_ok=True)
+    path = os.path.join(directory, name)
+    with open(path, "w", encoding="utf-8", newline="\n") as f:
+        f.write(text)
+    print("wrote", path)
+
+
+# Invariance scenes (tests/data/invariance/): file, transform, znear, lamp grid, length scale.
+# At 1e4 the float32 spacing is 2^-10 (floats in [2^13, 2^14)): rounding the
+# lamp's corners independently would make its side 472/1024 instead of 0.46
+# (area +0.41%), so the moved lamp is snapped to side 471/1024 (area -0.017%).
+INVARIANCE = (
+    ("cornell-moved.gltf", translate((1e4, 1e4, 1e4)), 0.01, 2.0 ** -10, 1.0),
+    ("cornell-small.gltf", scale(1e-3), 0.01 * 1e-3, None, 1e-3),
+    ("cornell-large.gltf", scale(1e3), 0.01 * 1e3, None, 1e3),
+)
+
+
+def lamp_area(quads):
+    """Area of the first quad with its corners rounded to float32 (a parallelogram)."""
+    p = [tuple(f32(x) for x in v) for v in quads.positions[:4]]
+    n = cross(sub(p[1], p[0]), sub(p[3], p[0]))
+    return math.sqrt(dot(n, n))
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "scenes")
-    os.makedirs(out, exist_ok=True)
-    scenes = (
-        ("cornell-box.gltf", cornell_box()),
-        ("furnace.gltf", furnace()),
-        # Le = 0.1 is not a float32 dyadic: sums of it drift in float32.
-        ("furnace-a0.8-le0.1.gltf", furnace(albedo=0.8, le=0.1)),
-    )
-    for name, text in scenes:
-        path = os.path.join(out, name)
-        with open(path, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        print("wrote", path)
+    if len(sys.argv) > 1:
+        scenes_dir, invariance_dir = sys.argv[1], os.path.join(sys.argv[1], "invariance")
+    else:
+        scenes_dir = os.path.join(ROOT, "scenes")
+        invariance_dir = os.path.join(ROOT, "tests", "data", "invariance")
+    write(scenes_dir, "cornell-box.gltf", cornell_box())
+    write(scenes_dir, "furnace.gltf", furnace())
+    # Le = 0.1 is not a float32 dyadic: sums of it drift in float32.
+    write(scenes_dir, "furnace-a0.8-le0.1.gltf", furnace(albedo=0.8, le=0.1))
+    write(scenes_dir, "square-light.gltf", square_light())
+    lamp = [q for name, q, m in cornell_room() if name == "Light"][0]
+    for name, transform, znear, grid, length in INVARIANCE:
+        write(invariance_dir, name, cornell_box_baked(transform, znear, grid))
+        moved = lamp.mapped(transform)
+        if grid is not None:
+            moved = snapped(moved, grid)
+        ratio = lamp_area(moved) / length ** 2 / lamp_area(lamp)
+        print(f"  float32 lamp area / original lamp area, in original units: {ratio:.6f}")
 
 
 if __name__ == "__main__":

@@ -13,7 +13,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # keep the tree free of __pycache__
-sys.path.insert(0, HERE)
+SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(HERE)), "scripts")  # gltf_writer.py
+sys.path.insert(0, SCRIPTS)
 
 from gltf_writer import GltfWriter  # noqa: E402
 

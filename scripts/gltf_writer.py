@@ -1,4 +1,5 @@
-"""Minimal glTF 2.0 writer for the test data (Python 3 stdlib only).
+"""Minimal glTF 2.0 writer (Python 3 stdlib only), used by scripts/make_scenes.py
+and by tests/data/make_features.py and make_broken.py.
 
 One GltfWriter collects JSON objects and a single binary buffer; write_gltf
 embeds the buffer as a base64 data URI (or writes a sibling .bin), write_glb
@@ -16,11 +17,15 @@ UNSIGNED_SHORT = 5123
 UNSIGNED_INT = 5125
 FLOAT = 5126
 
+# bufferView.target values (glTF 2.0, 5.11.4): vertex attributes, indices.
+ARRAY_BUFFER = 34962
+ELEMENT_ARRAY_BUFFER = 34963
+
 INDEX_FORMAT = {UNSIGNED_BYTE: "<B", UNSIGNED_SHORT: "<H", UNSIGNED_INT: "<I"}
 
 
 def f32(x):
-    """x rounded to float32, as the loader will read it."""
+    """x rounded to float32 (round to nearest even), as the loader will read it."""
     return struct.unpack("<f", struct.pack("<f", x))[0]
 
 
@@ -45,8 +50,11 @@ def to_json(value, level=0):
 
 
 class GltfWriter:
-    def __init__(self, generator="strata tests/data"):
-        self.doc = {"asset": {"version": "2.0", "generator": generator}}
+    def __init__(self, generator, copyright=None):
+        asset = {"version": "2.0", "generator": generator}
+        if copyright is not None:
+            asset["copyright"] = copyright
+        self.doc = {"asset": asset}
         self.blob = bytearray()
 
     def _add(self, key, obj):
@@ -55,13 +63,15 @@ class GltfWriter:
         return len(items) - 1
 
     # Buffer data -------------------------------------------------------
-    def add_view(self, data, stride=None):
+    def add_view(self, data, stride=None, target=None):
         """Appends data (4-byte aligned) as a new bufferView; returns its index."""
         while len(self.blob) % 4:
             self.blob.append(0)
         view = {"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data)}
         if stride is not None:
             view["byteStride"] = stride
+        if target is not None:
+            view["target"] = target
         self.blob += data
         return self._add("bufferViews", view)
 
@@ -78,7 +88,7 @@ class GltfWriter:
 
     def add_vec3(self, points, with_bounds=True):
         """Tightly packed float VEC3 accessor (POSITION bounds when with_bounds)."""
-        view = self.add_view(pack_vec3(points))
+        view = self.add_view(pack_vec3(points), target=ARRAY_BUFFER)
         lo = hi = None
         if with_bounds:
             lo = [min(f32(p[i]) for p in points) for i in range(3)]
@@ -87,13 +97,15 @@ class GltfWriter:
 
     def add_indices(self, indices, component_type=UNSIGNED_SHORT):
         fmt = INDEX_FORMAT[component_type]
-        view = self.add_view(b"".join(struct.pack(fmt, i) for i in indices))
+        view = self.add_view(b"".join(struct.pack(fmt, i) for i in indices),
+                             target=ELEMENT_ARRAY_BUFFER)
         return self.add_accessor(view, component_type, len(indices), "SCALAR")
 
     # Scene objects -------------------------------------------------------
     def add_material(self, name, base_color=None, metallic=None, roughness=None,
                      emissive=None, strength=None, ior=None, double_sided=False,
                      alpha_mode=None, alpha_cutoff=None):
+        """base_color is RGBA; factors left as None are omitted (glTF defaults)."""
         mat = {"name": name}
         pbr = {}
         if base_color is not None:
@@ -144,10 +156,13 @@ class GltfWriter:
         idx = self.add_indices(indices, index_type) if indices is not None else None
         return self.add_mesh(name, [self.primitive(pos, nrm, idx, material)])
 
-    def add_perspective(self, name, yfov, znear=0.01, zfar=None):
+    def add_perspective(self, name, yfov, znear=0.01, zfar=None, aspect_ratio=None):
+        """yfov in radians; znear, zfar in scene units."""
         persp = {"yfov": yfov, "znear": znear}
         if zfar is not None:
             persp["zfar"] = zfar
+        if aspect_ratio is not None:
+            persp["aspectRatio"] = aspect_ratio
         return self._add("cameras", {"name": name, "type": "perspective",
                                      "perspective": persp})
 
@@ -162,9 +177,11 @@ class GltfWriter:
         node.update(fields)
         return self._add("nodes", node)
 
-    def set_scene(self, nodes):
-        self.doc["scenes"] = [{"nodes": list(nodes)}]
+    def set_scene(self, nodes, name=None):
+        scene = {} if name is None else {"name": name}
+        scene["nodes"] = list(nodes)
         self.doc["scene"] = 0
+        self.doc["scenes"] = [scene]
 
     def use_extensions(self, used, required=()):
         self.doc["extensionsUsed"] = list(used)
