@@ -3,6 +3,8 @@
 // the statistics used to compare renders with known answers.
 #pragma once
 #include <cmath>
+
+#include <doctest/doctest.h>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,8 @@ inline Rendered renderFile(const std::string& relPath, const RenderSettings& set
     r.scene = loadGltf(sourcePath(relPath));
     r.gpu = packScene(r.scene);
     r.result = render(context(), r.gpu, r.scene.cameras.at(camera), settings);
+    // Every test scene renders without a single NaN/Inf sample.
+    CHECK(r.result.nonFinite == 0);
     return r;
 }
 
