@@ -12,6 +12,7 @@
 #include "measure/converge.h"
 #include "image/image_io.h"
 #include "render/command.h"
+#include "render/sampler_kind.h"
 #include "util/error.h"
 #include "vk/check.h"
 #include "vk/context.h"
@@ -24,11 +25,13 @@ constexpr const char* kUsage =
     "usage: strata render SCENE.gltf|.glb [-o OUT.exr|OUT.png]... [--spp N] [--seed S]\n"
     "                     [--max-depth D] [--width W] [--height H] [--camera I] [--device I]\n"
     "                     [--time SECONDS] [--traversal auto|texel|storage] [--quiet]\n"
+    "                     [--sampler independent|regular|rotated|stratified|sobol|bluenoise]\n"
     "                     [--stats] [--stats-json FILE] [--validation]\n"
     "       strata reference SCENE --spp N -o REF.exr [render options]\n"
     "       strata compare IMAGE.exr REFERENCE.exr [--json FILE]\n"
     "       strata converge SCENE --reference REF.exr -o REPORT.csv|.json [--spp 1,2,4,...]\n"
     "                       [--seeds K] [--plot PLOT.png] [--seed S] [--max-depth D] [--camera I]\n"
+    "                       [--sampler NAME]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
@@ -79,6 +82,7 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
         else if (a == "--stats") cmd.stats = true;
         else if (a == "--stats-json") cmd.statsJson = value();
         else if (a == "--validation") cmd.validation = true;
+        else if (a == "--sampler") cmd.settings.sampler = strata::samplerByName(value()).kind;
         else if (a == "--traversal") {
             const std::string& v = value();
             if (v == "auto") cmd.settings.traversal = strata::Traversal::Auto;
@@ -153,6 +157,7 @@ int runConverge(const std::vector<std::string>& args) {
         else if (a == "--reference") cmd.reference = value();
         else if (a == "--spp") cmd.spp = parseSppList(value());
         else if (a == "--seeds") cmd.seeds = parseUnsigned(a, value(), 1, 1000);
+        else if (a == "--sampler") cmd.settings.sampler = strata::samplerByName(value()).kind;
         else if (a == "--plot") cmd.plot = value();
         else if (a == "--seed") cmd.settings.seed = parseUnsigned(a, value(), 0, 0xffffffffu);
         else if (a == "--max-depth") cmd.settings.maxDepth = parseUnsigned(a, value(), 0, 1024);

@@ -11,7 +11,7 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "lib/scene.glsl"
-#include "lib/rng.glsl"
+#include "lib/sampler.glsl"
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 
@@ -25,8 +25,9 @@ layout(push_constant) uniform Push { DispatchParams params; };
 
 #include "lib/lights.glsl"
 
-// Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex.
-const uint kDimsPerVertex = 7u;   // light choice (2), light point (2), BSDF (2), roulette (1)
+// Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
+// 2D pairs: light choice, light point, BSDF direction, roulette (1D in a pair).
+const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
 
 vec3 cameraRay(vec2 pixel) {
@@ -130,7 +131,7 @@ void main() {
     uvec2 pixel = uvec2(params.tileX, params.tileY) + local;
     uint pixelIndex = pixel.y * frame.image.x + pixel.x;
 
-    Sampler smp = samplerInit(pixelIndex, params.sampleIndex, frame.image.w);
+    Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
     vec2 jitter = sample2D(smp);  // box filter: uniform over the pixel
     vec3 dir = cameraRay(vec2(pixel) + jitter);
     vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);

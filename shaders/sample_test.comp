@@ -12,14 +12,23 @@ layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffe
 layout(std430, set = 0, binding = BINDING_SAMPLES) writeonly buffer SampleBuffer { vec4 samples[]; };
 layout(push_constant) uniform Push { SampleTestParams params; };
 
-#include "lib/rng.glsl"
+#include "lib/sampler.glsl"
 #include "lib/lights.glsl"
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= params.count) return;
-    Sampler smp = samplerInit(i, 0u, params.seed);
     vec4 out4 = vec4(0.0);
+    if (params.routine == kSamplePixel) {
+        Sampler ps = samplerInit(uvec2(params.pixelX, params.pixelY), params.width, i, params.spp, params.seed);
+        out4.xy = sample2D(ps);
+        samplerSetDim(ps, 2u);  // the first path vertex's light choice pair
+        out4.zw = sample2D(ps);
+        samples[i] = out4;
+        return;
+    }
+    // The warps below take independent numbers (SPEC_SAMPLER left at 0).
+    Sampler smp = samplerInit(uvec2(i, 0u), 0u, 0u, 1u, params.seed);
     if (params.routine == kSampleCosineHemisphere) {
         out4.xyz = sampleCosineHemisphere(sample2D(smp));
     } else if (params.routine == kSampleTriangle) {

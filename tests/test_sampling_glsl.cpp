@@ -34,12 +34,16 @@ std::vector<glm::vec4> drawSamples(std::uint32_t routine, std::uint32_t count, s
     vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
                       {{BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                      sizeof(SampleTestParams), {});
+                      sizeof(SampleTestParams), std::vector<std::uint32_t>(3, 0u));
     kernel.bind(BINDING_EMITTERS, em);
     kernel.bind(BINDING_SAMPLES, out);
     vk::OneShot submit(ctx);
     VkCommandBuffer cmd = submit.begin();
-    SampleTestParams p{count, routine, seed, static_cast<std::uint32_t>(emitters.size())};
+    SampleTestParams p{};
+    p.count = count;
+    p.routine = routine;
+    p.seed = seed;
+    p.emitterCount = static_cast<std::uint32_t>(emitters.size());
     kernel.dispatch(cmd, &p, (count + 63) / 64);
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);

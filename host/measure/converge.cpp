@@ -9,6 +9,7 @@
 #include "image/metrics.h"
 #include "measure/plot.h"
 #include "render/gpu_scene.h"
+#include "render/sampler_kind.h"
 #include "scene/scene.h"
 #include "stats/stats.h"
 #include "util/error.h"
@@ -108,16 +109,28 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     const std::size_t levels = cmd.spp.size();
     std::vector<std::vector<ErrorMetrics>> metrics(levels);
     std::vector<std::vector<double>> seconds(levels);
+    // Samplers whose prefixes are valid samplings (independent, Sobol) are
+    // measured at checkpoints of one render per seed; the grid samplers
+    // stratify for a given total spp, so each level is a render of its own.
+    const bool prefixes = samplerByKind(s.sampler).prefixesAreSamplings;
     for (std::uint32_t k = 0; k < cmd.seeds; ++k) {
         s.seed = cmd.settings.seed + k;
         std::size_t level = 0;
-        Checkpoints checkpoints{cmd.spp, [&](const RenderResult& r) {
-                                    const std::vector<float> mean = r.film.mean();
-                                    metrics[level].push_back(compareImages(mean.data(), ref.rgb.data(), mean.size()));
-                                    seconds[level].push_back(r.deviceSeconds);
-                                    ++level;
-                                }};
-        render(ctx, gpu, scene.cameras[cmd.camera], s, checkpoints);
+        auto measure = [&](const RenderResult& r) {
+            const std::vector<float> mean = r.film.mean();
+            metrics[level].push_back(compareImages(mean.data(), ref.rgb.data(), mean.size()));
+            seconds[level].push_back(r.deviceSeconds);
+            ++level;
+        };
+        if (prefixes) {
+            render(ctx, gpu, scene.cameras[cmd.camera], s, Checkpoints{cmd.spp, measure});
+        } else {
+            for (std::uint32_t spp : cmd.spp) {
+                RenderSettings one = s;
+                one.spp = spp;
+                measure(render(ctx, gpu, scene.cameras[cmd.camera], one));
+            }
+        }
         if (!cmd.quiet) std::fprintf(stderr, "strata: converge: seed %u of %u done\n", k + 1, cmd.seeds);
     }
 

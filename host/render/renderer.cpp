@@ -11,6 +11,7 @@
 #include <strata_spirv.h>
 
 #include "../../shaders/shared/bindings.h"
+#include "render/sampler_kind.h"
 #include "vk/check.h"
 #include "vk/kernel.h"
 #include "vk/timer.h"
@@ -31,7 +32,7 @@ gpu::FrameUniforms frameUniforms(const GpuScene& scene, const Camera& cam, const
     f.camRight = glm::vec4(right * tanHalf * aspect, 0.0f);
     f.camUp = glm::vec4(up * tanHalf, 0.0f);
     f.image = glm::uvec4(s.width, s.height, s.maxDepth, s.seed);
-    f.counts = glm::uvec4(scene.emitters.size(), scene.tris.size(), scene.nodes.size(), 0);
+    f.counts = glm::uvec4(scene.emitters.size(), scene.tris.size(), scene.nodes.size(), s.spp);
     f.scene = glm::vec4(static_cast<float>(scene.totalPower), 0.0f, 0.0f, 0.0f);
     return f;
 }
@@ -48,6 +49,7 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                     const RenderSettings& s, const Checkpoints& checkpoints) {
     using namespace gpu;
+    checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
     DeviceScene dev = uploadScene(ctx, scene, s.traversal);
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
     const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
@@ -75,9 +77,10 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         {BINDING_NODES_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
     };
-    std::vector<std::uint32_t> spec(2);
+    std::vector<std::uint32_t> spec(3);
     spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
     spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
+    spec[SPEC_SAMPLER] = s.sampler;
     vk::Kernel kernel(ctx, {kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4},
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);

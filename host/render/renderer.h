@@ -22,6 +22,7 @@ struct RenderSettings {
     double timeLimit = 0.0;             // seconds; 0 = none. Stops after the submission in progress
     bool progress = false;              // progress line on stderr
     Traversal traversal = Traversal::Auto;
+    std::uint32_t sampler = 0;          // gpu::kSampler* (render/sampler_kind.h)
     std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
     std::uint32_t tileSize = 512;       // dispatch covers at most tileSize^2 pixels
 };

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "render/sampler_kind.h"
+
 namespace strata {
 
 nlohmann::json statsJson(const StatsInput& in) {
@@ -37,7 +39,8 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"msamples_per_second", r.msamplesPerSecond()},
                    {"submissions", r.submissions},
                    {"non_finite_samples", r.nonFinite},
-                   {"traversal", r.texelTraversal ? "texel" : "storage"}};
+                   {"traversal", r.texelTraversal ? "texel" : "storage"},
+                   {"sampler", samplerByKind(s.sampler).name}};
     j["validation"] = {{"enabled", in.ctx->validation},
                        {"messages", vk::validationMessageCount()}};
     return j;
@@ -66,11 +69,11 @@ std::string statsText(const nlohmann::json& j) {
     o << line;
     const auto& r = j["render"];
     std::snprintf(line, sizeof line,
-                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s (device %.3f s), %.3f Msamples/s, %s traversal\n",
+                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s (device %.3f s), %.3f Msamples/s, %s traversal, %s sampler\n",
                   r["width"].get<int>(), r["height"].get<int>(), r["spp"].get<unsigned>(),
                   r["spp_requested"].get<unsigned>(), r["max_depth"].get<unsigned>(),
                   r["seconds"].get<double>(), r["device_seconds"].get<double>(), r["msamples_per_second"].get<double>(),
-                  r["traversal"].get<std::string>().c_str());
+                  r["traversal"].get<std::string>().c_str(), r["sampler"].get<std::string>().c_str());
     o << line;
     o << "samples    " << r["non_finite_samples"] << " non-finite dropped\n";
     return o.str();

@@ -28,6 +28,7 @@ STRATA_BINDING(BINDING_COUNT, 13);
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // 1: read nodes/triangles through texel views
 STRATA_BINDING(SPEC_HAS_EMITTERS, 1);     // 0: no emissive triangles, NEE compiled out
+STRATA_BINDING(SPEC_SAMPLER, 2);          // kSampler* (types.h)
 
 #ifdef __cplusplus
 }  // namespace strata::gpu

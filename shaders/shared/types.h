@@ -47,6 +47,14 @@ struct TriShading {
 
 STRATA_CONST(uint, kNoLight, 0xffffffffu);
 
+// Samplers (SPEC_SAMPLER; host/render/sampler_kind.h names them).
+STRATA_CONST(uint, kSamplerIndependent, 0u);
+STRATA_CONST(uint, kSamplerRegular, 1u);
+STRATA_CONST(uint, kSamplerRotated, 2u);
+STRATA_CONST(uint, kSamplerStratified, 3u);
+STRATA_CONST(uint, kSamplerSobol, 4u);
+STRATA_CONST(uint, kSamplerBlueNoise, 5u);
+
 // Material flags.
 STRATA_CONST(uint, kMaterialDoubleSided, 1u);
 
@@ -93,7 +101,7 @@ struct FrameUniforms {
     vec4 camRight;      // xyz: right * tan(yfov/2) * aspect
     vec4 camUp;         // xyz: up * tan(yfov/2)
     uvec4 image;        // width, height, maxDepth, seed
-    uvec4 counts;       // emitterCount, triangleCount, nodeCount, 0
+    uvec4 counts;       // emitterCount, triangleCount, nodeCount, spp (of the whole render)
     vec4 scene;         // x: total emitted power (for stats), yzw unused
 };
 
@@ -147,12 +155,18 @@ struct TraceParams {
 STRATA_CONST(uint, kSampleCosineHemisphere, 0u);  // out: direction xyz
 STRATA_CONST(uint, kSampleTriangle, 1u);          // out: barycentrics (b1, b2)
 STRATA_CONST(uint, kSampleEmitterChoice, 2u);     // out: x = chosen emitter index
+STRATA_CONST(uint, kSamplePixel, 3u);             // out: the pixel pair and the first light
+                                                  // pair of sample i of pixel (pixelX, pixelY)
 
 struct SampleTestParams {
     uint count;
     uint routine;       // kSample*
     uint seed;
     uint emitterCount;  // for kSampleEmitterChoice
+    uint pixelX;        // for kSamplePixel: the pixel, image width and spp
+    uint pixelY;
+    uint width;
+    uint spp;
 };
 
 // Statistics written by the shader with atomics.
@@ -175,7 +189,7 @@ static_assert(sizeof(RenderCounters) == 16);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
-static_assert(sizeof(SampleTestParams) == 16);
+static_assert(sizeof(SampleTestParams) == 32);
 }  // namespace strata::gpu
 #endif
 

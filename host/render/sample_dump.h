@@ -1,0 +1,25 @@
+// Draws the samples of one pixel from the GLSL samplers (sample_test.comp,
+// routine kSamplePixel): for sample i, the pixel pair (x, y in [0,1)^2 within
+// the pixel) and the first path vertex's light-choice pair (z, w).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "vk/context.h"
+
+namespace strata {
+
+struct PixelSampleRequest {
+    std::uint32_t sampler = 0;  // gpu::kSampler*
+    std::uint32_t spp = 64;     // samples of the pixel (all drawn)
+    std::uint32_t seed = 0;
+    std::uint32_t pixelX = 0, pixelY = 0;
+    std::uint32_t width = 1, height = 1;  // the image the pixel belongs to
+};
+
+// Throws strata::Error when spp does not suit the sampler (sampler_kind.h).
+std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampleRequest& request);
+
+}  // namespace strata
