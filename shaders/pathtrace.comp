@@ -78,9 +78,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
 
         // Next-event estimation: one shadow ray to a point on an emitter.
         if (kHasEmitters != 0u) {
-            vec2 uChoice = sample2D(smp);
-            vec2 uPoint = sample2D(smp);
-            LightSample ls = sampleEmitter(emitterCount, uChoice, uPoint);
+            LightSample ls = sampleEmitter(emitterCount, sample2D(smp));
             vec3 toLight = ls.position - p;
             float dist = length(toLight);
             vec3 wi = toLight / dist;

@@ -34,7 +34,7 @@ void main() {
     } else if (params.routine == kSampleTriangle) {
         out4.xy = sampleTriangle(sample2D(smp));
     } else if (params.routine == kSampleEmitterChoice) {
-        LightSample ls = sampleEmitter(params.emitterCount, sample2D(smp), sample2D(smp));
+        LightSample ls = sampleEmitter(params.emitterCount, sample2D(smp));
         // Identify the emitter by its pmf-independent payload: radiance.x holds its index.
         out4.x = ls.radiance.x;
     }

@@ -16,12 +16,23 @@ struct LightSample {
     uint flags;
 };
 
-// uChoice picks the emitter (alias slot + coin), uPoint the point on it.
-LightSample sampleEmitter(uint emitterCount, vec2 uChoice, vec2 uPoint) {
-    uint slot = min(uint(uChoice.x * float(emitterCount)), emitterCount - 1u);
+// One 2D sample picks the emitter and the point on it: u.x chooses the alias
+// slot, its leftover fraction decides slot-or-alias and is then rescaled to
+// [0,1) again as the point's first coordinate (u.y the second). The light
+// sample is one 2D pair, so a stratified pair stratifies the points over all
+// emitters together. The rescaled coordinate keeps 24 - log2(emitters) bits.
+LightSample sampleEmitter(uint emitterCount, vec2 u) {
+    float scaled = u.x * float(emitterCount);
+    uint slot = min(uint(scaled), emitterCount - 1u);
+    float f = clamp(scaled - float(slot), 0.0, 1.0);
     Emitter e = emitters[slot];
-    if (uChoice.y >= e.aliasProb) e = emitters[e.alias];
-    vec2 b = sampleTriangle(uPoint);
+    if (f < e.aliasProb) {
+        f = f / e.aliasProb;
+    } else {
+        f = (f - e.aliasProb) / (1.0 - e.aliasProb);
+        e = emitters[e.alias];
+    }
+    vec2 b = sampleTriangle(vec2(min(f, 0.99999994), u.y));
     LightSample ls;
     ls.position = e.v0 + b.x * e.e1 + b.y * e.e2;
     ls.v0 = e.v0;
