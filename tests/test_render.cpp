@@ -76,6 +76,20 @@ TEST_CASE("same seed and spp give a bit-identical image; another seed differs") 
     CHECK(vk::validationMessageCount() == 0);
 }
 
+// Submissions are sized by timing; the image must not depend on where they end.
+TEST_CASE("the image does not depend on how samples are split into submissions") {
+    RenderSettings s = small(100, 16, 9);  // 100 = one full fold group of 64 and a partial one
+    s.submitSeconds = 1e-9;                // one sample per submission
+    Rendered a = renderFile("scenes/cornell-box.gltf", s);
+    s.submitSeconds = 1e9;                 // as many as a fold group allows
+    Rendered b = renderFile("scenes/cornell-box.gltf", s);
+    CHECK(a.result.submissions == 100);
+    CHECK(b.result.submissions <= 3);
+    const auto ma = a.result.film.mean(), mb = b.result.film.mean();
+    CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("texel and storage traversal render the same image") {
     RenderSettings s = small(2, 4, 5);
     s.traversal = Traversal::Texel;

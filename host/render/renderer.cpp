@@ -107,17 +107,44 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
     const std::uint32_t tile = std::max(8u, s.tileSize);
     std::uint32_t batch = 1;                  // samples in the next submission
-    constexpr double kTargetSubmitSeconds = 0.25;
     vk::DeviceTimer timer(ctx);
     std::size_t nextCheckpoint = 0;
+
+    // The device sums samples in float32 and the host folds the sums into
+    // double. Folds happen at fixed sample counts (every maxBatch samples, at
+    // checkpoints and at the end), never where a submission happens to end,
+    // so the float rounding, and with it every bit of the image, does not
+    // depend on timing.
+    auto recordFold = [&](VkCommandBuffer cmd) {
+        VkBufferCopy region{0, 0, accumBytes};
+        vkCmdCopyBuffer(cmd, accum.handle(), readback.handle(), 1, &region);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+        vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    };
+    auto foldIntoFilm = [&] {
+        readback.invalidate();
+        result.film.fold(static_cast<const float*>(readback.mapped()));
+    };
+    const std::uint32_t foldEvery = std::max(1u, s.maxBatch);
+    std::uint32_t unfolded = 0;  // samples summed on the device since the last fold
 
     while (result.spp < s.spp) {
         while (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] <= result.spp)
             ++nextCheckpoint;
-        std::uint32_t limit = std::min(s.maxBatch, s.spp - result.spp);
+        std::uint32_t limit = std::min(foldEvery - unfolded, s.spp - result.spp);
         if (nextCheckpoint < checkpoints.spp.size())
             limit = std::min(limit, checkpoints.spp[nextCheckpoint] - result.spp);
         batch = std::clamp(batch, 1u, limit);
+        const std::uint32_t after = result.spp + batch;
+        const bool atCheckpoint = nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] == after;
+        const bool fold = unfolded + batch == foldEvery || after == s.spp || atCheckpoint;
+
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
         for (std::uint32_t k = 0; k < batch; ++k) {
@@ -138,38 +165,36 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                               VK_ACCESS_TRANSFER_READ_BIT);
         }
         timer.end(cmd);
-        VkBufferCopy region{0, 0, accumBytes};
-        vkCmdCopyBuffer(cmd, accum.handle(), readback.handle(), 1, &region);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-        vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        if (fold) recordFold(cmd);
         const auto t0 = Clock::now();
         submit.submitAndWait();
         const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         result.deviceSeconds += timer.supported() ? timer.seconds() : secs;
-        readback.invalidate();
-        result.film.fold(static_cast<const float*>(readback.mapped()));
-        result.spp += batch;
+        result.spp = after;
+        unfolded += batch;
         ++result.submissions;
-        if (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] == result.spp &&
-            checkpoints.onReached) {
+        if (fold) {
+            foldIntoFilm();
+            unfolded = 0;
+        }
+        if (atCheckpoint && checkpoints.onReached) {
             result.seconds = elapsed();
             checkpoints.onReached(result);
         }
 
         const double perSample = secs / batch;
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
-        double target = kTargetSubmitSeconds;
+        double target = s.submitSeconds;
         if (s.timeLimit > 0.0) target = std::min(target, s.timeLimit - elapsed());
         batch = static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
         if (showProgress)
             printProgress(result.spp, s.spp, elapsed(),
                           static_cast<double>(pixels) * result.spp / elapsed() * 1e-6);
+    }
+    if (unfolded > 0) {  // stopped by --time inside a fold group
+        recordFold(submit.begin());
+        submit.submitAndWait();
+        foldIntoFilm();
     }
     result.seconds = elapsed();
     if (showProgress) std::fprintf(stderr, "\n");

@@ -24,6 +24,8 @@ struct RenderSettings {
     Traversal traversal = Traversal::Auto;
     std::uint32_t sampler = 0;          // gpu::kSampler* (render/sampler_kind.h)
     std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
+    double submitSeconds = 0.25;        // target wall time of one submission (sets how many
+                                        // samples each carries; never changes the image)
     std::uint32_t tileSize = 512;       // dispatch covers at most tileSize^2 pixels
 };
 
