@@ -97,9 +97,13 @@ TEST_CASE("bad flags are one-line errors with exit 2 and write nothing") {
           "render " + scene + " -o " + (out.path / "a.jpg").string(),
           "render " + scene + o + " --camera 5", "render " + scene + o + " --time -1",
           "render " + scene + o + " --traversal fast", "render", "frobnicate",
+          "render " + scene + o + " --sampler regular --spp 10", "render " + scene + o + " --sampler magic",
+          "render " + scene + o + " --sampler bluenoise --spp 12",
           "render /nonexistent/scene.gltf" + o}) {
         CAPTURE(args);
-        const Run r = run(args + kSmall);
+        // The small settings, without overriding a case's own --spp.
+        const Run r = run(args + (args.find("--spp") == std::string::npos ? kSmall
+                                                                           : " --width 8 --height 8 --quiet"));
         CAPTURE(r.output);
         CHECK(r.status == 2);
         CHECK(lines(r.output) == 1);

@@ -167,15 +167,24 @@ vec2 samplerNext2D(inout Sampler s) {
     }
     if (kSampler == kSamplerSobol) return owenSobol2D(s.sampleIndex, pairSeed);
     if (kSampler == kSamplerBlueNoise) return owenSobol2D(zOrderIndex(s, pair), hash4(pair, s.seed, 7u, 8u));
-    // Grid samplers: the pixel pair takes sample k at grid cell k; other
-    // pairs take a per-pixel, per-pair permutation of the cells.
+    // Grid samplers: the pixel pair takes sample k at grid cell k (for
+    // regular and rotated the same pattern in every pixel, whatever the seed:
+    // the lecture's patterns). Other pairs take a per-pixel, per-pair
+    // permutation of the cells; regular and rotated grids there are moved by
+    // a random toroidal shift (Cranley & Patterson 1976), which keeps the
+    // grid's structure and makes their estimates unbiased and seed-dependent.
     uint k = pair == 0u ? s.sampleIndex : permuteIndex(s.sampleIndex, s.grid * s.grid, pairSeed);
     vec2 jitter = vec2(0.5);
     if (kSampler == kSamplerStratified) {
         uvec4 h = pcg4d(uvec4(s.pixelIndex, s.sampleIndex, pair, s.seed ^ 0xa511e9b3u));
         jitter = vec2(uintToUnit(h.x), uintToUnit(h.y));
     }
-    return gridPoint(k, s.grid, jitter);
+    vec2 p = gridPoint(k, s.grid, jitter);
+    if (pair != 0u && kSampler != kSamplerStratified) {
+        uvec4 h = pcg4d(uvec4(s.pixelIndex, pair, s.seed, 0xcc9e2d51u));
+        p = fract(p + vec2(uintToUnit(h.x), uintToUnit(h.y)));
+    }
+    return p;
 }
 
 vec2 sample2D(inout Sampler s) {
