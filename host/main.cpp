@@ -10,6 +10,7 @@
 
 #include "measure/compare.h"
 #include "measure/converge.h"
+#include "measure/edges.h"
 #include "image/image_io.h"
 #include "render/command.h"
 #include "render/sampler_kind.h"
@@ -32,6 +33,7 @@ constexpr const char* kUsage =
     "       strata converge SCENE --reference REF.exr -o REPORT.csv|.json [--spp 1,2,4,...]\n"
     "                       [--seeds K] [--plot PLOT.png] [--seed S] [--max-depth D] [--camera I]\n"
     "                       [--sampler NAME]\n"
+    "       strata edges [--spp 64] [--sampler NAME|all] [--seed S] [-o TABLE.csv] [--plot PLOT.png]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
@@ -175,6 +177,30 @@ int runConverge(const std::vector<std::string>& args) {
     return strata::runConverge(cmd);
 }
 
+int runEdgesCommand(const std::vector<std::string>& args) {
+    strata::EdgesCommand cmd;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) badFlag(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "-o" || a == "--output") cmd.table = value();
+        else if (a == "--plot") cmd.plot = value();
+        else if (a == "--spp") cmd.settings.spp = parseUnsigned(a, value(), 1, 1u << 16);
+        else if (a == "--seed") cmd.settings.seed = parseUnsigned(a, value(), 0, 0xffffffffu);
+        else if (a == "--sampler") {
+            const std::string& v = value();
+            cmd.settings.samplers.clear();
+            if (v != "all") cmd.settings.samplers.push_back(strata::samplerByName(v).kind);
+        } else if (a == "--device") cmd.device = parseUnsigned(a, value(), 0, 1024);
+        else if (a == "--validation") cmd.validation = true;
+        else if (!a.empty() && a[0] == '-') badFlag("unknown option '" + a + "' (see 'strata --help')");
+        else badFlag("unexpected argument '" + a + "'");
+    }
+    return strata::runEdges(cmd);
+}
+
 int listDevices() {
     for (const auto& d : strata::vk::listDevices())
         std::printf("%u: %s | %s | %s | Vulkan %s\n", d.index, d.name.c_str(), d.type.c_str(),
@@ -193,11 +219,12 @@ int run(const std::vector<std::string>& args) {
     if (command == "reference") return runReference(rest);
     if (command == "compare") return runCompare(rest);
     if (command == "converge") return runConverge(rest);
+    if (command == "edges") return runEdgesCommand(rest);
     if (command == "devices") {
         if (!rest.empty()) badFlag("devices takes no arguments");
         return listDevices();
     }
-    badFlag("unknown command '" + command + "' (commands: render, reference, compare, converge, devices)");
+    badFlag("unknown command '" + command + "' (commands: render, reference, compare, converge, edges, devices)");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "image/image_io.h"
 #include "render/gpu_scene.h"
+#include "render/sampler_kind.h"
 #include "render/stats.h"
 #include "scene/scene.h"
 #include "util/error.h"
@@ -22,7 +23,9 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 int runRender(const RenderCommand& cmd) {
-    for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad names before any work
+    for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
+    checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
+                         cmd.settings.height);
 
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadGltf(cmd.scene);

@@ -36,7 +36,7 @@ const SamplerInfo& samplerByKind(std::uint32_t kind) {
 }
 
 void checkSamplerSettings(const SamplerInfo& s, std::uint32_t spp, int width, int height) {
-    const auto n = static_cast<std::uint32_t>(std::lround(std::sqrt(static_cast<double>(spp))));
+    const auto n = static_cast<std::uint32_t>(std::floor(std::sqrt(static_cast<double>(spp))));
     if (s.needsSquareSpp && n * n != spp)
         throw Error("strata: error: --sampler " + std::string(s.name) + " needs a square spp (n x n grid), got " +
                     std::to_string(spp) + "; try " + std::to_string(n * n == 0 ? 1 : n * n) + " or " +
