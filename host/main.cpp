@@ -27,12 +27,13 @@ constexpr const char* kUsage =
     "                     [--max-depth D] [--width W] [--height H] [--camera I] [--device I]\n"
     "                     [--time SECONDS] [--traversal auto|texel|storage] [--quiet]\n"
     "                     [--sampler independent|regular|rotated|stratified|sobol|bluenoise]\n"
+    "                     [--filter box|tent|gaussian|blackman-harris] [--filter-radius PIXELS]\n"
     "                     [--stats] [--stats-json FILE] [--validation]\n"
     "       strata reference SCENE --spp N -o REF.exr [render options]\n"
     "       strata compare IMAGE.exr REFERENCE.exr [--json FILE]\n"
     "       strata converge SCENE --reference REF.exr -o REPORT.csv|.json [--spp 1,2,4,...]\n"
     "                       [--seeds K] [--plot PLOT.png] [--seed S] [--max-depth D] [--camera I]\n"
-    "                       [--sampler NAME]\n"
+    "                       [--sampler NAME|all]\n"
     "       strata edges [--spp 64] [--sampler NAME|all] [--seed S] [-o TABLE.csv] [--plot PLOT.png]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
@@ -54,17 +55,19 @@ unsigned long parseUnsigned(const std::string& flag, const std::string& value, u
     return v;
 }
 
-double parsePositive(const std::string& flag, const std::string& value) {
+double parsePositive(const std::string& flag, const std::string& value, double max, const char* what) {
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
-    if (value.empty() || *end != '\0' || !(v > 0.0) || v > 1e9)
-        badFlag(flag + " expects a positive number of seconds, got '" + value + "'");
+    if (value.empty() || *end != '\0' || !(v > 0.0) || v > max)
+        badFlag(flag + " expects " + what + " in (0, " + std::to_string(static_cast<long long>(max)) + "], got '" +
+                value + "'");
     return v;
 }
 
 strata::RenderCommand parseRender(const std::vector<std::string>& args) {
     strata::RenderCommand cmd;
     cmd.settings.progress = true;
+    bool radiusGiven = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
@@ -79,13 +82,21 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
         else if (a == "--height") cmd.settings.height = parseUnsigned(a, value(), 1, 16384);
         else if (a == "--camera") cmd.camera = parseUnsigned(a, value(), 0, 1u << 20);
         else if (a == "--device") cmd.device = parseUnsigned(a, value(), 0, 1024);
-        else if (a == "--time") cmd.settings.timeLimit = parsePositive(a, value());
+        else if (a == "--time") cmd.settings.timeLimit = parsePositive(a, value(), 1e9, "seconds");
         else if (a == "--quiet") cmd.quiet = true, cmd.settings.progress = false;
         else if (a == "--stats") cmd.stats = true;
         else if (a == "--stats-json") cmd.statsJson = value();
         else if (a == "--validation") cmd.validation = true;
         else if (a == "--sampler") cmd.settings.sampler = strata::samplerByName(value()).kind;
-        else if (a == "--traversal") {
+        else if (a == "--filter") {
+            const float radius = cmd.settings.filter.radius;
+            const bool customRadius = radiusGiven;
+            cmd.settings.filter = strata::filterByName(value());
+            if (customRadius) cmd.settings.filter.radius = radius;
+        } else if (a == "--filter-radius") {
+            cmd.settings.filter.radius = static_cast<float>(parsePositive(a, value(), 16, "a radius in pixels"));
+            radiusGiven = true;
+        } else if (a == "--traversal") {
             const std::string& v = value();
             if (v == "auto") cmd.settings.traversal = strata::Traversal::Auto;
             else if (v == "texel") cmd.settings.traversal = strata::Traversal::Texel;
@@ -159,8 +170,11 @@ int runConverge(const std::vector<std::string>& args) {
         else if (a == "--reference") cmd.reference = value();
         else if (a == "--spp") cmd.spp = parseSppList(value());
         else if (a == "--seeds") cmd.seeds = parseUnsigned(a, value(), 1, 1000);
-        else if (a == "--sampler") cmd.settings.sampler = strata::samplerByName(value()).kind;
-        else if (a == "--plot") cmd.plot = value();
+        else if (a == "--sampler") {
+            const std::string& v = value();
+            if (v == "all") cmd.allSamplers = true;
+            else cmd.settings.sampler = strata::samplerByName(v).kind;
+        } else if (a == "--plot") cmd.plot = value();
         else if (a == "--seed") cmd.settings.seed = parseUnsigned(a, value(), 0, 0xffffffffu);
         else if (a == "--max-depth") cmd.settings.maxDepth = parseUnsigned(a, value(), 0, 1024);
         else if (a == "--camera") cmd.camera = parseUnsigned(a, value(), 0, 1u << 20);

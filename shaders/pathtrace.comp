@@ -24,6 +24,7 @@ layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { Rende
 layout(push_constant) uniform Push { DispatchParams params; };
 
 #include "lib/lights.glsl"
+#include "lib/filter.glsl"
 
 // Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
 // 2D pairs: light choice, light point, BSDF direction, roulette (1D in a pair).
@@ -130,8 +131,8 @@ void main() {
     uint pixelIndex = pixel.y * frame.image.x + pixel.x;
 
     Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
-    vec2 jitter = sample2D(smp);  // box filter: uniform over the pixel
-    vec3 dir = cameraRay(vec2(pixel) + jitter);
+    vec2 offset = sampleFilter(sample2D(smp));  // filter importance sampling, weight 1
+    vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
     vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
 
     if (any(isnan(L)) || any(isinf(L))) {

@@ -14,6 +14,7 @@ layout(push_constant) uniform Push { SampleTestParams params; };
 
 #include "lib/sampler.glsl"
 #include "lib/lights.glsl"
+#include "lib/filter.glsl"
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -33,6 +34,8 @@ void main() {
         out4.xyz = sampleCosineHemisphere(sample2D(smp));
     } else if (params.routine == kSampleTriangle) {
         out4.xy = sampleTriangle(sample2D(smp));
+    } else if (params.routine == kSampleFilter) {
+        out4.xy = sampleFilter(sample2D(smp));
     } else if (params.routine == kSampleEmitterChoice) {
         LightSample ls = sampleEmitter(params.emitterCount, sample2D(smp));
         // Identify the emitter by its pmf-independent payload: radiance.x holds its index.

@@ -9,6 +9,7 @@
 #include <strata_spirv.h>
 
 #include "../shaders/shared/bindings.h"
+#include "render/filter.h"
 #include "render/gpu_scene.h"
 #include "stats/stats.h"
 #include "test_util.h"
@@ -20,23 +21,27 @@ using namespace strata::test;
 namespace {
 
 constexpr double kAlpha = 0.01;
-constexpr std::size_t kTests = 3;  // chi-square tests in this file (Sidak correction)
+constexpr std::size_t kTests = 7;  // chi-square tests in this file (Sidak correction)
 
 std::vector<glm::vec4> drawSamples(std::uint32_t routine, std::uint32_t count, std::uint32_t seed,
-                                   const std::vector<gpu::Emitter>& emitters = {}) {
+                                   const std::vector<gpu::Emitter>& emitters = {},
+                                   const PixelFilter& filter = {}) {
     const vk::Context& ctx = context();
     using namespace gpu;
     vk::Buffer em = vk::uploadVector(ctx, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(count) * sizeof(glm::vec4);
     vk::Buffer out(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                    vk::MemoryUse::Device);
     vk::Buffer back(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
     vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
                       {{BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                       {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                       {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                       sizeof(SampleTestParams), std::vector<std::uint32_t>(3, 0u));
     kernel.bind(BINDING_EMITTERS, em);
     kernel.bind(BINDING_SAMPLES, out);
+    kernel.bind(BINDING_FILTER, filterTable);
     vk::OneShot submit(ctx);
     VkCommandBuffer cmd = submit.begin();
     SampleTestParams p{};
@@ -129,5 +134,37 @@ TEST_CASE("GLSL emitter choice through the alias table follows the power pmf (ch
     const auto r = stats::chiSquareTest(observed, expected, kAlpha, kTests);
     MESSAGE(r.detail);
     CHECK(r.passed);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// Filter importance sampling: offsets drawn by the shader from the host's
+// inverse-CDF table follow f(x) f(y) / (integral of f)^2.
+TEST_CASE("GLSL pixel filter sampling follows the filter (chi-square; box, tent, gaussian, blackman-harris)") {
+    for (const char* name : {"box", "tent", "gaussian", "blackman-harris"}) {
+        const PixelFilter f = filterByName(name);
+        const std::string filterName = name;
+        CAPTURE(filterName);
+        const std::uint32_t n = 500000;
+        const auto s = drawSamples(gpu::kSampleFilter, n, 21, {}, f);
+        std::vector<std::pair<double, double>> xy;
+        for (const auto& v : s) {
+            CHECK(std::abs(v.x) <= f.radius);
+            CHECK(std::abs(v.y) <= f.radius);
+            xy.emplace_back(v.x, v.y);
+        }
+        double norm = 0.0;  // integral of the 1D profile (fine midpoint rule)
+        const int steps = 200000;
+        for (int i = 0; i < steps; ++i)
+            norm += filterValue(f, -f.radius + 2.0 * f.radius * (i + 0.5) / steps) * 2.0 * f.radius / steps;
+        const double r = f.radius;
+        const int res = 25;
+        const auto observed = stats::histogram2D(xy, res, res, -r, r, -r, r);
+        const auto expected = stats::integrateExpected(
+            [&](double x, double y) { return filterValue(f, x) * filterValue(f, y) / (norm * norm); }, res, res,
+            -r, r, -r, r, n, 16);
+        const auto result = stats::chiSquareTest(observed, expected, kAlpha, kTests);
+        MESSAGE(filterName << ": " << result.detail);
+        CHECK(result.passed);
+    }
     CHECK(vk::validationMessageCount() == 0);
 }

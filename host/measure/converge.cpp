@@ -1,5 +1,6 @@
 #include "measure/converge.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -34,46 +35,53 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(path, "cannot write the report");
 }
 
-std::string csv(const ConvergeReport& r) {
-    std::string out = "spp,device_seconds,relmse_mean,relmse_std,relmse_trimmed_mean,rmse_mean,efficiency\n";
+std::string csv(const std::vector<ConvergeReport>& runs) {
+    std::string out = "sampler,spp,device_seconds,relmse_mean,relmse_std,relmse_trimmed_mean,rmse_mean,efficiency\n";
     char line[256];
-    for (const auto& l : r.levels) {
-        std::snprintf(line, sizeof line, "%u,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", l.spp, l.seconds, l.relMse,
-                      l.relMseStd, l.relMseTrimmed, l.rmse, l.efficiency);
-        out += line;
-    }
+    for (const auto& r : runs)
+        for (const auto& l : r.levels) {
+            std::snprintf(line, sizeof line, "%s,%u,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", r.sampler.c_str(), l.spp,
+                          l.seconds, l.relMse, l.relMseStd, l.relMseTrimmed, l.rmse, l.efficiency);
+            out += line;
+        }
     return out;
 }
 
-void plot(const std::string& path, const ConvergeReport& r, const std::string& sceneName) {
-    Series measured{"strata (mean of " + std::to_string(r.seeds) + " seeds)", {}, {}, {0.1f, 0.3f, 0.8f}};
-    Series perTime = measured;
-    Series slope{"slope -1", {}, {}, {0.5f, 0.5f, 0.5f}, true, false};
-    Series slopeT = slope;
-    for (const auto& l : r.levels) {
-        measured.x.push_back(l.spp);
-        measured.y.push_back(l.relMse);
-        perTime.x.push_back(l.seconds);
-        perTime.y.push_back(l.relMse);
+void plot(const std::string& path, const std::vector<ConvergeReport>& runs, const std::string& sceneName) {
+    static const std::array<float, 3> kColors[] = {{0.85f, 0.55f, 0.0f}, {0.8f, 0.2f, 0.1f}, {0.1f, 0.45f, 0.7f},
+                                                  {0.8f, 0.4f, 0.7f},  {0.0f, 0.6f, 0.45f}, {0.35f, 0.7f, 0.9f}};
+    Panel bySpp{sceneName + ": relMSE vs spp", "samples per pixel", "relMSE", true, true, {}};
+    Panel byTime{"relMSE vs device seconds", "device seconds", "relMSE", true, true, {}};
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        const ConvergeReport& r = runs[i];
+        char label[96];
+        std::snprintf(label, sizeof label, "%s (slope %.2f)", r.sampler.c_str(), r.slopeSpp);
+        Series a{label, {}, {}, kColors[i % 6]};
+        Series b = a;
+        std::snprintf(label, sizeof label, "%s (slope %.2f)", r.sampler.c_str(), r.slopeTime);
+        b.label = label;
+        for (const auto& l : r.levels) {
+            a.x.push_back(l.spp), a.y.push_back(l.relMse);
+            b.x.push_back(l.seconds), b.y.push_back(l.relMse);
+        }
+        bySpp.series.push_back(a);
+        byTime.series.push_back(b);
     }
-    const auto& first = r.levels.front();
-    const auto& last = r.levels.back();
-    slope.x = {static_cast<double>(first.spp), static_cast<double>(last.spp)};
-    slope.y = {first.relMse, first.relMse * first.spp / last.spp};
-    slopeT.x = {first.seconds, last.seconds};
-    slopeT.y = {first.relMse, first.relMse * first.seconds / last.seconds};
-    char t1[128], t2[128];
-    std::snprintf(t1, sizeof t1, "%s: relMSE vs spp (slope %.2f)", sceneName.c_str(), r.slopeSpp);
-    std::snprintf(t2, sizeof t2, "relMSE vs device seconds (slope %.2f)", r.slopeTime);
-    Panel a{t1, "samples per pixel", "relMSE", true, true, {measured, slope}};
-    Panel b{t2, "device seconds", "relMSE", true, true, {perTime, slopeT}};
-    writeChart(path, {a, b});
+    const ConvergeReport& r0 = runs.front();
+    const auto& first = r0.levels.front();
+    const auto& last = r0.levels.back();
+    bySpp.series.push_back({"slope -1", {double(first.spp), double(last.spp)},
+                            {first.relMse, first.relMse * first.spp / last.spp}, {0.5f, 0.5f, 0.5f}, true, false});
+    byTime.series.push_back({"slope -1", {first.seconds, last.seconds},
+                             {first.relMse, first.relMse * first.seconds / last.seconds}, {0.5f, 0.5f, 0.5f}, true, false});
+    writeChart(path, {bySpp, byTime});
 }
 
 }  // namespace
 
 nlohmann::json ConvergeReport::toJson() const {
     nlohmann::json j;
+    j["sampler"] = sampler;
     j["seeds"] = seeds;
     j["relmse_eps"] = eps;
     j["slope_relmse_vs_spp"] = slopeSpp;
@@ -136,6 +144,7 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
 
     ConvergeReport report;
     report.seeds = cmd.seeds;
+    report.sampler = samplerByKind(s.sampler).name;
     std::vector<double> spp, rel, secs;
     for (std::size_t i = 0; i < levels; ++i) {
         ConvergeLevel l;
@@ -176,13 +185,40 @@ int runConverge(const ConvergeCommand& cmd) {
     const std::string ext = lowerExtension(cmd.report);
     if (ext != ".csv" && ext != ".json") fail(cmd.report, "converge report must be .csv or .json");
     if (!cmd.plot.empty()) outputFormat(cmd.plot);
-    const ConvergeReport r = measureConvergence(cmd);
-    if (!cmd.plot.empty()) plot(cmd.plot, r, std::filesystem::path(cmd.scene).stem().string());
-    writeTextAtomically(cmd.report, ext == ".csv" ? csv(r) : r.toJson().dump(2) + "\n");
-    std::printf("%s", csv(r).c_str());
-    std::printf("slope relMSE vs spp %.3f, vs device seconds %.3f; bias floor b^2 %.3g (c %.3g); "
-                "reference noise floor %.3g; relMSE eps %g\n",
-                r.slopeSpp, r.slopeTime, r.biasFloor, r.varianceConstant, r.referenceFloor, r.eps);
+    std::vector<std::uint32_t> kinds;
+    if (cmd.allSamplers) {
+        for (const auto& info : samplers()) {
+            bool suits = true;
+            for (std::uint32_t spp : cmd.spp) {
+                try {
+                    checkSamplerSettings(info, spp, 1, 1);
+                } catch (const Error&) {
+                    suits = false;
+                }
+            }
+            if (suits) kinds.push_back(info.kind);
+            else if (!cmd.quiet)
+                std::fprintf(stderr, "strata: converge: %s skipped (it does not suit every --spp value)\n", info.name);
+        }
+    } else {
+        kinds.push_back(cmd.settings.sampler);
+    }
+    std::vector<ConvergeReport> runs;
+    for (std::uint32_t kind : kinds) {
+        ConvergeCommand one = cmd;
+        one.settings.sampler = kind;
+        runs.push_back(measureConvergence(one));
+    }
+    if (!cmd.plot.empty()) plot(cmd.plot, runs, std::filesystem::path(cmd.scene).stem().string());
+    nlohmann::json j;
+    for (const auto& r : runs) j["runs"].push_back(r.toJson());
+    writeTextAtomically(cmd.report, ext == ".csv" ? csv(runs) : j.dump(2) + "\n");
+    std::printf("%s", csv(runs).c_str());
+    for (const auto& r : runs)
+        std::printf("%s: slope relMSE vs spp %.3f, vs device seconds %.3f; bias floor b^2 %.3g (c %.3g); "
+                    "reference noise floor %.3g; relMSE eps %g\n",
+                    r.sampler.c_str(), r.slopeSpp, r.slopeTime, r.biasFloor, r.varianceConstant,
+                    r.referenceFloor, r.eps);
     return 0;
 }
 

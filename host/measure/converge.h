@@ -21,7 +21,8 @@ struct ConvergeCommand {
     std::uint32_t seeds = 4;
     std::string report;                 // .csv or .json
     std::string plot;                   // .png, optional
-    RenderSettings settings;            // width/height come from the reference
+    RenderSettings settings;            // width/height come from the reference; settings.sampler
+    bool allSamplers = false;           // --sampler all: every sampler that suits the spp list
     int camera = 0;
     int device = -1;
     bool validation = false;
@@ -46,6 +47,7 @@ struct ConvergeReport {
     double referenceFloor = 0.0;        // mean refVar / (ref^2 + eps): the floor the reference's own noise adds
     std::uint32_t seeds = 0;
     double eps = 1e-2;
+    std::string sampler;
     nlohmann::json toJson() const;
 };
 

@@ -64,6 +64,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                         vk::MemoryUse::Device);
     vk::Buffer countersBack(ctx, sizeof(RenderCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             vk::MemoryUse::Readback);
+    vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(s.filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
     std::vector<vk::BindingDesc> bindings = {
         {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
@@ -76,6 +77,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_NODES_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     };
     std::vector<std::uint32_t> spec(3);
     spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
@@ -90,6 +92,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     kernel.bind(BINDING_EMITTERS, dev.emitters);
     kernel.bind(BINDING_ACCUM, accum);
     kernel.bind(BINDING_COUNTERS, counters);
+    kernel.bind(BINDING_FILTER, filterTable);
 
     RenderResult result;
     result.film = Film(s.width, s.height);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "image/film.h"
+#include "render/filter.h"
 #include "render/device_scene.h"
 #include "render/gpu_scene.h"
 #include "scene/scene.h"
@@ -23,6 +24,7 @@ struct RenderSettings {
     bool progress = false;              // progress line on stderr
     Traversal traversal = Traversal::Auto;
     std::uint32_t sampler = 0;          // gpu::kSampler* (render/sampler_kind.h)
+    PixelFilter filter;                 // pixel reconstruction filter (box, radius 0.5)
     std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
     double submitSeconds = 0.25;        // target wall time of one submission (sets how many
                                         // samples each carries; never changes the image)

@@ -6,6 +6,7 @@
 
 #include "../../shaders/shared/bindings.h"
 #include "../../shaders/shared/types.h"
+#include "render/filter.h"
 #include "render/sampler_kind.h"
 #include "vk/buffer.h"
 #include "vk/kernel.h"
@@ -18,6 +19,7 @@ std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampl
                          static_cast<int>(req.height));
     const std::vector<Emitter> none;
     vk::Buffer em = vk::uploadVector(ctx, none, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(PixelFilter{}), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(req.spp) * sizeof(glm::vec4);
     vk::Buffer out(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                    vk::MemoryUse::Device);
@@ -26,10 +28,12 @@ std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampl
     spec[SPEC_SAMPLER] = req.sampler;
     vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
                       {{BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                       {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                       {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                       sizeof(SampleTestParams), spec);
     kernel.bind(BINDING_EMITTERS, em);
     kernel.bind(BINDING_SAMPLES, out);
+    kernel.bind(BINDING_FILTER, filterTable);
     vk::OneShot submit(ctx);
     VkCommandBuffer cmd = submit.begin();
     SampleTestParams p{};

@@ -40,7 +40,9 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"submissions", r.submissions},
                    {"non_finite_samples", r.nonFinite},
                    {"traversal", r.texelTraversal ? "texel" : "storage"},
-                   {"sampler", samplerByKind(s.sampler).name}};
+                   {"sampler", samplerByKind(s.sampler).name},
+                   {"filter", filterName(s.filter.kind)},
+                   {"filter_radius", s.filter.radius}};
     j["validation"] = {{"enabled", in.ctx->validation},
                        {"messages", vk::validationMessageCount()}};
     return j;

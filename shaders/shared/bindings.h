@@ -23,7 +23,8 @@ STRATA_BINDING(BINDING_TRIS_TEXEL, 9);    // usamplerBuffer over BINDING_TRIS (R
 STRATA_BINDING(BINDING_RAYS, 10);         // storage: trace kernel input rays
 STRATA_BINDING(BINDING_HITS, 11);         // storage: trace kernel output hits
 STRATA_BINDING(BINDING_SAMPLES, 12);      // storage vec4[]: sampling test kernel output
-STRATA_BINDING(BINDING_COUNT, 13);
+STRATA_BINDING(BINDING_FILTER, 13);       // storage float[]: pixel filter inverse CDF (render/filter.h)
+STRATA_BINDING(BINDING_COUNT, 14);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // 1: read nodes/triangles through texel views

@@ -93,6 +93,9 @@ struct Emitter {
 // of finite samples (in .w), then the sum of squared rgb (.w unused).
 STRATA_CONST(uint, kAccumVec4PerPixel, 2u);
 
+// Entries of the pixel filter's inverse-CDF table (u = i / (n - 1)).
+STRATA_CONST(uint, kFilterTableEntries, 16385u);
+
 // Camera and per-render constants (uniform buffer, std140-compatible: only
 // vec4-sized members).
 struct FrameUniforms {
@@ -155,6 +158,7 @@ struct TraceParams {
 STRATA_CONST(uint, kSampleCosineHemisphere, 0u);  // out: direction xyz
 STRATA_CONST(uint, kSampleTriangle, 1u);          // out: barycentrics (b1, b2)
 STRATA_CONST(uint, kSampleEmitterChoice, 2u);     // out: x = chosen emitter index
+STRATA_CONST(uint, kSampleFilter, 4u);            // out: filter offset (x, y) in pixels
 STRATA_CONST(uint, kSamplePixel, 3u);             // out: the pixel pair and the first light
                                                   // pair of sample i of pixel (pixelX, pixelY)
 
