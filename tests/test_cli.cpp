@@ -2,11 +2,9 @@
 // output file after any error.
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
+#include "cli_util.h"
 
-#include <array>
-#include <cstdio>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -14,43 +12,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using namespace strata::test;
 
 namespace {
-
-struct Run {
-    int status = -1;
-    std::string output;  // stdout and stderr together
-};
-
-Run run(const std::string& args) {
-    Run r;
-    const std::string cmd = std::string(STRATA_EXE) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    REQUIRE(p != nullptr);
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-    const int raw = pclose(p);
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return r;
-}
-
-std::size_t lines(const std::string& s) {
-    std::size_t n = 0;
-    for (char c : s) n += c == '\n';
-    return n + (!s.empty() && s.back() != '\n');
-}
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        path = fs::temp_directory_path() / ("strata-cli-" + std::to_string(::getpid()));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-    bool empty() const { return fs::is_empty(path); }
-};
 
 const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
 

@@ -5,6 +5,8 @@
 // the GLSL samplers against independent samples.
 #include <doctest/doctest.h>
 
+#include "cli_util.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,6 +28,7 @@
 
 namespace fs = std::filesystem;
 using namespace strata;
+using namespace strata::test;
 
 namespace {
 
@@ -54,23 +57,6 @@ double pooledRmse(const EdgeReport& r, const std::string& sampler) {
     double mse = 0.0;
     for (double a : r.anglesDeg) mse += std::pow(r.row(sampler, a)->rmse, 2) / r.anglesDeg.size();
     return std::sqrt(mse);
-}
-
-struct Run {
-    int status = -1;
-    std::string output;
-};
-
-Run runCli(const std::string& args) {
-    Run r;
-    FILE* p = popen((std::string(STRATA_EXE) + " " + args + " 2>&1").c_str(), "r");
-    REQUIRE(p != nullptr);
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-    const int raw = pclose(p);
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return r;
 }
 
 }  // namespace
@@ -225,7 +211,7 @@ TEST_CASE("strata edges: table, plot, summary; bad input is one line and exit 2"
     const fs::path dir = fs::temp_directory_path() / ("strata-edges-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const std::string csv = (dir / "edges.csv").string(), png = (dir / "edges.png").string();
-    Run r = runCli("edges --spp 64 --sampler regular -o " + csv + " --plot " + png);
+    Run r = run("edges --spp 64 --sampler regular -o " + csv + " --plot " + png);
     CAPTURE(r.output);
     CHECK(r.status == 0);
     CHECK(r.output.find("regular: 9 shades at 0 deg (expected 65)") != std::string::npos);
@@ -240,7 +226,7 @@ TEST_CASE("strata edges: table, plot, summary; bad input is one line and exit 2"
                                    "edges --spp 64 -o " + (dir / "t.txt").string(),
                                    "edges --spp 64 --plot " + (dir / "p.jpg").string(),
                                    std::string("edges --spp 32 --sampler regular")}) {
-        const Run b = runCli(bad);
+        const Run b = run(bad);
         CAPTURE(bad);
         CAPTURE(b.output);
         CHECK(b.status == 2);

@@ -1,11 +1,9 @@
 // strata reference / compare / converge as a user runs them.
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
+#include "cli_util.h"
 
-#include <array>
-#include <cstdio>
+
 #include <filesystem>
 #include <fstream>
 #include <algorithm>
@@ -15,35 +13,9 @@
 #include "image/image_io.h"
 
 namespace fs = std::filesystem;
+using namespace strata::test;
 
 namespace {
-
-struct Run {
-    int status = -1;
-    std::string output;
-};
-
-Run run(const std::string& args) {
-    Run r;
-    FILE* p = popen((std::string(STRATA_EXE) + " " + args + " 2>&1").c_str(), "r");
-    REQUIRE(p != nullptr);
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-    const int raw = pclose(p);
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return r;
-}
-
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("strata-measure-" + std::to_string(::getpid()));
-    TempDir() {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() { fs::remove_all(path); }
-    std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
 
 const std::string kBox = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
 

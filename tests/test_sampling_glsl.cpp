@@ -6,14 +6,13 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
-#include <strata_spirv.h>
 
 #include "../shaders/shared/bindings.h"
 #include "render/filter.h"
 #include "render/gpu_scene.h"
+#include "render/sample_dump.h"
 #include "stats/stats.h"
 #include "test_util.h"
-#include "vk/kernel.h"
 
 using namespace strata;
 using namespace strata::test;
@@ -26,41 +25,12 @@ constexpr std::size_t kTests = 7;  // chi-square tests in this file (Sidak corre
 std::vector<glm::vec4> drawSamples(std::uint32_t routine, std::uint32_t count, std::uint32_t seed,
                                    const std::vector<gpu::Emitter>& emitters = {},
                                    const PixelFilter& filter = {}) {
-    const vk::Context& ctx = context();
-    using namespace gpu;
-    vk::Buffer em = vk::uploadVector(ctx, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    const VkDeviceSize bytes = static_cast<VkDeviceSize>(count) * sizeof(glm::vec4);
-    vk::Buffer out(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                   vk::MemoryUse::Device);
-    vk::Buffer back(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
-    vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
-                      {{BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                      sizeof(SampleTestParams), std::vector<std::uint32_t>(3, 0u));
-    kernel.bind(BINDING_EMITTERS, em);
-    kernel.bind(BINDING_SAMPLES, out);
-    kernel.bind(BINDING_FILTER, filterTable);
-    vk::OneShot submit(ctx);
-    VkCommandBuffer cmd = submit.begin();
-    SampleTestParams p{};
+    gpu::SampleTestParams p{};
     p.count = count;
     p.routine = routine;
     p.seed = seed;
     p.emitterCount = static_cast<std::uint32_t>(emitters.size());
-    kernel.dispatch(cmd, &p, (count + 63) / 64);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferCopy region{0, 0, bytes};
-    vkCmdCopyBuffer(cmd, out.handle(), back.handle(), 1, &region);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-    submit.submitAndWait();
-    back.invalidate();
-    std::vector<glm::vec4> samples(count);
-    std::memcpy(samples.data(), back.mapped(), bytes);
-    return samples;
+    return runSampleKernel(context(), p, gpu::kSamplerIndependent, emitters, filter);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "image/image_io.h"
 #include "util/error.h"
+#include "util/files.h"
 
 namespace strata {
 
@@ -26,15 +27,7 @@ ErrorMetrics compareFiles(const std::string& image, const std::string& reference
 
 int runCompare(const std::string& image, const std::string& reference, const std::string& json) {
     const ErrorMetrics m = compareFiles(image, reference);
-    if (!json.empty()) {
-        const std::string tmp = json + ".tmp";
-        {
-            std::ofstream f(tmp);
-            f << metricsJson(m).dump(2) << "\n";
-            if (!f) fail(json, "cannot write the metrics file");
-        }
-        if (std::rename(tmp.c_str(), json.c_str()) != 0) fail(json, "cannot write the metrics file");
-    }
+    if (!json.empty()) writeTextAtomically(json, metricsJson(m).dump(2) + "\n");
     std::fputs(metricsText(m).c_str(), stdout);
     return 0;
 }

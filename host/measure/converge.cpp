@@ -14,26 +14,11 @@
 #include "scene/scene.h"
 #include "stats/stats.h"
 #include "util/error.h"
+#include "util/files.h"
 #include "vk/context.h"
 
 namespace strata {
 namespace {
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-void writeTextAtomically(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp);
-        f << text;
-        if (!f) fail(path, "cannot write the report");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(path, "cannot write the report");
-}
 
 std::string csv(const std::vector<ConvergeReport>& runs) {
     std::string out = "sampler,spp,device_seconds,relmse_mean,relmse_std,relmse_trimmed_mean,rmse_mean,efficiency\n";

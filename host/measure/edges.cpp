@@ -16,6 +16,7 @@
 #include "render/sample_dump.h"
 #include "render/sampler_kind.h"
 #include "util/error.h"
+#include "util/files.h"
 #include "vk/check.h"
 
 namespace strata {
@@ -111,22 +112,6 @@ std::vector<const SamplerInfo*> selectSamplers(const EdgeSettings& s, std::vecto
         throw Error("strata: error: no requested sampler suits --spp " + std::to_string(s.spp) + " (" + notes + ")");
     }
     return suited;
-}
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-void writeTextAtomically(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp);
-        f << text;
-        if (!f) fail(path, "cannot write the table");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) fail(path, "cannot write the table");
 }
 
 std::string formatShades(double shades, std::uint32_t lo, std::uint32_t hi) {

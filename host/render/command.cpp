@@ -10,6 +10,7 @@
 #include "render/stats.h"
 #include "scene/scene.h"
 #include "util/error.h"
+#include "util/files.h"
 #include "vk/check.h"
 #include "vk/context.h"
 
@@ -57,16 +58,7 @@ int runRender(const RenderCommand& cmd) {
     } else {
         writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
     }
-    if (!cmd.statsJson.empty()) {
-        const std::string tmp = cmd.statsJson + ".tmp";
-        {
-            std::ofstream f(tmp);
-            f << stats.dump(2) << "\n";
-            if (!f) fail(cmd.statsJson, "cannot write the stats file");
-        }
-        if (std::rename(tmp.c_str(), cmd.statsJson.c_str()) != 0)
-            fail(cmd.statsJson, "cannot write the stats file");
-    }
+    if (!cmd.statsJson.empty()) writeTextAtomically(cmd.statsJson, stats.dump(2) + "\n");
     if (cmd.stats) std::fputs(statsText(stats).c_str(), stdout);
     if (!cmd.quiet)
         for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());

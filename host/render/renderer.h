@@ -23,7 +23,8 @@ struct RenderSettings {
     double timeLimit = 0.0;             // seconds; 0 = none. Stops after the submission in progress
     bool progress = false;              // progress line on stderr
     Traversal traversal = Traversal::Auto;
-    std::uint32_t sampler = 0;          // gpu::kSampler* (render/sampler_kind.h)
+    std::uint32_t sampler = gpu::kSamplerSobol;  // render/sampler_kind.h; default: Sobol,
+                                        // the best time-to-error measured (README, Sampling)
     PixelFilter filter;                 // pixel reconstruction filter (box, radius 0.5)
     std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
     double submitSeconds = 0.25;        // target wall time of one submission (sets how many

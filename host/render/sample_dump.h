@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "../../shaders/shared/types.h"
+#include "render/filter.h"
 #include "vk/context.h"
 
 namespace strata {
@@ -21,5 +23,12 @@ struct PixelSampleRequest {
 
 // Throws strata::Error when spp does not suit the sampler (sampler_kind.h).
 std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampleRequest& request);
+
+// Runs sample_test.comp once: params.count samples of routine params.routine
+// (types.h, kSample*), with the sampler compiled in as `sampler`, the given
+// emitters (kSampleEmitterChoice) and pixel filter (kSampleFilter).
+std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::SampleTestParams& params,
+                                       std::uint32_t sampler, const std::vector<gpu::Emitter>& emitters = {},
+                                       const PixelFilter& filter = {});
 
 }  // namespace strata

@@ -43,12 +43,7 @@ std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene&
         p.first = static_cast<std::uint32_t>(first);
         kernel.dispatch(cmd, &p, (p.count + 63) / 64);
     }
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferCopy region{0, 0, hitBytes};
-    vkCmdCopyBuffer(cmd, hitBuf.handle(), back.handle(), 1, &region);
-    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    vk::recordReadback(cmd, hitBuf, back, hitBytes);
     submit.submitAndWait();
     back.invalidate();
     std::vector<TraceHit> hits(rays.size());

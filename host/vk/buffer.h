@@ -75,4 +75,8 @@ Buffer uploadVector(const Context& ctx, const std::vector<T>& v, VkBufferUsageFl
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess,
                    VkPipelineStageFlags dst, VkAccessFlags dstAccess);
 
+// Records the copy of the first `bytes` of `src` (written by compute shaders)
+// into the host-readable `dst`, with the barriers before and after it.
+void recordReadback(VkCommandBuffer cmd, const Buffer& src, const Buffer& dst, VkDeviceSize bytes);
+
 }  // namespace strata::vk

@@ -1,0 +1,57 @@
+// Running the strata binary from tests: exit status and combined output, and
+// a scratch directory removed afterwards.
+#pragma once
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <doctest/doctest.h>
+
+namespace strata::test {
+
+struct Run {
+    int status = -1;
+    std::string output;  // stdout and stderr together
+};
+
+// Runs `strata ARGS` (a shell command line) and waits for it.
+inline Run run(const std::string& args) {
+    Run r;
+    FILE* p = popen((std::string(STRATA_EXE) + " " + args + " 2>&1").c_str(), "r");
+    REQUIRE(p != nullptr);
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+    const int raw = pclose(p);
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return r;
+}
+
+inline std::size_t lines(const std::string& s) {
+    std::size_t n = 0;
+    for (char c : s) n += c == '\n';
+    return n + (!s.empty() && s.back() != '\n');
+}
+
+struct TempDir {
+    std::filesystem::path path;
+    TempDir() {
+        static std::atomic<int> counter{0};
+        path = std::filesystem::temp_directory_path() /
+               ("strata-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        std::filesystem::remove_all(path);
+        std::filesystem::create_directories(path);
+    }
+    ~TempDir() { std::filesystem::remove_all(path); }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    std::string operator/(const std::string& name) const { return (path / name).string(); }
+    bool empty() const { return std::filesystem::is_empty(path); }
+};
+
+}  // namespace strata::test
