@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "measure/bench.h"
 #include "measure/compare.h"
 #include "measure/converge.h"
 #include "measure/edges.h"
@@ -35,6 +36,7 @@ constexpr const char* kUsage =
     "                       [--seeds K] [--plot PLOT.png] [--seed S] [--max-depth D] [--camera I]\n"
     "                       [--sampler NAME|all]\n"
     "       strata edges [--spp 64] [--sampler NAME|all] [--seed S] [-o TABLE.csv] [--plot PLOT.png]\n"
+    "       strata bench SCENE [--width W] [--height H] [--reps R] [--camera I] [--device I] [--json FILE]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
@@ -215,6 +217,29 @@ int runEdgesCommand(const std::vector<std::string>& args) {
     return strata::runEdges(cmd);
 }
 
+int runBenchCommand(const std::vector<std::string>& args) {
+    strata::BenchCommand cmd;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size()) badFlag(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "--width") cmd.width = parseUnsigned(a, value(), 1, 16384);
+        else if (a == "--height") cmd.height = parseUnsigned(a, value(), 1, 16384);
+        else if (a == "--reps") cmd.reps = parseUnsigned(a, value(), 1, 1000);
+        else if (a == "--camera") cmd.camera = parseUnsigned(a, value(), 0, 1u << 20);
+        else if (a == "--device") cmd.device = parseUnsigned(a, value(), 0, 1024);
+        else if (a == "--json") cmd.json = value();
+        else if (a == "--validation") cmd.validation = true;
+        else if (!a.empty() && a[0] == '-') badFlag("unknown option '" + a + "' (see 'strata --help')");
+        else if (cmd.scene.empty()) cmd.scene = a;
+        else badFlag("unexpected argument '" + a + "'");
+    }
+    if (cmd.scene.empty()) badFlag("bench needs a scene file");
+    return strata::runBench(cmd);
+}
+
 int listDevices() {
     for (const auto& d : strata::vk::listDevices())
         std::printf("%u: %s | %s | %s | Vulkan %s\n", d.index, d.name.c_str(), d.type.c_str(),
@@ -234,11 +259,12 @@ int run(const std::vector<std::string>& args) {
     if (command == "compare") return runCompare(rest);
     if (command == "converge") return runConverge(rest);
     if (command == "edges") return runEdgesCommand(rest);
+    if (command == "bench") return runBenchCommand(rest);
     if (command == "devices") {
         if (!rest.empty()) badFlag("devices takes no arguments");
         return listDevices();
     }
-    badFlag("unknown command '" + command + "' (commands: render, reference, compare, converge, edges, devices)");
+    badFlag("unknown command '" + command + "' (commands: render, reference, compare, converge, edges, bench, devices)");
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "image/image_io.h"
 
 namespace fs = std::filesystem;
@@ -73,4 +75,22 @@ TEST_CASE("measurement commands reject bad input with one line and exit 2") {
     }
     CHECK_FALSE(fs::exists(d / "r.exr"));
     CHECK_FALSE(fs::exists(d / "c.csv"));
+}
+
+TEST_CASE("bench traces the peer's three ray sets and reports consistent counts") {
+    TempDir d;
+    const Run r = run("bench " + kBox + " --width 64 --height 48 --reps 1 --json " + (d / "b.json"));
+    CAPTURE(r.output);
+    REQUIRE(r.status == 0);
+    std::ifstream f(d / "b.json");
+    const nlohmann::json j = nlohmann::json::parse(f);
+    const auto& rays = j["rays"];
+    CHECK(rays["primary"]["rays"].get<int>() == 64 * 48);
+    // One diffuse ray per primary hit; occlusion rays only from hits facing the point.
+    CHECK(rays["diffuse"]["rays"].get<int>() == rays["primary"]["hits"].get<int>());
+    CHECK(rays["occlusion"]["rays"].get<int>() <= rays["primary"]["hits"].get<int>());
+    CHECK(rays["primary"]["hits"].get<int>() > 64 * 48 / 2);
+    for (const char* set : {"primary", "diffuse", "occlusion"}) CHECK(rays[set]["mrays_per_s"].get<double>() > 0.0);
+    CHECK(j["bvh"]["nodes"].get<int>() == 33);
+    CHECK(run("bench " + kBox + " --json " + (d / "b.txt")).status == 2);
 }

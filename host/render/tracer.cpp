@@ -1,54 +1,78 @@
 #include "render/tracer.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <strata_spirv.h>
 
-#include "vk/kernel.h"
+#include "vk/timer.h"
 
 namespace strata {
 
-std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
-                                         const std::vector<gpu::TraceRay>& rays,
-                                         Traversal traversal, std::uint32_t mode) {
+DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal)
+    : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal)) {
     using namespace gpu;
-    DeviceScene dev = uploadScene(ctx, scene, traversal);
-    vk::Buffer rayBuf = vk::uploadVector(ctx, rays, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    const VkDeviceSize hitBytes = std::max<std::size_t>(16, rays.size() * sizeof(TraceHit));
-    vk::Buffer hitBuf(ctx, hitBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                      vk::MemoryUse::Device);
-    vk::Buffer back(ctx, hitBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
-
     std::vector<std::uint32_t> spec(1);
-    spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
-    vk::Kernel kernel(ctx, {kSpirvPtr_trace, kSpirvSize_trace / 4},
-                      {{BINDING_NODES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_TRIS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_NODES_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                       {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                       {BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                      sizeof(TraceParams), spec);
-    bindTraversal(kernel, dev);
-    kernel.bind(BINDING_RAYS, rayBuf);
-    kernel.bind(BINDING_HITS, hitBuf);
+    spec[SPEC_TEXEL_FETCH] = scene_.texel ? 1u : 0u;
+    kernel_ = std::make_unique<vk::Kernel>(
+        ctx, std::span<const std::uint32_t>(kSpirvPtr_trace, kSpirvSize_trace / 4),
+        std::vector<vk::BindingDesc>{{BINDING_NODES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                     {BINDING_TRIS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                     {BINDING_NODES_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                                     {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                                     {BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                     {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+        sizeof(TraceParams), spec);
+    bindTraversal(*kernel_, scene_);
+}
 
-    vk::OneShot submit(ctx);
-    VkCommandBuffer cmd = submit.begin();
-    constexpr std::size_t kRaysPerDispatch = 1u << 18;  // bounds one dispatch's work; even (spawn pairs)
-    for (std::size_t first = 0; first < rays.size(); first += kRaysPerDispatch) {
-        TraceParams p{};
-        p.count = static_cast<std::uint32_t>(std::min(kRaysPerDispatch, rays.size() - first));
-        p.mode = mode;
-        p.first = static_cast<std::uint32_t>(first);
-        kernel.dispatch(cmd, &p, (p.count + 63) / 64);
+DeviceTracer::~DeviceTracer() = default;
+
+std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>& rays, std::uint32_t mode,
+                                               int reps, double* medianSeconds) {
+    using namespace gpu;
+    vk::Buffer rayBuf = vk::uploadVector(ctx_, rays, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const VkDeviceSize hitBytes = std::max<std::size_t>(16, rays.size() * sizeof(TraceHit));
+    vk::Buffer hitBuf(ctx_, hitBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                      vk::MemoryUse::Device);
+    vk::Buffer back(ctx_, hitBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
+    kernel_->bind(BINDING_RAYS, rayBuf);
+    kernel_->bind(BINDING_HITS, hitBuf);
+
+    vk::OneShot submit(ctx_);
+    vk::DeviceTimer timer(ctx_);
+    std::vector<double> times;
+    for (int r = 0; r < std::max(1, reps); ++r) {
+        VkCommandBuffer cmd = submit.begin();
+        timer.begin(cmd);
+        constexpr std::size_t kRaysPerDispatch = 1u << 18;  // bounds one dispatch's work; even (spawn pairs)
+        for (std::size_t first = 0; first < rays.size(); first += kRaysPerDispatch) {
+            TraceParams p{};
+            p.count = static_cast<std::uint32_t>(std::min(kRaysPerDispatch, rays.size() - first));
+            p.mode = mode;
+            p.first = static_cast<std::uint32_t>(first);
+            kernel_->dispatch(cmd, &p, (p.count + 63) / 64);
+        }
+        timer.end(cmd);
+        vk::recordReadback(cmd, hitBuf, back, hitBytes);
+        submit.submitAndWait();
+        times.push_back(timer.seconds());
     }
-    vk::recordReadback(cmd, hitBuf, back, hitBytes);
-    submit.submitAndWait();
+    if (medianSeconds) {
+        std::sort(times.begin(), times.end());
+        *medianSeconds = times[times.size() / 2];
+    }
     back.invalidate();
     std::vector<TraceHit> hits(rays.size());
     std::memcpy(hits.data(), back.mapped(), rays.size() * sizeof(TraceHit));
     return hits;
+}
+
+std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
+                                         const std::vector<gpu::TraceRay>& rays, Traversal traversal,
+                                         std::uint32_t mode) {
+    DeviceTracer tracer(ctx, scene, traversal);
+    return tracer.trace(rays, mode);
 }
 
 }  // namespace strata

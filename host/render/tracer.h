@@ -1,15 +1,37 @@
-// Runs the trace-only kernel (shaders/trace.comp) over a batch of rays: the
-// shader's BVH traversal on its own, for tests and benchmarks.
+// Runs the trace-only kernel (shaders/trace.comp) over batches of rays: the
+// shader's BVH traversal on its own, for tests and `strata bench`.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "render/device_scene.h"
 #include "render/gpu_scene.h"
 #include "vk/context.h"
+#include "vk/kernel.h"
 
 namespace strata {
 
-// `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h).
+// The scene uploaded once and the kernel built once; trace() may be called
+// many times.
+class DeviceTracer {
+public:
+    DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal);
+    ~DeviceTracer();
+
+    // `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h). Runs
+    // the rays `reps` times; `medianSeconds` receives the median device time
+    // of one pass (Vulkan timestamps around the dispatches).
+    std::vector<gpu::TraceHit> trace(const std::vector<gpu::TraceRay>& rays, std::uint32_t mode, int reps = 1,
+                                     double* medianSeconds = nullptr);
+    bool texel() const { return scene_.texel; }
+
+private:
+    const vk::Context& ctx_;
+    DeviceScene scene_;
+    std::unique_ptr<vk::Kernel> kernel_;
+};
+
+// One-shot convenience: upload, trace once, return the hits.
 std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
                                          const std::vector<gpu::TraceRay>& rays,
                                          Traversal traversal, std::uint32_t mode);
