@@ -17,6 +17,10 @@ TEST_CASE("shared structs have the std430 offsets the shaders assume") {
     CHECK(offsetof(Material, emission) == 16);
     CHECK(offsetof(Material, metallic) == 28);
     CHECK(offsetof(Material, alphaCutoff) == 44);
+    CHECK(offsetof(Material, transmission) == 48);
+    CHECK(offsetof(Material, baseColorTex) == 60);
+    CHECK(offsetof(Material, transmissionTex) == 76);
+    CHECK(offsetof(Emitter, kind) == 72);
     CHECK(offsetof(Emitter, triangle) == 12);
     CHECK(offsetof(Emitter, area) == 28);
     CHECK(offsetof(Emitter, pmf) == 44);

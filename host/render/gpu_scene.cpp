@@ -7,7 +7,15 @@ namespace strata {
 
 std::vector<std::string> SceneFeatures::names() const {
     std::vector<std::string> out;
-    if (emitters) out.push_back("emissive-triangles");
+    if (emitters) out.push_back("lights");
+    static const std::pair<std::uint32_t, const char*> kNames[] = {
+        {gpu::kFeatureSpecular, "specular"},       {gpu::kFeatureTransmission, "transmission"},
+        {gpu::kFeatureTextures, "textures"},       {gpu::kFeatureNormalMap, "normal-maps"},
+        {gpu::kFeatureAlphaTest, "alpha-test"},    {gpu::kFeaturePunctual, "punctual-lights"},
+        {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"}};
+    for (const auto& [bit, name] : kNames) {
+        if (bits & bit) out.push_back(name);
+    }
     return out;
 }
 
@@ -66,6 +74,11 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
         gm.ior = m.ior;
         gm.flags = m.doubleSided ? gpu::kMaterialDoubleSided : 0u;
         gm.alphaCutoff = m.alphaCutoff;
+        gm.transmission = m.transmission;
+        gm.specular = m.specular;
+        gm.normalScale = 1.0f;
+        gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex =
+            gm.transmissionTex = gpu::kNoTexture;
         g.materials.push_back(gm);
     }
 
@@ -102,6 +115,15 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
     for (double w : weights) g.totalPower += w;
     if (!g.emitters.empty()) buildAliasTable(weights, g.emitters);
     g.features.emitters = !g.emitters.empty();
+    // Features of the materials some triangle uses.
+    std::vector<bool> used(g.materials.size(), false);
+    for (const auto& t : scene.triangles) used[t.material] = true;
+    for (std::size_t i = 0; i < g.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const gpu::Material& m = g.materials[i];
+        if (m.metallic > 0.0f || m.specular > 0.0f) g.features.bits |= gpu::kFeatureSpecular;
+        if (m.transmission > 0.0f && m.metallic < 1.0f) g.features.bits |= gpu::kFeatureTransmission;
+    }
     return g;
 }
 

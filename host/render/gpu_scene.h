@@ -13,7 +13,8 @@ namespace strata {
 // Scene features detected at pack time; each becomes a specialization
 // constant so a scene that does not use a feature pays nothing for it.
 struct SceneFeatures {
-    bool emitters = false;  // emissive triangles: next-event estimation compiled in
+    bool emitters = false;  // any light: next-event estimation compiled in
+    std::uint32_t bits = 0; // gpu::kFeature* (SPEC_FEATURES)
     std::vector<std::string> names() const;
 };
 

@@ -79,10 +79,11 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     };
-    std::vector<std::uint32_t> spec(3);
+    std::vector<std::uint32_t> spec(4);
     spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
     spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
     spec[SPEC_SAMPLER] = s.sampler;
+    spec[SPEC_FEATURES] = scene.features.bits;
     vk::Kernel kernel(ctx, {kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4},
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);

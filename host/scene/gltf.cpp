@@ -26,8 +26,17 @@ namespace {
 using gltf::LocalPrimitive;
 using gltf::quoted;
 
-constexpr std::array<std::string_view, 2> kSupportedExtensions = {"KHR_materials_emissive_strength",
-                                                                  "KHR_materials_ior"};
+// Extensions strata reads; others named in extensionsUsed are ignored with a
+// warning, and in extensionsRequired are an error.
+constexpr std::array<std::string_view, 4> kSupportedExtensions = {
+    "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
+    "KHR_materials_transmission"};
+
+std::string supportedList() {
+    std::string out;
+    for (auto e : kSupportedExtensions) out += (out.empty() ? "" : ", ") + std::string(e);
+    return out;
+}
 
 // Used where a normal cannot be computed (zero-area triangle, degenerate
 // transform); any unit vector is valid for a triangle that is never hit.
@@ -163,8 +172,7 @@ void checkExtensions(const std::string& path, const tinygltf::Model& model) {
     }
     if (!required.empty()) {
         fail(path, "unsupported required extension(s): " + gltf::oneLine(required) +
-                       " (supported: " + std::string(kSupportedExtensions[0]) + ", " +
-                       std::string(kSupportedExtensions[1]) + ")");
+                       " (supported: " + supportedList() + ")");
     }
     std::string used;
     for (const auto& e : model.extensionsUsed) {

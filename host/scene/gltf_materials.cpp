@@ -1,5 +1,5 @@
 // glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
-// KHR_materials_emissive_strength and KHR_materials_ior.
+// KHR_materials_emissive_strength, _ior, _transmission and _specular.
 #include <cmath>
 #include <sstream>
 
@@ -78,6 +78,17 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
              label + ": KHR_materials_ior.ior " + formatNumber(ior) + " is neither 0 nor >= 1");
     }
     m.ior = static_cast<float>(ior);
+
+    auto unitFactor = [&](const char* extension, const char* key, double fallback) {
+        const double v = extensionNumber(path, label, src, extension, key, fallback);
+        if (!(v >= 0.0 && v <= 1.0)) {
+            fail(path, label + ": " + extension + "." + key + " " + formatNumber(v) +
+                           " is not in [0, 1]");
+        }
+        return static_cast<float>(v);
+    };
+    m.transmission = unitFactor("KHR_materials_transmission", "transmissionFactor", 0.0);
+    m.specular = unitFactor("KHR_materials_specular", "specularFactor", 1.0);
 
     m.doubleSided = src.doubleSided;
     if (src.alphaMode == "OPAQUE") {

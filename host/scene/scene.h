@@ -28,6 +28,8 @@ struct MaterialDesc {
     glm::vec3 emissiveFactor{0.0f};
     float emissiveStrength = 1.0f;
     float ior = 1.5f;
+    float transmission = 0.0f;  // KHR_materials_transmission transmissionFactor
+    float specular = 1.0f;      // KHR_materials_specular specularFactor
     bool doubleSided = false;
     enum class AlphaMode { Opaque, Mask, Blend } alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;

@@ -24,12 +24,19 @@ STRATA_BINDING(BINDING_RAYS, 10);         // storage: trace kernel input rays
 STRATA_BINDING(BINDING_HITS, 11);         // storage: trace kernel output hits
 STRATA_BINDING(BINDING_SAMPLES, 12);      // storage vec4[]: sampling test kernel output
 STRATA_BINDING(BINDING_FILTER, 13);       // storage float[]: pixel filter inverse CDF (render/filter.h)
-STRATA_BINDING(BINDING_COUNT, 14);
+STRATA_BINDING(BINDING_TEXCOORDS, 14);    // storage: per-triangle texture coordinates (BVH order)
+STRATA_BINDING(BINDING_TANGENTS, 15);     // storage: per-triangle tangents (BVH order)
+STRATA_BINDING(BINDING_TEXREFS, 16);      // storage TextureRef[]
+STRATA_BINDING(BINDING_TEXELS, 17);       // texel view over the packed texture texels
+STRATA_BINDING(BINDING_ENV_TEXELS, 18);   // texel view over the environment map (RGBA32F)
+STRATA_BINDING(BINDING_ENV_CDF, 19);      // storage float[]: environment map sampling tables
+STRATA_BINDING(BINDING_COUNT, 20);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // 1: read nodes/triangles through texel views
 STRATA_BINDING(SPEC_HAS_EMITTERS, 1);     // 0: no emissive triangles, NEE compiled out
 STRATA_BINDING(SPEC_SAMPLER, 2);          // kSampler* (types.h)
+STRATA_BINDING(SPEC_FEATURES, 3);         // kFeature* bits (types.h): what the scene uses
 
 #ifdef __cplusplus
 }  // namespace strata::gpu

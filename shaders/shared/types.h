@@ -55,20 +55,53 @@ STRATA_CONST(uint, kSamplerStratified, 3u);
 STRATA_CONST(uint, kSamplerSobol, 4u);
 STRATA_CONST(uint, kSamplerBlueNoise, 5u);
 
+// Scene features (SPEC_FEATURES bits): code for a feature the scene does not
+// use is compiled out. The host detects them at pack time (gpu_scene.h).
+STRATA_CONST(uint, kFeatureSpecular, 1u);      // a GGX reflection lobe (metal or dielectric)
+STRATA_CONST(uint, kFeatureTransmission, 2u);  // KHR_materials_transmission > 0
+STRATA_CONST(uint, kFeatureTextures, 4u);      // any texture slot in use
+STRATA_CONST(uint, kFeatureNormalMap, 8u);     // a normalTexture
+STRATA_CONST(uint, kFeatureAlphaTest, 16u);    // alphaMode MASK or BLEND
+STRATA_CONST(uint, kFeaturePunctual, 32u);     // KHR_lights_punctual lights
+STRATA_CONST(uint, kFeatureEnvironment, 64u);  // an environment light (constant or map)
+STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
+
 // Material flags.
 STRATA_CONST(uint, kMaterialDoubleSided, 1u);
+STRATA_CONST(uint, kMaterialAlphaMask, 2u);    // alphaMode MASK: alpha < alphaCutoff is a hole
+STRATA_CONST(uint, kMaterialAlphaBlend, 4u);   // alphaMode BLEND: stochastic transparency
 
-// glTF pbrMetallicRoughness factors. `emission` is emissiveFactor times
-// KHR_materials_emissive_strength (linear radiance, W sr^-1 m^-2 units).
+STRATA_CONST(uint, kNoTexture, 0xffffffffu);
+
+// glTF pbrMetallicRoughness factors and the extensions strata reads.
+// `emission` is emissiveFactor times KHR_materials_emissive_strength (linear
+// radiance, W sr^-1 m^-2 units). Texture slots index TextureRef[] (the
+// texture, its sampler and KHR_texture_transform) or hold kNoTexture.
 struct Material {
-    vec4 baseColor;   // linear RGB + alpha
+    vec4 baseColor;         // linear RGB + alpha
     vec3 emission;
     float metallic;
-    float roughness;
-    float ior;
-    uint flags;       // kMaterial* bits
+    float roughness;        // perceptual; GGX alpha = roughness^2
+    float ior;              // KHR_materials_ior (1.5 default)
+    uint flags;             // kMaterial* bits
     float alphaCutoff;
+    float transmission;     // KHR_materials_transmission transmissionFactor
+    float specular;         // KHR_materials_specular specularFactor (1 default)
+    float normalScale;      // normalTexture.scale
+    uint baseColorTex;
+    uint metallicRoughnessTex;
+    uint normalTex;
+    uint emissiveTex;
+    uint transmissionTex;
 };
+
+// Light kinds (Emitter.kind). Triangles come from emissive materials;
+// the others from KHR_lights_punctual and --env.
+STRATA_CONST(uint, kLightTriangle, 0u);
+STRATA_CONST(uint, kLightPoint, 1u);
+STRATA_CONST(uint, kLightSpot, 2u);
+STRATA_CONST(uint, kLightDirectional, 3u);
+STRATA_CONST(uint, kLightEnvironment, 4u);
 
 // An emissive triangle, selected through a Walker alias table built on the
 // host: pick slot i = floor(u * count), keep it if the second uniform is
@@ -85,7 +118,7 @@ struct Emitter {
     uint flags;       // kMaterialDoubleSided: emits from both sides
     float aliasProb;
     uint alias;
-    uint pad0;
+    uint kind;        // kLight*
     uint pad1;
 };
 
@@ -185,7 +218,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 48);
+static_assert(sizeof(Material) == 80);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(FrameUniforms) == 112);
 static_assert(sizeof(DispatchParams) == 32);
