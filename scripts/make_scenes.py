@@ -110,9 +110,10 @@ def writer():
 
 
 def lambert(w, name, rgb, emissive=None, strength=None):
-    """Metallic 0, roughness 1: shaded as Lambertian with baseColor rgb."""
+    """Metallic 0 and no specular layer (KHR_materials_specular factor 0):
+    exactly Lambertian with baseColor rgb."""
     return w.add_material(name, base_color=list(rgb) + [1.0], metallic=0.0, roughness=1.0,
-                          emissive=emissive, strength=strength)
+                          emissive=emissive, strength=strength, specular=0.0)
 
 
 def mesh(w, name, quads, material):
@@ -187,7 +188,7 @@ def cornell_materials(w):
         "Green": lambert(w, "Green", (0.14, 0.45, 0.09)),
         "Light": lambert(w, "Light", (0.73, 0.73, 0.73), emissive=(1.0, 1.0, 1.0), strength=15.0),
     }
-    w.use_extensions(["KHR_materials_emissive_strength"])
+    w.use_extensions(["KHR_materials_emissive_strength", "KHR_materials_specular"])
     return mats
 
 
@@ -259,6 +260,7 @@ def furnace(albedo=0.5, le=0.5):
         w.add_node("Camera", camera=camera(w, "Camera", 60.0)),  # at the centre, looking at -Z
     ]
     w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_specular"])
     return w.gltf_text()
 
 
@@ -285,6 +287,7 @@ def square_light():
                    translation=list(SQUARE_LIGHT_CAMERA), rotation=rotation_x(pitch)),
     ]
     w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_specular"])
     return w.gltf_text()
 
 

@@ -1,9 +1,10 @@
 #version 460
 // Progressive path tracer: one path per pixel of the dispatch's tile, one
 // sample per dispatch, added into the accumulation buffer (sum, count, sum of
-// squares). Lambertian BSDF with cosine sampling; next-event estimation on
-// emissive triangles combined with BSDF-sampled emission by the power
-// heuristic (Veach 1997); Russian roulette after depth 3.
+// squares). The glTF BSDF (lib/bsdf.glsl; plain Lambert when no material has
+// a specular or transmission lobe); next-event estimation on emissive
+// triangles combined with BSDF-sampled emission by the power heuristic
+// (Veach 1997; delta lobes take no MIS); Russian roulette after depth 3.
 // maxDepth counts scattering events (pbrt's convention): 0 shows emitters
 // seen directly, 1 is direct lighting.
 #extension GL_GOOGLE_include_directive : require
@@ -14,6 +15,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "lib/sampler.glsl"
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
+layout(constant_id = SPEC_FEATURES) const uint kFeatures = 0u;
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
@@ -25,9 +27,11 @@ layout(push_constant) uniform Push { DispatchParams params; };
 
 #include "lib/lights.glsl"
 #include "lib/filter.glsl"
+#include "lib/bsdf.glsl"
 
 // Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
-// 2D pairs: light choice, light point, BSDF direction, roulette (1D in a pair).
+// 2D pairs: light choice and point, BSDF lobe (1D in a pair), BSDF
+// direction, roulette (1D in a pair).
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
 
@@ -37,12 +41,16 @@ vec3 cameraRay(vec2 pixel) {
     return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
 }
 
+// Lambert only: no material of the scene has a specular or transmission lobe.
+const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
+
 vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     const uint maxDepth = frame.image.z;
     const uint emitterCount = frame.counts.x;
     vec3 L = vec3(0.0);
     vec3 beta = vec3(1.0);
     float prevBsdfPdf = 0.0;
+    bool prevDelta = true;  // the camera ray: emission seen directly counts fully
 
     for (uint depth = 0u;; ++depth) {
         TraceHit hit;
@@ -59,7 +67,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         if (kHasEmitters != 0u && sh.light != kNoLight) {
             if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
                 float w = 1.0;
-                if (depth > 0u) {
+                if (!prevDelta) {
                     Emitter em = emitters[sh.light];
                     float lightPdf = emitterPdfSolidAngle(em.pmf, em.area, hit.t, abs(dot(dir, ng)));
                     w = powerHeuristic(prevBsdfPdf, lightPdf);
@@ -70,11 +78,21 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         if (depth >= maxDepth) break;
 
         vec3 n = front ? ng : -ng;  // geometric normal on the incoming side
+        vec3 wo = -dir;
         vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
         if (dot(ns, n) < 0.0) ns = -ns;
-        vec3 albedo = mat.baseColor.rgb;
+        if (dot(ns, wo) <= 0.0) ns = n;  // the viewer is behind the shading normal
+        vec3 t, b;
+        basis(ns, t, b);
+        vec3 woL = vec3(dot(wo, t), dot(wo, b), dot(wo, ns));
+        Bsdf bsdf;
+        if (kLambertOnly) {
+            bsdf = makeLambert(mat.baseColor.rgb);
+        } else {
+            bsdf = makeBsdf(mat.baseColor.rgb, mat.metallic, mat.roughness, mat.transmission, mat.ior,
+                            mat.specular, front, woL.z);
+        }
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
-        vec3 origin2 = spawnOrigin(tv, hit.u, hit.v, n);
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
 
         // Next-event estimation: one shadow ray to a point on an emitter.
@@ -87,29 +105,37 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
             vec3 lightSide = cosSigned > 0.0 ? ls.normal : -ls.normal;  // faces p
             bool emits = cosSigned > 0.0 || (ls.flags & kMaterialDoubleSided) != 0u;
             float cosLight = abs(cosSigned);
-            float cosSurface = dot(ns, wi);
-            if (emits && cosSurface > 0.0 && dot(n, wi) > 0.0 && dist > 0.0) {
+            vec3 wiL = vec3(dot(wi, t), dot(wi, b), dot(wi, ns));
+            float geoSide = dot(n, wi);
+            // The shading and geometric normals must agree on the side wi leaves to.
+            if (emits && dist > 0.0 && geoSide != 0.0 && (geoSide > 0.0) == (wiL.z > 0.0)) {
                 float lightPdf = emitterPdfSolidAngle(ls.pmf, ls.area, dist, cosLight);
-                if (lightPdf > 0.0) {
+                float bsdfPdf;
+                vec3 f = evalBsdf(bsdf, woL, wiL, bsdfPdf);
+                if (lightPdf > 0.0 && any(greaterThan(f, vec3(0.0)))) {
+                    vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
                     vec3 target = spawnOriginOnEmitter(ls.position, ls.v0, ls.e1, ls.e2, lightSide);
-                    vec3 seg = target - origin2;
+                    vec3 seg = target - from;
                     float segLen = length(seg);
-                    if (segLen > 0.0 && !bvhTraceAny(origin2, seg / segLen, 0.0, segLen)) {
-                        float bsdfPdf = cosSurface * kInvPi;
+                    if (segLen > 0.0 && !bvhTraceAny(from, seg / segLen, 0.0, segLen)) {
                         float w = powerHeuristic(lightPdf, bsdfPdf);
-                        L += beta * (albedo * kInvPi * cosSurface) * ls.radiance * (w / lightPdf);
+                        L += beta * f * ls.radiance * (w / lightPdf);
                     }
                 }
             }
         }
 
-        // BSDF sampling: cosine-weighted, so f cos / pdf = albedo.
-        samplerSetDim(smp, 2u + depth * kDimsPerVertex + 4u);
-        vec3 wi = toWorld(sampleCosineHemisphere(sample2D(smp)), ns);
-        float cosSurface = dot(ns, wi);
-        if (cosSurface <= 0.0 || dot(n, wi) <= 0.0) break;
-        beta *= albedo;
-        prevBsdfPdf = cosSurface * kInvPi;
+        // BSDF sampling: lobe choice, direction, then Russian roulette.
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex + 2u);
+        float uLobe = sample1D(smp);
+        BsdfSample bs = sampleBsdf(bsdf, woL, uLobe, sample2D(smp));
+        if (!bs.valid) break;
+        vec3 wi = bs.wi.x * t + bs.wi.y * b + bs.wi.z * ns;
+        float geoSide = dot(n, wi);
+        if (geoSide == 0.0 || (geoSide > 0.0) != (bs.wi.z > 0.0)) break;
+        beta *= bs.weight;
+        prevBsdfPdf = bs.pdf;
+        prevDelta = bs.delta;
 
         // Russian roulette after depth 3, survival probability max(beta) (>= 0.05).
         float u = sample1D(smp);
@@ -118,7 +144,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
             if (u < q) break;
             beta /= 1.0 - q;
         }
-        origin = origin2;
+        origin = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
         dir = wi;
     }
     return L;

@@ -15,6 +15,48 @@ layout(push_constant) uniform Push { SampleTestParams params; };
 #include "lib/sampler.glsl"
 #include "lib/lights.glsl"
 #include "lib/filter.glsl"
+#include "lib/bsdf.glsl"
+
+Bsdf testBsdf(out vec3 wo) {
+    float c = params.bsdf0.x;
+    wo = vec3(sqrt(max(0.0, 1.0 - c * c)), 0.0, c);
+    return makeBsdf(vec3(params.bsdf1.z), params.bsdf0.z, params.bsdf0.y, params.bsdf0.w,
+                    params.bsdf1.x, params.bsdf1.y, params.bsdf1.w != 0.0, c);
+}
+
+// 8-point Gauss-Legendre nodes and weights on [-1, 1] (positive half).
+const float kGlNode[4] = float[4](0.18343464249564980, 0.52553240991632899,
+                                  0.79666647741362674, 0.96028985649753623);
+const float kGlWeight[4] = float[4](0.36268378337836198, 0.31370664587788729,
+                                    0.22238103445337447, 0.10122853629037626);
+
+// Integral of the BSDF sampling density over cell i of a theta x phi grid,
+// by 8 x 8 Gauss-Legendre quadrature in (theta, phi) with the sin(theta)
+// Jacobian.
+float pdfCellIntegral(uint i) {
+    vec3 wo;
+    Bsdf b = testBsdf(wo);
+    uint rt = params.pixelX, rp = params.pixelY;
+    uint it = i / rp, ip = i % rp;
+    float dt = kPi / float(rt), dp = 2.0 * kPi / float(rp);
+    float t0 = float(it) * dt, p0 = float(ip) * dp;
+    float sum = 0.0;
+    for (int a = 0; a < 8; ++a) {
+        float na = a < 4 ? -kGlNode[3 - a] : kGlNode[a - 4];
+        float wa = a < 4 ? kGlWeight[3 - a] : kGlWeight[a - 4];
+        float theta = t0 + dt * 0.5 * (1.0 + na);
+        for (int c = 0; c < 8; ++c) {
+            float nc = c < 4 ? -kGlNode[3 - c] : kGlNode[c - 4];
+            float wc = c < 4 ? kGlWeight[3 - c] : kGlWeight[c - 4];
+            float phi = p0 + dp * 0.5 * (1.0 + nc);
+            vec3 wi = vec3(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+            float pdf;
+            evalBsdf(b, wo, wi, pdf);
+            sum += wa * wc * pdf * sin(theta);
+        }
+    }
+    return sum * 0.25 * dt * dp;
+}
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
@@ -26,6 +68,10 @@ void main() {
         samplerSetDim(ps, 2u);  // the first path vertex's light choice pair
         out4.zw = sample2D(ps);
         samples[i] = out4;
+        return;
+    }
+    if (params.routine == kBsdfPdfCells) {
+        samples[i] = vec4(pdfCellIntegral(i), 0.0, 0.0, 0.0);
         return;
     }
     // The warps below take independent numbers (SPEC_SAMPLER left at 0).
@@ -40,6 +86,22 @@ void main() {
         LightSample ls = sampleEmitter(params.emitterCount, sample2D(smp));
         // Identify the emitter by its pmf-independent payload: radiance.x holds its index.
         out4.x = ls.radiance.x;
+    } else if (params.routine == kSampleBsdf || params.routine == kSampleBsdfWeight) {
+        vec3 wo;
+        Bsdf b = testBsdf(wo);
+        float uLobe = sample1D(smp);
+        BsdfSample bs = sampleBsdf(b, wo, uLobe, sample2D(smp));
+        if (params.routine == kSampleBsdf) {
+            out4 = vec4(bs.wi, bs.valid ? 1.0 : 0.0);
+        } else if (!bs.valid) {
+            out4 = vec4(-1.0, 0.0, 0.0, 0.0);
+        } else if (bs.delta) {
+            out4 = vec4(bs.weight.r, -1.0, -1.0, -1.0);
+        } else {
+            float pdf;
+            vec3 f = evalBsdf(b, wo, bs.wi, pdf);
+            out4 = vec4(bs.weight.r, pdf > 0.0 ? f.r / pdf : 0.0, bs.pdf, pdf);
+        }
     }
     samples[i] = out4;
 }

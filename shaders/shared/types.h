@@ -194,6 +194,15 @@ STRATA_CONST(uint, kSampleEmitterChoice, 2u);     // out: x = chosen emitter ind
 STRATA_CONST(uint, kSampleFilter, 4u);            // out: filter offset (x, y) in pixels
 STRATA_CONST(uint, kSamplePixel, 3u);             // out: the pixel pair and the first light
                                                   // pair of sample i of pixel (pixelX, pixelY)
+// BSDF routines (lib/bsdf.glsl) for the material in `bsdf0/bsdf1` seen from
+// wo = (sin t, 0, cos t) in the shading frame, t the incidence angle:
+STRATA_CONST(uint, kSampleBsdf, 5u);              // out: wi xyz, w = 1 if the sample is valid
+STRATA_CONST(uint, kSampleBsdfWeight, 6u);        // out: weight.r, eval.r / evalPdf, sample pdf,
+                                                  // eval pdf (x < 0 marks an invalid sample;
+                                                  // y = z = w = -1 a delta sample)
+STRATA_CONST(uint, kBsdfPdfCells, 7u);            // out: x = integral of the pdf over cell i of
+                                                  // a pixelX (theta in [0,pi]) x pixelY (phi)
+                                                  // grid, row-major in theta
 
 struct SampleTestParams {
     uint count;
@@ -204,6 +213,8 @@ struct SampleTestParams {
     uint pixelY;
     uint width;
     uint spp;
+    vec4 bsdf0;         // BSDF routines: cos(incidence), roughness, metallic, transmission
+    vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
 };
 
 // Statistics written by the shader with atomics.
@@ -226,7 +237,7 @@ static_assert(sizeof(RenderCounters) == 16);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
-static_assert(sizeof(SampleTestParams) == 32);
+static_assert(sizeof(SampleTestParams) == 64);
 }  // namespace strata::gpu
 #endif
 

@@ -1,0 +1,271 @@
+// The glTF 2.0 metallic-roughness BSDF (the spec's Appendix B mix) with
+// KHR_materials_transmission, _ior and _specular:
+//
+//   f = mix(dielectric, metal, metallic)
+//   metal      = GGX reflection with F = baseColor + (1 - baseColor)(1 - |wo.h|)^5
+//   dielectric = specular * Fd(wo.h) * GGX reflection
+//              + (1 - specular * Fd(wo.h)) * mix(baseColor / pi, baseColor * GGX transmission, transmission)
+//
+// Fd is the exact dielectric Fresnel of ior (the spec's Schlick form is an
+// approximation it allows replacing); transmission refracts into a closed
+// volume (not thin-walled) and scales radiance by 1/eta^2 (Veach 1997,
+// sec. 5.2). GGX (Trowbridge-Reitz) with height-correlated Smith shadowing,
+// alpha = roughness^2; the visible normals are sampled with spherical caps
+// (Dupuy & Benyoub 2023) and transmission follows Walter et al. 2007. Below
+// alpha kDeltaAlpha the reflection and transmission lobes are exact (delta)
+// mirror and refraction, so roughness 0 is a perfect mirror.
+//
+// All directions are in the local shading frame: z is the shading normal on
+// the side the ray came from, so wo.z > 0; reflection has wi.z > 0 and
+// transmission wi.z < 0. `etap` is the ratio of the indices of refraction
+// of the far side over wo's side.
+#ifndef STRATA_LIB_BSDF_GLSL
+#define STRATA_LIB_BSDF_GLSL
+
+#include "lib/sampling.glsl"
+
+const float kDeltaAlpha = 1.0e-3;
+
+struct Bsdf {
+    vec3 baseColor;
+    float metallic;
+    float alpha;         // GGX alpha = roughness^2
+    float transmission;
+    float etap;          // far-side ior / near-side ior
+    float specular;      // KHR_materials_specular factor on the dielectric Fresnel
+    bool delta;          // alpha < kDeltaAlpha: mirror / refraction lobes are deltas
+    // Probabilities of the two sampling strategies (set by makeBsdf): the
+    // microfacet lobes (then reflection or transmission by specularSplit)
+    // and the diffuse lobe.
+    float pSpecular, pDiffuse;
+};
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+// Exact Fresnel reflectance of a dielectric interface for unpolarised light
+// arriving at cosine cosI >= 0 from the side with relative index etap
+// (transmitted side over incident side); 1 under total internal reflection.
+float fresnelDielectric(float cosI, float etap) {
+    cosI = clamp(cosI, 0.0, 1.0);
+    float sin2T = (1.0 - cosI * cosI) / (etap * etap);
+    if (sin2T >= 1.0) return 1.0;
+    float cosT = sqrt(1.0 - sin2T);
+    float rs = (cosI - etap * cosT) / (cosI + etap * cosT);
+    float rp = (etap * cosI - cosT) / (etap * cosI + cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+vec3 fresnelSchlick(vec3 f0, float cosI) {
+    float m = clamp(1.0 - cosI, 0.0, 1.0);
+    float m2 = m * m;
+    return f0 + (1.0 - f0) * (m2 * m2 * m);
+}
+
+// Reflectance of the mirror lobe, metal and dielectric together, at wo.h = c.
+vec3 reflectance(Bsdf b, float c) {
+    return b.metallic * fresnelSchlick(b.baseColor, c) +
+           vec3((1.0 - b.metallic) * b.specular * fresnelDielectric(c, b.etap));
+}
+
+// Probability of reflecting (rather than refracting) off a microfacet with
+// wo.h = c: the two lobes' albedo estimates, Fresnel exact.
+float specularSplit(Bsdf b, float c) {
+    float fd = b.specular * fresnelDielectric(c, b.etap);
+    float wr = b.metallic * max(luminance(fresnelSchlick(b.baseColor, c)), 1.0e-3) +
+               (1.0 - b.metallic) * fd;
+    float wt = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * luminance(b.baseColor);
+    return wr + wt > 0.0 ? wr / (wr + wt) : 1.0;
+}
+
+// ior < 1 (KHR_materials_ior allows 0) is treated as 1.5, the default.
+// cosO is wo.z, used to weigh the sampling strategies.
+Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmission, float ior,
+              float specular, bool entering, float cosO) {
+    Bsdf b;
+    b.baseColor = clamp(baseColor, 0.0, 1.0);
+    b.metallic = clamp(metallic, 0.0, 1.0);
+    float r = clamp(roughness, 0.0, 1.0);
+    b.alpha = r * r;
+    b.delta = b.alpha < kDeltaAlpha;
+    b.transmission = clamp(transmission, 0.0, 1.0);
+    float eta = ior >= 1.0 ? ior : 1.5;
+    b.etap = entering ? eta : 1.0 / eta;
+    b.specular = clamp(specular, 0.0, 1.0);
+    // Strategy weights: the lobes' albedos estimated at the macro normal.
+    // The floors keep every lobe that can be non-zero at some microfacet
+    // samplable (a black metal at normal incidence, a diffuse base behind
+    // total internal reflection), so the estimator stays unbiased.
+    float fd = b.specular * fresnelDielectric(cosO, b.etap);
+    float lumBase = luminance(b.baseColor);
+    float ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
+               (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
+    float wd = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05) * lumBase;
+    float total = ws + wd;
+    b.pSpecular = total > 0.0 ? ws / total : 0.0;
+    b.pDiffuse = total > 0.0 ? wd / total : 0.0;
+    return b;
+}
+
+// Lambert alone (metallic 0, specular 0, no transmission): the diffuse lobe
+// with probability 1.
+Bsdf makeLambert(vec3 baseColor) {
+    Bsdf b;
+    b.baseColor = clamp(baseColor, 0.0, 1.0);
+    b.metallic = 0.0;
+    b.alpha = 1.0;
+    b.transmission = 0.0;
+    b.etap = 1.5;
+    b.specular = 0.0;
+    b.delta = false;
+    b.pSpecular = 0.0;
+    b.pDiffuse = 1.0;
+    return b;
+}
+
+// GGX normal distribution, isotropic, written so alpha near 1e-3 keeps its
+// precision: D = a^2 / (pi (h.x^2 + h.y^2 + a^2 h.z^2)^2) for unit h.
+float ggxD(vec3 h, float a) {
+    float a2 = a * a;
+    float d = dot(h.xy, h.xy) + a2 * h.z * h.z;
+    return d > 0.0 ? a2 / (kPi * d * d) : 0.0;
+}
+
+// Smith Lambda for GGX: (sqrt(1 + a^2 tan^2) - 1) / 2.
+float ggxLambda(vec3 w, float a) {
+    float z2 = w.z * w.z;
+    if (z2 <= 0.0) return 1.0e30;
+    float t2 = dot(w.xy, w.xy) / z2;
+    return 0.5 * (sqrt(1.0 + a * a * t2) - 1.0);
+}
+
+float ggxG1(vec3 w, float a) { return 1.0 / (1.0 + ggxLambda(w, a)); }
+
+// Height-correlated masking-shadowing (Heitz 2014).
+float ggxG2(vec3 wo, vec3 wi, float a) { return 1.0 / (1.0 + ggxLambda(wo, a) + ggxLambda(wi, a)); }
+
+// Density of the visible normal h seen from wo (wo.z > 0): G1(wo) max(0, wo.h) D(h) / wo.z.
+float ggxVisiblePdf(vec3 wo, vec3 h, float a) {
+    return ggxG1(wo, a) * max(0.0, dot(wo, h)) * ggxD(h, a) / wo.z;
+}
+
+// Visible-normal sample by spherical caps (Dupuy & Benyoub 2023): in the
+// configuration stretched to alpha = 1, a uniform point on the cap of the
+// unit sphere below wo, offset by wo, is distributed as the visible normals.
+vec3 ggxSampleVisible(vec3 wo, float a, vec2 u) {
+    vec3 ws = normalize(vec3(a * wo.xy, wo.z));
+    float phi = 2.0 * kPi * u.x;
+    float z = (1.0 - u.y) * (1.0 + ws.z) - ws.z;
+    float sinTheta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+    vec3 hs = vec3(sinTheta * cos(phi), sinTheta * sin(phi), z) + ws;
+    vec3 h = vec3(a * hs.xy, max(hs.z, 0.0));
+    float len2 = dot(h, h);
+    return len2 > 1.0e-30 ? h * inversesqrt(len2) : vec3(0.0, 0.0, 1.0);
+}
+
+// Refraction of wo through a surface with normal h (wo.h > 0) into relative
+// index etap; false under total internal reflection.
+bool refractDir(vec3 wo, vec3 h, float etap, out vec3 wi) {
+    float cosI = dot(wo, h);
+    float sin2T = max(0.0, 1.0 - cosI * cosI) / (etap * etap);
+    if (sin2T >= 1.0) {
+        wi = vec3(0.0);
+        return false;
+    }
+    float cosT = sqrt(1.0 - sin2T);
+    wi = -wo / etap + (cosI / etap - cosT) * h;
+    return true;
+}
+
+// The non-delta part of the BSDF times |wi.z|, and the density with which
+// sampleBsdf produces wi (solid angle, strategy and lobe choice included).
+vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+    pdf = 0.0;
+    vec3 f = vec3(0.0);
+    if (wo.z <= 0.0 || wi.z == 0.0) return f;
+    if (wi.z > 0.0) {
+        vec3 h = normalize(wo + wi);
+        float c = dot(wo, h);
+        if (b.pDiffuse > 0.0) {
+            float fd = b.specular > 0.0 ? b.specular * fresnelDielectric(c, b.etap) : 0.0;
+            f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.baseColor * (kInvPi * wi.z);
+            pdf += b.pDiffuse * wi.z * kInvPi;
+        }
+        if (!b.delta && b.pSpecular > 0.0) {
+            f += reflectance(b, c) * (ggxD(h, b.alpha) * ggxG2(wo, wi, b.alpha) / (4.0 * wo.z));
+            pdf += b.pSpecular * specularSplit(b, c) * ggxVisiblePdf(wo, h, b.alpha) / (4.0 * c);
+        }
+    } else if (!b.delta && b.pSpecular > 0.0 && b.transmission > 0.0) {
+        // Generalised half vector (Walter et al. 2007), on wo's side.
+        vec3 h = wi * b.etap + wo;
+        if (dot(h, h) == 0.0) return f;
+        h = normalize(h);
+        if (h.z < 0.0) h = -h;
+        float ci = dot(wi, h), co = dot(wo, h);
+        if (ci >= 0.0 || co <= 0.0) return f;  // back-facing microfacet
+        float fd = b.specular * fresnelDielectric(co, b.etap);
+        float denom = ci + co / b.etap;
+        denom *= denom;
+        float d = ggxD(h, b.alpha);
+        float ft = d * ggxG2(wo, wi, b.alpha) * (1.0 - fd) * (-ci) * co / (denom * wo.z);
+        f += (1.0 - b.metallic) * b.transmission * b.baseColor * (ft / (b.etap * b.etap));
+        float dhdwi = -ci / denom;
+        pdf += b.pSpecular * (1.0 - specularSplit(b, co)) * ggxVisiblePdf(wo, h, b.alpha) * dhdwi;
+    }
+    return f;
+}
+
+struct BsdfSample {
+    vec3 wi;
+    vec3 weight;   // f |wi.z| / pdf (delta lobes: their reflectance / choice probability)
+    float pdf;     // solid-angle density of the non-delta lobes; 0 for a delta sample
+    bool delta;    // sampled from a delta lobe (no MIS with light sampling)
+    bool valid;
+};
+
+// One direction: uLobe picks the microfacet or the diffuse strategy by the
+// probabilities of makeBsdf and then, rescaled, reflection or transmission
+// at the sampled microfacet; u is the direction within the lobe.
+BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
+    BsdfSample s;
+    s.wi = vec3(0.0, 0.0, 1.0);
+    s.weight = vec3(0.0);
+    s.pdf = 0.0;
+    s.delta = false;
+    s.valid = false;
+    if (wo.z <= 0.0) return s;
+    if (uLobe < b.pSpecular) {
+        float uSplit = uLobe / b.pSpecular;
+        vec3 h = b.delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(wo, b.alpha, u);
+        float c = dot(wo, h);
+        if (c <= 0.0) return s;
+        float pr = specularSplit(b, c);
+        if (uSplit < pr) {
+            s.wi = reflect(-wo, h);
+            if (b.delta) {
+                s.weight = reflectance(b, c) / (b.pSpecular * pr);
+                s.delta = s.valid = true;
+                return s;
+            }
+            if (s.wi.z <= 0.0) return s;
+        } else {
+            if (!refractDir(wo, h, b.etap, s.wi) || s.wi.z >= 0.0) return s;
+            if (b.delta) {
+                float fd = b.specular * fresnelDielectric(c, b.etap);
+                s.weight = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * b.baseColor /
+                           (b.etap * b.etap * b.pSpecular * (1.0 - pr));
+                s.delta = s.valid = true;
+                return s;
+            }
+        }
+    } else {
+        s.wi = sampleCosineHemisphere(u);
+        if (s.wi.z <= 0.0) return s;
+    }
+    vec3 f = evalBsdf(b, wo, s.wi, s.pdf);
+    if (s.pdf <= 0.0) return s;
+    s.weight = f / s.pdf;
+    s.valid = true;
+    return s;
+}
+
+#endif
