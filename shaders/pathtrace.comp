@@ -16,8 +16,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
-layout(std430, set = 0, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { Material materials[]; };
 layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
 layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
@@ -64,7 +62,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
                     float lightPdf = emitterPdfSolidAngle(em.pmf, em.area, hit.t, abs(dot(dir, ng)));
                     w = powerHeuristic(prevBsdfPdf, lightPdf);
                 }
-                L += beta * w * mat.emission;
+                L += beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
             }
         }
         if (depth >= maxDepth) break;
@@ -72,7 +70,9 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         vec3 n = front ? ng : -ng;  // geometric normal on the incoming side
         vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
         if (dot(ns, n) < 0.0) ns = -ns;
-        vec3 albedo = mat.baseColor.rgb;
+        SurfacePoint sp = surfacePoint(mat, hit.triangle, vec2(hit.u, hit.v), n, ns);
+        ns = sp.ns;
+        vec3 albedo = sp.baseColor;
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         vec3 origin2 = spawnOrigin(tv, hit.u, hit.v, n);
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
@@ -97,7 +97,10 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
                     if (segLen > 0.0 && !bvhTraceAny(origin2, seg / segLen, 0.0, segLen)) {
                         float bsdfPdf = cosSurface * kInvPi;
                         float w = powerHeuristic(lightPdf, bsdfPdf);
-                        L += beta * (albedo * kInvPi * cosSurface) * ls.radiance * (w / lightPdf);
+                        vec3 Le = (kFeatures & kFeatureTextures) != 0u
+                                      ? emissionAt(shading[ls.triangle].material, ls.triangle, ls.bary)
+                                      : ls.radiance;
+                        L += beta * (albedo * kInvPi * cosSurface) * Le * (w / lightPdf);
                     }
                 }
             }
