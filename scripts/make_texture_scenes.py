@@ -22,6 +22,8 @@ height 1, radiance 1, facing down) over the plane y = 0 (baseColor 0.5,
 metallic 0, KHR_materials_specular 0: Lambertian), uv = ((x + 10) / 20,
 (z + 10) / 20), no TANGENT (the loader generates it: +X, w = +1); the camera
 at (0, 0.9, 0) looks straight down (its up is -Z), yfov 60 degrees.
+plane-half-light.gltf gives the light a 2 x 1 NEAREST emissive texture, white
+then black along u = x + 0.5: only its half x < 0 emits.
 """
 
 import base64
@@ -168,7 +170,7 @@ def alpha_scene(path, blocker_material):
     s.write(path)
 
 
-def plane_scene(path, normal_rgb):
+def plane_scene(path, normal_rgb, half_light=False):
     s = Scene()
     pbr = {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0.0}
     fields = {"name": "Plane", "pbrMetallicRoughness": pbr,
@@ -180,11 +182,15 @@ def plane_scene(path, normal_rgb):
     corners = [(-10, 0, 10), (10, 0, 10), (10, 0, -10), (-10, 0, -10)]
     uvs = [((x + 10) / 20, (z + 10) / 20) for x, _, z in corners]
     s.quad("Plane", corners, uvs, plane, (0, 1, 0))
+    light_fields = {}
+    if half_light:  # emissive texture: white for x < 0, black for x > 0 (u = x + 0.5)
+        img = s.image(data_uri(png([[(255, 255, 255), (0, 0, 0)]])))
+        light_fields["emissiveTexture"] = {"index": s.texture(img, CLAMP, CLAMP)}
     light = s.material(name="Light", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1],
                                                            "metallicFactor": 0.0},
-                       emissiveFactor=[1, 1, 1])
-    s.quad("Light", [(-0.5, 1, -0.5), (0.5, 1, -0.5), (0.5, 1, 0.5), (-0.5, 1, 0.5)],
-           [(0, 0)] * 4, light, (0, -1, 0))
+                       emissiveFactor=[1, 1, 1], **light_fields)
+    lamp = [(-0.5, 1, -0.5), (0.5, 1, -0.5), (0.5, 1, 0.5), (-0.5, 1, 0.5)]
+    s.quad("Light", lamp, [(x + 0.5, z + 0.5) for x, _, z in lamp], light, (0, -1, 0))
     half = -math.pi / 4  # rotation about +X by -90 degrees: -Z (forward) turns to -Y
     s.camera(math.radians(60), (0, 0.9, 0), [math.sin(half), 0, 0, math.cos(half)])
     s.write(path, ["KHR_materials_specular"])
@@ -263,6 +269,7 @@ def main():
     plane_scene(p("plane-no-map.gltf"), None)
     plane_scene(p("plane-flat-map.gltf"), FLAT_NORMAL)
     plane_scene(p("plane-tilted-map.gltf"), TILTED_NORMAL)
+    plane_scene(p("plane-half-light.gltf"), None, half_light=True)
     loader_scene(p("loader.gltf"))
     broken_scenes(os.path.join(out, "broken"))
 

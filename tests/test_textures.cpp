@@ -8,6 +8,7 @@
 // pixel is exactly emissiveFactor x the decoded texture there.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -289,7 +290,11 @@ namespace {
 // (uv's u), bitangent = -Z (v grows along +Z; the normal map's +Y points to
 // decreasing v), N = +Y.
 constexpr double kPlaneAlbedo = 0.5;
-const glm::dvec3 kLightCorners[4] = {{-0.5, 1, -0.5}, {0.5, 1, -0.5}, {0.5, 1, 0.5}, {-0.5, 1, 0.5}};
+using Polygon = std::array<glm::dvec3, 4>;
+constexpr Polygon kLight = {{{-0.5, 1, -0.5}, {0.5, 1, -0.5}, {0.5, 1, 0.5}, {-0.5, 1, 0.5}}};
+// The emitting half of plane-half-light.gltf's textured light, and its mirror image.
+constexpr Polygon kHalfLight = {{{-0.5, 1, -0.5}, {0.0, 1, -0.5}, {0.0, 1, 0.5}, {-0.5, 1, 0.5}}};
+constexpr Polygon kOtherHalf = {{{0.0, 1, -0.5}, {0.5, 1, -0.5}, {0.5, 1, 0.5}, {0.0, 1, 0.5}}};
 
 // The shading normal a constant normal texel gives (glTF: n = 2 c / 255 - 1).
 glm::dvec3 mappedNormal(int r, int g, int b) {
@@ -302,11 +307,11 @@ glm::dvec3 mappedNormal(int r, int g, int b) {
 // angle the edge (v_i, v_i+1) subtends at p, Gamma_i the unit normal of the
 // plane through p and the edge (Arvo 1995, "Applications of Irradiance
 // Tensors"). Exact when the whole polygon is above the tangent plane of n.
-double polygonIrradiance(const glm::dvec3& p, const glm::dvec3& n) {
+double polygonIrradiance(const glm::dvec3& p, const glm::dvec3& n, const Polygon& light = kLight) {
     double e = 0.0;
-    for (int i = 0; i < 4; ++i) {
-        const glm::dvec3 a = glm::normalize(kLightCorners[i] - p);
-        const glm::dvec3 b = glm::normalize(kLightCorners[(i + 1) % 4] - p);
+    for (std::size_t i = 0; i < 4; ++i) {
+        const glm::dvec3 a = glm::normalize(light[i] - p);
+        const glm::dvec3 b = glm::normalize(light[(i + 1) % 4] - p);
         e += 0.5 * std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, glm::normalize(glm::cross(a, b)));
     }
     return std::abs(e);
@@ -327,11 +332,15 @@ glm::dvec3 planePoint(const Camera& cam, int px, int py, int size) {
 struct PlaneFit {
     stats::MeanTestResult mean;
     double expectedMean = 0.0;
+    std::size_t pixels = 0;
+    std::size_t within = 0;     // pixels within 4.5 sigma of the expected value
+    std::size_t otherFails = 0; // pixels more than 4.5 sigma from the `other` answer
 };
 
 // Renders a plane scene at max depth 1 and tests its pixels against
 // L = (albedo / pi) E(p, n) in the mean (4 standard errors).
-PlaneFit fitPlane(const std::string& file, const glm::dvec3& n, std::uint32_t seed) {
+PlaneFit fitPlane(const std::string& file, const glm::dvec3& n, std::uint32_t seed,
+                  const Polygon& light = kLight, const Polygon& other = kLight) {
     constexpr int kSize = 16;
     const Rendered r = renderFile(kDir + file, centreSettings(kSize, 256, 1, seed));
     const auto mean = r.result.film.mean();
@@ -341,12 +350,17 @@ PlaneFit fitPlane(const std::string& file, const glm::dvec3& n, std::uint32_t se
     for (int py = 0; py < kSize; ++py) {
         for (int px = 0; px < kSize; ++px) {
             const glm::dvec3 p = planePoint(r.scene.cameras[0], px, py, kSize);
-            for (const glm::dvec3& c : kLightCorners) REQUIRE(glm::dot(c - p, n) > 0.0);
-            const double expected = kPlaneAlbedo / std::numbers::pi * polygonIrradiance(p, n);
+            for (const glm::dvec3& c : light) REQUIRE(glm::dot(c - p, n) > 0.0);
+            const double expected = kPlaneAlbedo / std::numbers::pi * polygonIrradiance(p, n, light);
             const std::size_t i = (static_cast<std::size_t>(py) * kSize + px) * 3;
             diff.push_back(mean[i] - expected);
             diffVar.push_back(var[i]);
             fit.expectedMean += expected / (kSize * kSize);
+            const double sigma = std::sqrt(static_cast<double>(var[i]));
+            const double otherValue = kPlaneAlbedo / std::numbers::pi * polygonIrradiance(p, n, other);
+            ++fit.pixels;
+            fit.within += std::abs(mean[i] - expected) <= 4.5 * sigma;
+            fit.otherFails += std::abs(mean[i] - otherValue) > 4.5 * sigma;
         }
     }
     fit.mean = stats::meanTest(diff, diffVar, 0.0, 4.0);
@@ -373,11 +387,32 @@ TEST_CASE("texture: a tilted constant normal map shades a diffuse plane by the t
         CAPTURE(f->mean.mean);
         CAPTURE(f->mean.stdError);
         CAPTURE(f->expectedMean);
+        CAPTURE(f->within);
         CHECK(f->mean.passed);
         CHECK(f->mean.stdError < 2e-3 * f->expectedMean);
+        CHECK(static_cast<double>(f->within) >= 0.99 * f->pixels);
     }
     // The tilt changes the answer by far more than the test's resolution.
     CHECK(std::abs(mapped.expectedMean - flat.expectedMean) > 20.0 * mapped.mean.stdError);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: next-event estimation reads an emissive texture at the sampled point") {
+    // Half the light is black: the plane sees the other half's irradiance
+    // (BSDF-sampled hits and light samples both go through emissionAt).
+    const PlaneFit half = fitPlane("plane-half-light.gltf", {0, 1, 0}, 51, kHalfLight, kOtherHalf);
+    CAPTURE(half.mean.mean);
+    CAPTURE(half.mean.stdError);
+    CAPTURE(half.expectedMean);
+    CAPTURE(half.within);
+    CAPTURE(half.otherFails);
+    CHECK(half.mean.passed);
+    CHECK(half.mean.stdError < 5e-3 * half.expectedMean);
+    // Per pixel (4.5 sigma, 99% of pixels): the texture is read where the
+    // light was sampled. Reading it at the wrong point, e.g. mirrored, gives
+    // the other half's light, which most pixels reject.
+    CHECK(static_cast<double>(half.within) >= 0.99 * half.pixels);
+    CHECK(static_cast<double>(half.otherFails) >= 0.5 * half.pixels);
     CHECK(vk::validationMessageCount() == 0);
 }
 
