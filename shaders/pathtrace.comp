@@ -15,11 +15,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "lib/sampler.glsl"
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
-layout(constant_id = SPEC_FEATURES) const uint kFeatures = 0u;
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
-layout(std430, set = 0, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { Material materials[]; };
 layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
 layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
@@ -72,7 +69,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
                     float lightPdf = emitterPdfSolidAngle(em.pmf, em.area, hit.t, abs(dot(dir, ng)));
                     w = powerHeuristic(prevBsdfPdf, lightPdf);
                 }
-                L += beta * w * mat.emission;
+                L += beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
             }
         }
         if (depth >= maxDepth) break;
@@ -81,16 +78,18 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         vec3 wo = -dir;
         vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
         if (dot(ns, n) < 0.0) ns = -ns;
+        SurfacePoint sp = surfacePoint(mat, hit.triangle, vec2(hit.u, hit.v), n, ns);
+        ns = sp.ns;
         if (dot(ns, wo) <= 0.0) ns = n;  // the viewer is behind the shading normal
         vec3 t, b;
         basis(ns, t, b);
         vec3 woL = vec3(dot(wo, t), dot(wo, b), dot(wo, ns));
         Bsdf bsdf;
         if (kLambertOnly) {
-            bsdf = makeLambert(mat.baseColor.rgb);
+            bsdf = makeLambert(sp.baseColor);
         } else {
-            bsdf = makeBsdf(mat.baseColor.rgb, mat.metallic, mat.roughness, mat.transmission, mat.ior,
-                            mat.specular, front, woL.z);
+            bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
+                            sp.specular, front, woL.z);
         }
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
@@ -119,7 +118,10 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
                     float segLen = length(seg);
                     if (segLen > 0.0 && !bvhTraceAny(from, seg / segLen, 0.0, segLen)) {
                         float w = powerHeuristic(lightPdf, bsdfPdf);
-                        L += beta * f * ls.radiance * (w / lightPdf);
+                        vec3 Le = (kFeatures & kFeatureTextures) != 0u
+                                      ? emissionAt(shading[ls.triangle].material, ls.triangle, ls.bary)
+                                      : ls.radiance;
+                        L += beta * f * Le * (w / lightPdf);
                     }
                 }
             }

@@ -110,3 +110,24 @@ TEST_CASE("--time stops early and records the spp actually reached") {
     CHECK(spp >= 1);
     CHECK(spp < 1000000);
 }
+
+TEST_CASE("texture errors: missing or corrupt image, bad texture index, missing TEXCOORD set") {
+    const std::string dir = std::string(STRATA_SOURCE_DIR) + "/tests/data/textures/broken/";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"missing-image.gltf", "does-not-exist.png"},
+        {"corrupt-image.gltf", "image 0 (\"corrupt.png\"): cannot decode"},
+        {"bad-texture-index.gltf", "emissiveTexture: texture 3 does not exist (1 textures)"},
+        {"missing-texcoord.gltf", "reads TEXCOORD_1, which the primitive does not have"}};
+    for (const auto& [name, what] : cases) {
+        const std::string file = dir + name;
+        CAPTURE(file);
+        TempDir out;
+        const Run r = run("render " + file + " -o " + (out.path / "a.exr").string() + kSmall);
+        CAPTURE(r.output);
+        CHECK(r.status == 2);
+        CHECK(lines(r.output) == 1);
+        CHECK(r.output.rfind(file + ": error: ", 0) == 0);
+        CHECK(r.output.find(what) != std::string::npos);
+        CHECK(out.empty());
+    }
+}

@@ -23,6 +23,7 @@ bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Travers
 DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode) {
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     constexpr VkBufferUsageFlags texel = storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    checkTexelLimit(ctx, scene);
     DeviceScene d;
     d.texel = chooseTexelTraversal(ctx, scene, mode);
     d.nodes = vk::uploadVector(ctx, scene.nodes, texel);
@@ -32,7 +33,31 @@ DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal
     d.emitters = vk::uploadVector(ctx, scene.emitters, storage);
     d.nodesTexel = vk::TexelView(ctx, d.nodes);
     d.trisTexel = vk::TexelView(ctx, d.tris);
+    d.texcoords = vk::uploadVector(ctx, scene.texcoords, storage);
+    d.tangents = vk::uploadVector(ctx, scene.tangents, storage);
+    d.textureRefs = vk::uploadVector(ctx, scene.textureRefs, storage);
+    d.texels = vk::uploadVector(ctx, scene.texels, texel);
+    d.texelsView = vk::TexelView(ctx, d.texels, VK_FORMAT_R32_UINT);
     return d;
+}
+
+void checkTexelLimit(const vk::Context& ctx, const GpuScene& scene) {
+    const std::uint64_t limit = ctx.properties.limits.maxTexelBufferElements;
+    if (scene.texels.size() > limit) {
+        throw Error(scene.source + ": error: the textures need " + std::to_string(scene.texels.size()) +
+                    " texel-buffer words, more than the device's maxTexelBufferElements " +
+                    std::to_string(limit));
+    }
+}
+
+std::vector<vk::BindingDesc> sceneBindings() {
+    using namespace gpu;
+    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    constexpr VkDescriptorType texel = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    return {{BINDING_NODES, storage},     {BINDING_TRIS, storage},      {BINDING_NODES_TEXEL, texel},
+            {BINDING_TRIS_TEXEL, texel},  {BINDING_SHADING, storage},   {BINDING_MATERIALS, storage},
+            {BINDING_TEXCOORDS, storage}, {BINDING_TANGENTS, storage},  {BINDING_TEXREFS, storage},
+            {BINDING_TEXELS, texel}};
 }
 
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
@@ -40,6 +65,12 @@ void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
     kernel.bind(gpu::BINDING_TRIS, scene.tris);
     kernel.bind(gpu::BINDING_NODES_TEXEL, scene.nodesTexel);
     kernel.bind(gpu::BINDING_TRIS_TEXEL, scene.trisTexel);
+    kernel.bind(gpu::BINDING_SHADING, scene.shading);
+    kernel.bind(gpu::BINDING_MATERIALS, scene.materials);
+    kernel.bind(gpu::BINDING_TEXCOORDS, scene.texcoords);
+    kernel.bind(gpu::BINDING_TANGENTS, scene.tangents);
+    kernel.bind(gpu::BINDING_TEXREFS, scene.textureRefs);
+    kernel.bind(gpu::BINDING_TEXELS, scene.texelsView);
 }
 
 }  // namespace strata

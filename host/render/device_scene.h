@@ -15,6 +15,10 @@ enum class Traversal { Auto, Texel, Storage };
 struct DeviceScene {
     vk::Buffer nodes, tris, shading, materials, emitters;
     vk::TexelView nodesTexel, trisTexel;
+    // Texturing inputs; a 16-byte zero buffer each when the scene has none
+    // (every binding the shaders declare stays valid for the validation layers).
+    vk::Buffer texcoords, tangents, textureRefs, texels;
+    vk::TexelView texelsView;  // R32UI over `texels`
     bool texel = false;  // traversal reads nodes/triangles through the texel views
 };
 
@@ -25,7 +29,15 @@ bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Travers
 
 DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode);
 
-// Binds nodes, triangles and their texel views (the BVH traversal's inputs).
+// Throws strata::Error (one line naming the scene file) when the packed
+// texture words exceed the device's maxTexelBufferElements.
+void checkTexelLimit(const vk::Context& ctx, const GpuScene& scene);
+
+// The traversal's inputs: nodes, triangles, their texel views, and what the
+// alpha test reads (shading, materials, texture coordinates, texture refs and
+// texels; shaders/lib/material.glsl) plus the tangents. sceneBindings() lists
+// their descriptor types for a vk::Kernel.
+std::vector<vk::BindingDesc> sceneBindings();
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene);
 
 }  // namespace strata

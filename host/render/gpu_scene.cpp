@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "render/gpu_textures.h"
+
 namespace strata {
 
 std::vector<std::string> SceneFeatures::names() const {
@@ -22,7 +24,9 @@ std::vector<std::string> SceneFeatures::names() const {
 std::uint64_t GpuScene::bytes() const {
     return nodes.size() * sizeof(gpu::BvhNode) + tris.size() * sizeof(gpu::TriVerts) +
            shading.size() * sizeof(gpu::TriShading) + materials.size() * sizeof(gpu::Material) +
-           emitters.size() * sizeof(gpu::Emitter);
+           emitters.size() * sizeof(gpu::Emitter) + texcoords.size() * sizeof(gpu::TriTexcoords) +
+           tangents.size() * sizeof(gpu::TriTangents) +
+           textureRefs.size() * sizeof(gpu::TextureRef) + texels.size() * sizeof(std::uint32_t);
 }
 
 void buildAliasTable(const std::vector<double>& weights, std::vector<gpu::Emitter>& emitters) {
@@ -52,8 +56,40 @@ void buildAliasTable(const std::vector<double>& weights, std::vector<gpu::Emitte
     for (std::uint32_t i : small) emitters[i].aliasProb = 1.0f, emitters[i].alias = i;
 }
 
+namespace {
+
+glm::dvec3 emissiveMean(const Scene& scene, const MaterialDesc& m) {
+    const Texture& t = scene.textures[static_cast<std::size_t>(m.emissiveTexture.texture)];
+    return meanColor(scene.images[static_cast<std::size_t>(t.image)], true);
+}
+
+// kFeatureTextures / kFeatureNormalMap / kFeatureAlphaTest for the used
+// materials. Alpha testing is needed for MASK or BLEND unless the alpha is a
+// constant that never makes a hole (no baseColor texture and factor >=
+// alphaCutoff for MASK, factor >= 1 for BLEND).
+std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used) {
+    std::uint32_t bits = 0;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const MaterialDesc& m = scene.materials[i];
+        if (m.baseColorTexture.used() || m.metallicRoughnessTexture.used() ||
+            m.normalTexture.used() || m.emissiveTexture.used() || m.transmissionTexture.used())
+            bits |= gpu::kFeatureTextures;
+        if (m.normalTexture.used()) bits |= gpu::kFeatureNormalMap;
+        const float alpha = m.baseColor.a;
+        const bool textured = m.baseColorTexture.used();
+        if ((m.alphaMode == MaterialDesc::AlphaMode::Mask && (textured || alpha < m.alphaCutoff)) ||
+            (m.alphaMode == MaterialDesc::AlphaMode::Blend && (textured || alpha < 1.0f)))
+            bits |= gpu::kFeatureAlphaTest;
+    }
+    return bits;
+}
+
+}  // namespace
+
 GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
     GpuScene g;
+    g.source = scene.path;
     const std::size_t n = scene.triangles.size();
     std::vector<glm::vec3> v0(n), v1(n), v2(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -77,10 +113,21 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
         gm.transmission = m.transmission;
         gm.specular = m.specular;
         gm.normalScale = 1.0f;
+        gm.normalScale = m.normalScale;
+        if (m.alphaMode == MaterialDesc::AlphaMode::Mask) gm.flags |= gpu::kMaterialAlphaMask;
+        if (m.alphaMode == MaterialDesc::AlphaMode::Blend) gm.flags |= gpu::kMaterialAlphaBlend;
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex =
             gm.transmissionTex = gpu::kNoTexture;
         g.materials.push_back(gm);
     }
+    std::vector<bool> used(g.materials.size(), false);
+    for (const auto& t : scene.triangles) used[t.material] = true;
+    PackedTextures packed = packTextures(scene, used, g.materials);
+    g.textureRefs = std::move(packed.refs);
+    g.texels = std::move(packed.texels);
+    g.features.bits |= textureFeatures(scene, used);
+    if (g.features.bits & gpu::kFeatureTextures) g.texcoords.resize(n);
+    if (g.features.bits & gpu::kFeatureNormalMap) g.tangents.resize(n);
 
     g.tris.resize(n);
     g.shading.resize(n);
@@ -94,10 +141,22 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
         s.n2 = t.n[2];
         s.material = t.material;
         s.light = gpu::kNoLight;
+        if (!g.texcoords.empty() && !scene.texcoords.empty()) {
+            const TriangleUv& uv = scene.texcoords[bvh.triIndices[i]];
+            g.texcoords[i] = {uv[0], uv[1], uv[2]};
+        }
+        if (!g.tangents.empty() && !scene.tangents.empty()) {
+            const TriangleTangents& tg = scene.tangents[bvh.triIndices[i]];
+            g.tangents[i] = {tg[0], tg[1], tg[2]};
+        }
         const MaterialDesc& m = scene.materials[t.material];
         if (isEmitter(scene, t)) {
             const glm::vec3 le = m.emission();
-            const double lum = 0.2126 * le.r + 0.7152 * le.g + 0.0722 * le.b;
+            // An emissive texture scales the power by its mean (whole image,
+            // not the triangle's uv footprint: the pmf only steers sampling).
+            const glm::dvec3 scaled =
+                glm::dvec3(le) * (m.emissiveTexture.used() ? emissiveMean(scene, m) : glm::dvec3(1.0));
+            const double lum = 0.2126 * scaled.r + 0.7152 * scaled.g + 0.0722 * scaled.b;
             gpu::Emitter e{};
             e.v0 = t.v[0];
             e.e1 = t.v[1] - t.v[0];
@@ -113,11 +172,12 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
         }
     }
     for (double w : weights) g.totalPower += w;
+    // Only black emissive textures: sample emitters by area instead.
+    if (!weights.empty() && g.totalPower <= 0.0)
+        for (std::size_t k = 0; k < weights.size(); ++k) weights[k] = g.emitters[k].area;
     if (!g.emitters.empty()) buildAliasTable(weights, g.emitters);
     g.features.emitters = !g.emitters.empty();
     // Features of the materials some triangle uses.
-    std::vector<bool> used(g.materials.size(), false);
-    for (const auto& t : scene.triangles) used[t.material] = true;
     for (std::size_t i = 0; i < g.materials.size(); ++i) {
         if (!used[i]) continue;
         const gpu::Material& m = g.materials[i];

@@ -19,11 +19,18 @@ struct SceneFeatures {
 };
 
 struct GpuScene {
+    std::string source;                     // Scene::path, for messages
     std::vector<gpu::BvhNode> nodes;
     std::vector<gpu::TriVerts> tris;        // BVH order
     std::vector<gpu::TriShading> shading;   // BVH order
     std::vector<gpu::Material> materials;
     std::vector<gpu::Emitter> emitters;     // with the alias table filled in
+    // Filled only when features.bits has kFeatureTextures (texcoords,
+    // textureRefs, texels) or kFeatureNormalMap (tangents); empty otherwise.
+    std::vector<gpu::TriTexcoords> texcoords;  // BVH order
+    std::vector<gpu::TriTangents> tangents;    // BVH order
+    std::vector<gpu::TextureRef> textureRefs;
+    std::vector<std::uint32_t> texels;         // R32UI words (types.h, TextureRef)
     double totalPower = 0.0;                // sum of luminance(Le) * area * pi * sides
     SceneFeatures features;
     BvhStats bvh;

@@ -66,19 +66,14 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                             vk::MemoryUse::Readback);
     vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(s.filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
-    std::vector<vk::BindingDesc> bindings = {
+    std::vector<vk::BindingDesc> bindings = sceneBindings();
+    bindings.insert(bindings.end(), {
         {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {BINDING_NODES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_TRIS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_SHADING, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_NODES_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-        {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-    };
+    });
     std::vector<std::uint32_t> spec(4);
     spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
     spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
@@ -88,8 +83,6 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);
     bindTraversal(kernel, dev);
-    kernel.bind(BINDING_SHADING, dev.shading);
-    kernel.bind(BINDING_MATERIALS, dev.materials);
     kernel.bind(BINDING_EMITTERS, dev.emitters);
     kernel.bind(BINDING_ACCUM, accum);
     kernel.bind(BINDING_COUNTERS, counters);

@@ -12,17 +12,15 @@ namespace strata {
 DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal)
     : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal)) {
     using namespace gpu;
-    std::vector<std::uint32_t> spec(1);
+    std::vector<std::uint32_t> spec(SPEC_FEATURES + 1, 0u);
     spec[SPEC_TEXEL_FETCH] = scene_.texel ? 1u : 0u;
+    spec[SPEC_FEATURES] = scene.features.bits;  // alpha-tested holes are skipped as in pathtrace
+    std::vector<vk::BindingDesc> bindings = sceneBindings();
+    bindings.insert(bindings.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                     {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
     kernel_ = std::make_unique<vk::Kernel>(
         ctx, std::span<const std::uint32_t>(kSpirvPtr_trace, kSpirvSize_trace / 4),
-        std::vector<vk::BindingDesc>{{BINDING_NODES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                     {BINDING_TRIS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                     {BINDING_NODES_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                                     {BINDING_TRIS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                                     {BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                     {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-        sizeof(TraceParams), spec);
+        std::move(bindings), sizeof(TraceParams), spec);
     bindTraversal(*kernel_, scene_);
 }
 

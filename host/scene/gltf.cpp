@@ -17,6 +17,7 @@
 
 #include "scene/gltf_internal.h"
 #include "scene/scene.h"
+#include "scene/tangents.h"
 #include "util/error.h"
 
 namespace strata {
@@ -28,9 +29,9 @@ using gltf::quoted;
 
 // Extensions strata reads; others named in extensionsUsed are ignored with a
 // warning, and in extensionsRequired are an error.
-constexpr std::array<std::string_view, 4> kSupportedExtensions = {
+constexpr std::array<std::string_view, 5> kSupportedExtensions = {
     "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
-    "KHR_materials_transmission"};
+    "KHR_materials_transmission", "KHR_texture_transform"};
 
 std::string supportedList() {
     std::string out;
@@ -88,6 +89,30 @@ bool fileExists(const std::string& file, void* user) {
 
 std::string keepPath(const std::string& file, void*) { return file; }
 
+// tinygltf's stb_image loader (RGBA, 8 or 16 bits), with the failure kept
+// as one message naming the image instead of tinygltf's multi-line text.
+struct ImageContext {
+    std::string failure;
+};
+
+bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
+                 int width, int height, const unsigned char* bytes, int size, void* user) {
+    std::string ignored;
+    if (tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
+        return true;
+    auto* context = static_cast<ImageContext*>(user);
+    std::string label = "image " + std::to_string(index);
+    if (!image->uri.empty()) {
+        label += " (" + gltf::quoted(image->uri) + ")";
+    } else if (!image->name.empty()) {
+        label += " (" + gltf::quoted(image->name) + ")";
+    }
+    context->failure = label + ": cannot decode " + std::to_string(size) +
+                       " bytes: corrupt, or not a PNG/JPEG that stb_image reads";
+    if (err) *err += context->failure + "\n";
+    return false;
+}
+
 // Little-endian u32 at `offset`.
 std::uint32_t readU32(const std::vector<unsigned char>& bytes, std::size_t offset) {
     return static_cast<std::uint32_t>(bytes[offset]) |
@@ -130,6 +155,8 @@ tinygltf::Model parseModel(const std::string& path) {
     tinygltf::TinyGLTF context;
     context.SetFsCallbacks(
         {&fileExists, &keepPath, &tinygltf::ReadWholeFile, &tinygltf::WriteWholeFile, &fsContext});
+    ImageContext imageContext;
+    context.SetImageLoader(&decodeImage, &imageContext);
     tinygltf::Model model;
     std::string err;
     std::string warnings;
@@ -146,7 +173,9 @@ tinygltf::Model parseModel(const std::string& path) {
     } catch (const std::exception& e) {
         fail(path, std::string("invalid glTF: ") + gltf::oneLine(e.what()));
     }
-    if (!ok) {
+    if (!imageContext.failure.empty()) fail(path, imageContext.failure);
+    // tinygltf only warns about a missing image file; strata fails on it.
+    if (!ok || !fsContext.missing.empty()) {
         if (!fsContext.missing.empty()) {
             const std::string& file = fsContext.missing.front();
             fail(path, "missing file: uri " + quoted(file.substr(fsContext.prefix.size())) +
@@ -301,6 +330,68 @@ public:
     bool usesDefaultMaterial() const { return usesDefault_; }
 
 private:
+    // Tangents of a primitive without normal map: unused, any unit vector.
+    static inline const TriangleTangents kNoTangents = {glm::vec4(1, 0, 0, 1), glm::vec4(1, 0, 0, 1),
+                                                     glm::vec4(1, 0, 0, 1)};
+
+    // Checks that the primitive has every TEXCOORD set its material's
+    // textures read; drops TANGENT when the material has no normalTexture and
+    // generates tangents (tangents.h) when it has one and no TANGENT. Runs
+    // on the cached local primitive, so once per mesh in practice.
+    void prepareTextureInputs(int mesh, std::size_t p, LocalPrimitive& prim) {
+        const MaterialDesc& m = scene_.materials[static_cast<std::size_t>(prim.material)];
+        const std::pair<const TextureSlot*, const char*> slots[] = {
+            {&m.baseColorTexture, "baseColorTexture"},
+            {&m.metallicRoughnessTexture, "metallicRoughnessTexture"},
+            {&m.normalTexture, "normalTexture"},
+            {&m.emissiveTexture, "emissiveTexture"},
+            {&m.transmissionTexture, "transmissionTexture"}};
+        for (const auto& [slot, name] : slots) {
+            if (slot->used() && prim.texcoords[slot->texCoord].empty()) {
+                fail(path_, gltf::meshLabel(model_, mesh) + " primitive " + std::to_string(p) +
+                                ": material " + std::to_string(prim.material) + " " + name +
+                                " reads TEXCOORD_" + std::to_string(slot->texCoord) +
+                                ", which the primitive does not have");
+            }
+        }
+        if (!m.normalTexture.used()) {
+            prim.tangents.clear();
+        } else if (prim.tangents.empty()) {
+            prim.tangents = generateTangents(prim.positions, prim.normals,
+                                             prim.texcoords[m.normalTexture.texCoord], prim.indices);
+        }
+    }
+
+    static TriangleUv uvsOf(const LocalPrimitive& prim, const std::array<std::uint32_t, 3>& idx) {
+        TriangleUv uv{};
+        for (int k = 0; k < 3; ++k) {
+            for (int set = 0; set < 2; ++set) {
+                if (prim.texcoords[set].empty()) continue;
+                const glm::vec2 t = prim.texcoords[set][idx[static_cast<std::size_t>(k)]];
+                uv[static_cast<std::size_t>(k)][2 * set] = t.x;
+                uv[static_cast<std::size_t>(k)][2 * set + 1] = t.y;
+            }
+        }
+        return uv;
+    }
+
+    // Tangents go to world space by the node's linear part (not the normal
+    // matrix), stay unit, and flip handedness under a mirroring transform
+    // (then cross(n', M t) = -M b). A tangent that vanishes falls back to
+    // one orthogonal to the vertex normal.
+    static TriangleTangents worldTangents(const LocalPrimitive& prim,
+                                          const std::array<std::uint32_t, 3>& idx,
+                                          const glm::dmat3& linear, bool flip, const Triangle& tri) {
+        TriangleTangents out{};
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec4 t = prim.tangents[idx[static_cast<std::size_t>(k)]];
+            const auto world = tryNormalize(linear * glm::dvec3(t));
+            const glm::vec3 xyz = world ? glm::vec3(*world) : anyOrthogonal(tri.n[k]);
+            out[static_cast<std::size_t>(k)] = glm::vec4(xyz, flip ? -t.w : t.w);
+        }
+        return out;
+    }
+
     bool validNode(int node) const {
         return node >= 0 && static_cast<std::size_t>(node) < model_.nodes.size();
     }
@@ -376,14 +467,21 @@ private:
 
         std::vector<glm::dvec3> positions;
         std::vector<glm::dvec3> normals;
-        for (const LocalPrimitive& prim : *decoded) {
+        for (std::size_t p = 0; p < decoded->size(); ++p) {
+            LocalPrimitive& prim = (*decoded)[p];
             std::uint32_t material = 0;
             if (prim.material >= 0) {
                 material = static_cast<std::uint32_t>(prim.material);
+                prepareTextureInputs(node.mesh, p, prim);
             } else {
                 material = static_cast<std::uint32_t>(model_.materials.size());
                 usesDefault_ = true;
             }
+            const bool storeUv = !scene_.texcoords.empty() || !prim.texcoords[0].empty() ||
+                                 !prim.texcoords[1].empty();
+            const bool storeTangents = !scene_.tangents.empty() || !prim.tangents.empty();
+            if (storeUv) scene_.texcoords.resize(scene_.triangles.size(), TriangleUv{});
+            if (storeTangents) scene_.tangents.resize(scene_.triangles.size(), kNoTangents);
             positions.resize(prim.positions.size());
             for (std::size_t i = 0; i < prim.positions.size(); ++i) {
                 positions[i] = glm::dvec3(world * glm::dvec4(glm::dvec3(prim.positions[i]), 1.0));
@@ -418,6 +516,12 @@ private:
                     tri.n[k] = glm::vec3(n);
                 }
                 scene_.triangles.push_back(tri);
+                if (storeUv) scene_.texcoords.push_back(uvsOf(prim, idx));
+                if (storeTangents) {
+                    scene_.tangents.push_back(prim.tangents.empty()
+                                                  ? kNoTangents
+                                                  : worldTangents(prim, idx, linear, flip, tri));
+                }
             }
         }
     }
@@ -445,6 +549,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     Scene scene;
     scene.path = path;
     scene.extensionsUsed = model.extensionsUsed;
+    gltf::convertTextures(path, model, scene);
     for (std::size_t i = 0; i < model.materials.size(); ++i) {
         scene.materials.push_back(gltf::convertMaterial(path, model, static_cast<int>(i)));
     }

@@ -257,6 +257,55 @@ std::vector<glm::vec3> readVec3(const std::string& path, const tinygltf::Model& 
     return out;
 }
 
+// TEXCOORD_n: float, or unsigned byte/short normalized to [0, 1] (glTF 2.0
+// 3.7.2.1: c / 255, c / 65535).
+std::vector<glm::vec2> readTexcoords(const std::string& path, const tinygltf::Model& model,
+                                     int index, const std::string& use) {
+    const AccessorView view =
+        viewAccessor(path, model, index, use, TINYGLTF_TYPE_VEC2,
+                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+    const auto& acc = model.accessors[static_cast<std::size_t>(index)];
+    if (view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !acc.normalized) {
+        fail(path, "accessor " + std::to_string(index) + " (" + use + ") is " +
+                       componentName(view.componentType) + " but not normalized");
+    }
+    std::vector<glm::vec2> out(view.count);
+    for (std::size_t i = 0; i < view.count; ++i) {
+        const unsigned char* p = view.data + i * view.stride;
+        if (view.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+            float uv[2];
+            std::memcpy(uv, p, sizeof uv);
+            if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) {
+                fail(path, "accessor " + std::to_string(index) + " (" + use + "): element " +
+                               std::to_string(i) + " is NaN or Inf");
+            }
+            out[i] = glm::vec2(uv[0], uv[1]);
+        } else if (view.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+            out[i] = glm::vec2(p[0], p[1]) / 255.0f;
+        } else {
+            std::uint16_t uv[2];
+            std::memcpy(uv, p, sizeof uv);
+            out[i] = glm::vec2(uv[0], uv[1]) / 65535.0f;
+        }
+    }
+    return out;
+}
+
+// TANGENT: float VEC4, xyz the tangent, w = +-1 the handedness.
+std::vector<glm::vec4> readTangents(const std::string& path, const tinygltf::Model& model,
+                                    int index, const std::string& use) {
+    const AccessorView view =
+        viewAccessor(path, model, index, use, TINYGLTF_TYPE_VEC4, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    std::vector<glm::vec4> out(view.count);
+    for (std::size_t i = 0; i < view.count; ++i) {
+        float t[4];
+        std::memcpy(t, view.data + i * view.stride, sizeof t);
+        out[i] = glm::vec4(t[0], t[1], t[2], t[3] < 0.0f ? -1.0f : 1.0f);
+    }
+    return out;
+}
+
 std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::Model& model,
                                        int index, const std::string& use) {
     const AccessorView view =
@@ -316,6 +365,25 @@ std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::
                 fail(path, label + ": NORMAL has " + std::to_string(local.normals.size()) +
                                " elements but POSITION has " + std::to_string(vertexCount));
             }
+        }
+
+        auto sameCount = [&](std::size_t n, const std::string& name) {
+            if (n != vertexCount) {
+                fail(path, label + ": " + name + " has " + std::to_string(n) +
+                               " elements but POSITION has " + std::to_string(vertexCount));
+            }
+        };
+        for (int set = 0; set < 2; ++set) {
+            const std::string name = "TEXCOORD_" + std::to_string(set);
+            const auto uv = prim.attributes.find(name);
+            if (uv == prim.attributes.end()) continue;
+            local.texcoords[set] = readTexcoords(path, model, uv->second, label + " " + name);
+            sameCount(local.texcoords[set].size(), name);
+        }
+        const auto tangent = prim.attributes.find("TANGENT");
+        if (tangent != prim.attributes.end()) {
+            local.tangents = readTangents(path, model, tangent->second, label + " TANGENT");
+            sameCount(local.tangents.size(), "TANGENT");
         }
 
         if (prim.indices >= 0) {

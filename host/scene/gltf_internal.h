@@ -26,22 +26,39 @@ std::string meshLabel(const tinygltf::Model& model, int mesh);
 
 // One primitive of a mesh decoded in the mesh's local space. `indices` always
 // holds 3 entries per triangle (0,1,2,... for a non-indexed primitive), each
-// < positions.size(). `normals` is empty or the same size as `positions`.
+// < positions.size(). `normals`, `texcoords[k]` (TEXCOORD_k) and `tangents`
+// (TANGENT, w = +-1) are each empty or the same size as `positions`.
 struct LocalPrimitive {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> texcoords[2];
+    std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices;
     int material = -1;  // glTF material index, -1 for none
 };
 
 // Decodes every primitive of `mesh`: TRIANGLES only, POSITION float VEC3
-// with finite values, NORMAL float VEC3 (optional), indices u8/u16/u32 in
-// range, every accessor inside its bufferView and buffer.
+// with finite values, NORMAL float VEC3 (optional), TEXCOORD_0/1 VEC2 float
+// or normalized u8/u16 (optional), TANGENT float VEC4 (optional), indices
+// u8/u16/u32 in range, every accessor inside its bufferView and buffer.
 std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::Model& model,
                                        int mesh);
 
 // pbrMetallicRoughness factors, emissive factor, KHR_materials_emissive_strength,
 // KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.
+// Also the texture slots (textureInfo + KHR_texture_transform), checked
+// against model.textures.
 MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& model, int index);
+
+// The images (decoded by tinygltf; an image without pixels is an error) and
+// textures (source + sampler) of the model, in file order.
+void convertTextures(const std::string& path, const tinygltf::Model& model, Scene& scene);
+
+// The TextureSlot of a textureInfo: `index` (checked against model.textures),
+// `texCoord` (0 or 1) and the KHR_texture_transform object `transform`
+// (nullptr when absent). `label` names the textureInfo in messages.
+TextureSlot convertTextureSlot(const std::string& path, const tinygltf::Model& model,
+                               const std::string& label, int index, int texCoord,
+                               const tinygltf::Value* transform);
 
 }  // namespace strata::gltf

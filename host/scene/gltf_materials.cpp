@@ -1,5 +1,7 @@
 // glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
-// KHR_materials_emissive_strength, _ior, _transmission and _specular.
+// KHR_materials_emissive_strength, _ior, _transmission and _specular, and the
+// texture slots (occlusionTexture is not read: a path tracer computes
+// occlusion).
 #include <cmath>
 #include <sstream>
 
@@ -29,6 +31,40 @@ double extensionNumber(const std::string& path, const std::string& label,
     const tinygltf::Value& value = it->second.Get(key);
     if (!value.IsNumber()) fail(path, label + ": " + extension + "." + key + " is not a number");
     return value.GetNumberAsDouble();
+}
+
+// The KHR_texture_transform object of a textureInfo's extensions, or nullptr.
+const tinygltf::Value* textureTransform(const tinygltf::ExtensionMap& extensions) {
+    const auto it = extensions.find("KHR_texture_transform");
+    return it == extensions.end() ? nullptr : &it->second;
+}
+
+template <class Info>
+TextureSlot slotOf(const std::string& path, const tinygltf::Model& model, const std::string& label,
+                   const char* name, const Info& info) {
+    return convertTextureSlot(path, model, label + " " + name, info.index, info.texCoord,
+                              textureTransform(info.extensions));
+}
+
+// KHR_materials_transmission.transmissionTexture: a textureInfo kept as JSON.
+TextureSlot transmissionSlot(const std::string& path, const tinygltf::Model& model,
+                             const std::string& label, const tinygltf::Material& material) {
+    const auto it = material.extensions.find("KHR_materials_transmission");
+    if (it == material.extensions.end() || !it->second.Has("transmissionTexture")) return {};
+    const tinygltf::Value& info = it->second.Get("transmissionTexture");
+    const std::string where = label + " transmissionTexture";
+    if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) {
+        fail(path, where + " has no integer index");
+    }
+    const int texCoord = info.Has("texCoord") && info.Get("texCoord").IsInt()
+                             ? info.Get("texCoord").GetNumberAsInt()
+                             : 0;
+    const tinygltf::Value* transform = nullptr;
+    if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform")) {
+        transform = &info.Get("extensions").Get("KHR_texture_transform");
+    }
+    return convertTextureSlot(path, model, where, info.Get("index").GetNumberAsInt(), texCoord,
+                              transform);
 }
 
 std::string formatNumber(double v) {
@@ -102,6 +138,14 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
              label + ": alphaMode " + quoted(src.alphaMode) + " is not OPAQUE, MASK or BLEND");
     }
     m.alphaCutoff = static_cast<float>(src.alphaCutoff);
+
+    m.baseColorTexture = slotOf(path, model, label, "baseColorTexture", pbr.baseColorTexture);
+    m.metallicRoughnessTexture =
+        slotOf(path, model, label, "metallicRoughnessTexture", pbr.metallicRoughnessTexture);
+    m.normalTexture = slotOf(path, model, label, "normalTexture", src.normalTexture);
+    m.normalScale = static_cast<float>(src.normalTexture.scale);
+    m.emissiveTexture = slotOf(path, model, label, "emissiveTexture", src.emissiveTexture);
+    m.transmissionTexture = transmissionSlot(path, model, label, src);
     return m;
 }
 

@@ -1,6 +1,7 @@
 // The scene as the host sees it after loading: flat arrays in world space.
 #pragma once
 #include <cstddef>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,6 +19,24 @@ struct Camera {
     std::string name;                      // glTF camera name, else its node's name
 };
 
+// KHR_texture_transform of one texture reference: uv' = offset +
+// R(rotation) (scale * uv), R rotating counter-clockwise by `rotation` radians
+// as the ratified extension's GLSL does.
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;
+    glm::vec2 scale{1.0f};
+};
+
+// A material's reference to Scene::textures; texture < 0 when the slot is empty.
+// texCoord is the set read (0 or 1), after the KHR_texture_transform override.
+struct TextureSlot {
+    int texture = -1;
+    int texCoord = 0;
+    TextureTransform transform;
+    bool used() const { return texture >= 0; }
+};
+
 // glTF material, all factors kept even where the renderer does not use them
 // yet. `emission` = emissiveFactor * KHR_materials_emissive_strength.
 struct MaterialDesc {
@@ -33,8 +52,42 @@ struct MaterialDesc {
     bool doubleSided = false;
     enum class AlphaMode { Opaque, Mask, Blend } alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;
+    TextureSlot baseColorTexture;          // sRGB rgb, linear alpha
+    TextureSlot metallicRoughnessTexture;  // linear: G roughness, B metallic
+    TextureSlot normalTexture;             // linear, tangent space
+    TextureSlot emissiveTexture;           // sRGB
+    TextureSlot transmissionTexture;       // linear R (KHR_materials_transmission)
+    float normalScale = 1.0f;              // normalTexture.scale
     glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
 };
+
+// A decoded image: RGBA, rows top to bottom (glTF uv (0, 0) is the top-left
+// corner), 8 bits (data holds bytes) or 16 bits (data holds uint16 in host
+// byte order, 2 bytes each) per channel. stb_image through tinygltf expands
+// grey and RGB images to RGBA (alpha 1).
+struct TextureImage {
+    std::string name;  // uri, else the glTF image name
+    int width = 0;
+    int height = 0;
+    int bits = 8;      // 8 or 16
+    std::vector<std::uint8_t> data;
+};
+
+// glTF sampler wrap modes and magnification filter (minFilter is ignored:
+// strata has no mipmaps).
+enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+struct Texture {
+    int image = 0;     // index into Scene::images
+    Wrap wrapS = Wrap::Repeat;
+    Wrap wrapT = Wrap::Repeat;
+    bool nearest = false;  // magFilter NEAREST; LINEAR (bilinear) otherwise
+};
+
+// Per-vertex texture coordinates of one triangle: (TEXCOORD_0, TEXCOORD_1)
+// of vertex K in uv[K], zero where the primitive lacks a set.
+using TriangleUv = std::array<glm::vec4, 3>;
+// Per-vertex world-space unit tangents, w = +-1 handedness (glTF TANGENT).
+using TriangleTangents = std::array<glm::vec4, 3>;
 
 // One triangle in world space. Normals are unit length; a triangle from a
 // primitive without NORMAL repeats its geometric normal.
@@ -53,6 +106,12 @@ struct Scene {
     std::vector<MaterialDesc> materials;
     std::vector<Camera> cameras;      // in node order (depth-first)
     std::vector<std::string> extensionsUsed;
+    std::vector<TextureImage> images;
+    std::vector<Texture> textures;
+    // Parallel to `triangles` when some primitive has TEXCOORD_0/1 (empty
+    // otherwise), and when some material has a normalTexture (empty otherwise).
+    std::vector<TriangleUv> texcoords;
+    std::vector<TriangleTangents> tangents;
     // Triangles with an emissive material but zero area. They stay in
     // `triangles` as geometry and are not emitters (see isEmitter).
     std::size_t droppedEmitters = 0;

@@ -6,6 +6,12 @@
 // The including shader defines, before including this file:
 //   BvhNode bvhFetchNode(uint index);
 //   TriVerts bvhFetchTri(uint index);   // BVH order
+//   const uint kFeatures;               // SPEC_FEATURES
+//   uint bvhRayHash(vec3 origin, vec3 dir);
+//   bool bvhIsHole(uint tri, float u, float v, uint rayHash);
+// With kFeatureAlphaTest set, a hit for which bvhIsHole is true (an alpha
+// MASK or BLEND hole, lib/material.glsl) is skipped by both traversals; the
+// test is compiled out otherwise, leaving the hot loop as it was.
 // Differences from the C++: the double-precision edge-function fallback is
 // compiled only when the shader defines STRATA_BVH_FLOAT64 (and enables
 // GL_ARB_gpu_shader_fp64; the device needs shaderFloat64). Without it, rays
@@ -155,6 +161,8 @@ bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit
     float tEntry;
     if (bvhIsEmpty(node) || !bvhSlab(r, node, tmin, tmax, tEntry)) return false;
 
+    const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
+    uint rayHash = alphaTest ? bvhRayHash(origin, dir) : 0u;
     float bestT = tmax;
     uint bestTri = kNoHit;
     float bestU = 0.0;
@@ -168,7 +176,8 @@ bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit
                 TriVerts tri = bvhFetchTri(i);
                 float t, u, v;
                 if (bvhIntersectTri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax, t, u, v) &&
-                    (t < bestT || (t == bestT && i < bestTri))) {
+                    (t < bestT || (t == bestT && i < bestTri)) &&
+                    !(alphaTest && bvhIsHole(i, u, v, rayHash))) {
                     bestT = t;
                     bestTri = i;
                     bestU = u;
@@ -217,6 +226,8 @@ bool bvhTraceAny(vec3 origin, vec3 dir, float tmin, float tmax) {
     float tEntry;
     if (bvhIsEmpty(node) || !bvhSlab(r, node, tmin, tmax, tEntry)) return false;
 
+    const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
+    uint rayHash = alphaTest ? bvhRayHash(origin, dir) : 0u;
     uint stack[kBvhStackSize];
     uint sp = 0u;
     for (;;) {
@@ -225,7 +236,8 @@ bool bvhTraceAny(vec3 origin, vec3 dir, float tmin, float tmax) {
             for (uint i = node.leftOrFirst; i < end; ++i) {
                 TriVerts tri = bvhFetchTri(i);
                 float t, u, v;
-                if (bvhIntersectTri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax, t, u, v)) {
+                if (bvhIntersectTri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax, t, u, v) &&
+                    !(alphaTest && bvhIsHole(i, u, v, rayHash))) {
                     return true;
                 }
             }

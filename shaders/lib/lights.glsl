@@ -10,7 +10,9 @@ struct LightSample {
     vec3 position;
     vec3 v0, e1, e2;   // the emitter triangle (for the shadow ray's end point)
     vec3 normal;       // unit geometric normal of the emitter (front side)
-    vec3 radiance;
+    vec3 radiance;     // the material's emission factor (times its texture: emissionAt)
+    uint triangle;     // the emitter's triangle (BVH order)
+    vec2 bary;         // barycentrics of the point (of vertices 1 and 2)
     float pmf;         // probability of having chosen this emitter
     float area;
     uint flags;
@@ -40,6 +42,8 @@ LightSample sampleEmitter(uint emitterCount, vec2 u) {
     ls.e2 = e.e2;
     ls.normal = normalize(cross(e.e1, e.e2));
     ls.radiance = e.radiance;
+    ls.triangle = e.triangle;
+    ls.bary = b;
     ls.pmf = e.pmf;
     ls.area = e.area;
     ls.flags = e.flags;

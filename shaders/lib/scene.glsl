@@ -1,5 +1,5 @@
-// Scene buffers of descriptor set 0 and the fetch functions the BVH traversal
-// uses. SPEC_TEXEL_FETCH picks texel-view reads (fast on lavapipe, where a
+// Scene buffers of descriptor set 0, the fetch functions and alpha test the
+// BVH traversal uses. SPEC_TEXEL_FETCH picks texel-view reads (fast on lavapipe, where a
 // divergent storage-buffer load becomes a scalar loop) or storage reads.
 #ifndef STRATA_LIB_SCENE_GLSL
 #define STRATA_LIB_SCENE_GLSL
@@ -8,11 +8,14 @@
 #include "shared/bindings.h"
 
 layout(constant_id = SPEC_TEXEL_FETCH) const uint kTexelFetch = 0u;
+layout(constant_id = SPEC_FEATURES) const uint kFeatures = 0u;  // kFeature* bits (types.h)
 
 layout(std430, set = 0, binding = BINDING_NODES) readonly buffer NodeBuffer { BvhNode nodes[]; };
 layout(std430, set = 0, binding = BINDING_TRIS) readonly buffer TriBuffer { TriVerts tris[]; };
 layout(set = 0, binding = BINDING_NODES_TEXEL) uniform usamplerBuffer nodesTexel;
 layout(set = 0, binding = BINDING_TRIS_TEXEL) uniform usamplerBuffer trisTexel;
+layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
+layout(std430, set = 0, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { Material materials[]; };
 
 BvhNode bvhFetchNode(uint index) {
     if (kTexelFetch != 0u) {
@@ -32,6 +35,13 @@ TriVerts bvhFetchTri(uint index) {
     }
     return tris[index];
 }
+
+#include "lib/sampling.glsl"
+#include "lib/material.glsl"
+
+// The alpha test of lib/bvh.glsl (compiled in when kFeatureAlphaTest is set).
+uint bvhRayHash(vec3 origin, vec3 dir) { return alphaRayHash(origin, dir); }
+bool bvhIsHole(uint triangle, float u, float v, uint rayHash) { return alphaHole(triangle, vec2(u, v), rayHash); }
 
 #include "lib/bvh.glsl"
 

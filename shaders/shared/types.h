@@ -95,6 +95,47 @@ struct Material {
     uint transmissionTex;
 };
 
+// Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_0.xy,
+// TEXCOORD_1.xy) of vertex K (0 where the primitive lacks the set). Uploaded
+// only when a scene uses textures.
+struct TriTexcoords {
+    vec4 uv0;
+    vec4 uv1;
+    vec4 uv2;
+};
+
+// Tangents of one triangle in BVH order: xyz world-space unit tangent of
+// vertex K, w = +-1 handedness (bitangent = w * cross(normal, tangent), glTF's
+// TANGENT convention). Uploaded only when a scene uses normal maps.
+struct TriTangents {
+    vec4 t0;
+    vec4 t1;
+    vec4 t2;
+};
+
+// TextureRef.flags: bits 0-1 wrapS, bits 2-3 wrapT (kWrap*), then kTex* bits.
+STRATA_CONST(uint, kWrapRepeat, 0u);
+STRATA_CONST(uint, kWrapClamp, 1u);
+STRATA_CONST(uint, kWrapMirror, 2u);
+STRATA_CONST(uint, kTexNearest, 16u);    // magFilter NEAREST (else bilinear)
+STRATA_CONST(uint, kTexCoord1, 32u);     // reads TEXCOORD_1 (else TEXCOORD_0)
+STRATA_CONST(uint, kTex16Bit, 64u);      // 2 texel-buffer words per texel (else 1)
+STRATA_CONST(uint, kTexSrgb, 128u);      // rgb is sRGB-encoded (baseColor, emissive)
+
+// One texture reference of a material slot: the image's place in the packed
+// texel buffer (BINDING_TEXELS, R32UI words, rows top to bottom; an 8-bit
+// texel is one word R | G << 8 | B << 16 | A << 24, a 16-bit texel two words
+// R | G << 16, B | A << 16), its sampler and the KHR_texture_transform as a
+// 2x3 matrix: uv' = (dot(row0.xy, uv) + row0.z, dot(row1.xy, uv) + row1.z).
+struct TextureRef {
+    uint offset;        // first word of the image
+    uint width;         // texels
+    uint height;
+    uint flags;         // wrap modes and kTex* bits
+    vec4 row0;          // w unused
+    vec4 row1;          // w unused
+};
+
 // Light kinds (Emitter.kind). Triangles come from emissive materials;
 // the others from KHR_lights_punctual and --env.
 STRATA_CONST(uint, kLightTriangle, 0u);
@@ -231,6 +272,9 @@ static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
 static_assert(sizeof(Material) == 80);
 static_assert(sizeof(Emitter) == 80);
+static_assert(sizeof(TriTexcoords) == 48);
+static_assert(sizeof(TriTangents) == 48);
+static_assert(sizeof(TextureRef) == 48);
 static_assert(sizeof(FrameUniforms) == 112);
 static_assert(sizeof(DispatchParams) == 32);
 static_assert(sizeof(RenderCounters) == 16);

@@ -1,0 +1,136 @@
+// Material evaluation at a surface point: glTF factors times their textures
+// (baseColor and emissive sRGB; metallicRoughness G = roughness, B =
+// metallic; transmission R), the tangent-space normal map, and the alpha
+// test the BVH traversal uses to skip holes. Code for textures, normal maps
+// and alpha is compiled out by the kFeature* bits of SPEC_FEATURES when the
+// scene has none. Needs shading[], materials[] (lib/scene.glsl declares them).
+#ifndef STRATA_LIB_MATERIAL_GLSL
+#define STRATA_LIB_MATERIAL_GLSL
+
+#include "lib/rng.glsl"
+#include "lib/textures.glsl"
+
+layout(std430, set = 0, binding = BINDING_TEXCOORDS) readonly buffer TexcoordBuffer { TriTexcoords texcoords[]; };
+layout(std430, set = 0, binding = BINDING_TANGENTS) readonly buffer TangentBuffer { TriTangents tangents[]; };
+
+struct SurfacePoint {
+    vec3 baseColor;      // linear
+    float alpha;
+    float metallic;
+    float roughness;     // perceptual
+    float transmission;
+    float ior;
+    float specular;
+    vec3 emission;       // radiance
+    vec3 ns;             // unit shading normal on the incoming side (n's side)
+    uint flags;          // kMaterial* bits
+};
+
+// (TEXCOORD_0.xy, TEXCOORD_1.xy) at barycentrics (u, v) of vertices 1 and 2.
+vec4 texcoordsAt(uint triangle, vec2 bary) {
+    TriTexcoords tc = texcoords[triangle];
+    return (1.0 - bary.x - bary.y) * tc.uv0 + bary.x * tc.uv1 + bary.y * tc.uv2;
+}
+
+// Texture slot `ref` (an index into textureRefs[]) at interpolated texture
+// coordinates `uvs` (texcoordsAt).
+vec4 materialTexture(uint ref, vec4 uvs) {
+    TextureRef r = textureRefs[ref];
+    return sampleTextureRef(r, (r.flags & kTexCoord1) != 0u ? uvs.zw : uvs.xy);
+}
+
+// The normal-mapped shading normal. The tangent frame is built on the front
+// face (the triangle's counter-clockwise side): the interpolated tangent,
+// Gram-Schmidt against the normal, bitangent w * cross(n, t); the mapped
+// normal is normalize(T x + B y + N z) with xy scaled by normalScale (glTF
+// 2.0 3.9.3), and is reversed on a back face as the spec reverses normals.
+// A mapped normal below the geometric horizon is lifted just above it.
+vec3 normalMapped(Material mat, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3 nsInterpolated) {
+    vec3 m = materialTexture(mat.normalTex, uvs).xyz * 2.0 - 1.0;
+    m.xy *= mat.normalScale;
+    TriVerts tv = bvhFetchTri(triangle);
+    float side = dot(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz), n) >= 0.0 ? 1.0 : -1.0;
+    vec3 N = side * nsInterpolated;
+    TriTangents tg = tangents[triangle];
+    vec4 t4 = (1.0 - bary.x - bary.y) * tg.t0 + bary.x * tg.t1 + bary.y * tg.t2;
+    vec3 T = t4.xyz - N * dot(N, t4.xyz);
+    vec3 B;
+    if (dot(T, T) > 1.0e-12) {
+        T = normalize(T);
+    } else {
+        basis(N, T, B);
+    }
+    B = (t4.w < 0.0 ? -1.0 : 1.0) * cross(N, T);
+    vec3 ns = side * normalize(m.x * T + m.y * B + m.z * N);
+    const float kMinCos = 1.0e-3;
+    float c = dot(ns, n);
+    if (c < kMinCos) ns = normalize(ns + (kMinCos - c) * n);
+    return ns;
+}
+
+// The material at a hit: `bary` = barycentrics of vertices 1 and 2, `n` the
+// geometric normal on the incoming side, `nsInterpolated` the interpolated
+// vertex normal flipped to n's side.
+SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 nsInterpolated) {
+    SurfacePoint sp;
+    sp.baseColor = mat.baseColor.rgb;
+    sp.alpha = mat.baseColor.a;
+    sp.metallic = mat.metallic;
+    sp.roughness = mat.roughness;
+    sp.transmission = mat.transmission;
+    sp.ior = mat.ior;
+    sp.specular = mat.specular;
+    sp.emission = mat.emission;
+    sp.ns = nsInterpolated;
+    sp.flags = mat.flags;
+    if ((kFeatures & kFeatureTextures) == 0u) return sp;
+    vec4 uvs = texcoordsAt(triangle, bary);
+    if (mat.baseColorTex != kNoTexture) {
+        vec4 c = materialTexture(mat.baseColorTex, uvs);
+        sp.baseColor *= c.rgb;
+        sp.alpha *= c.a;
+    }
+    if (mat.metallicRoughnessTex != kNoTexture) {
+        vec4 c = materialTexture(mat.metallicRoughnessTex, uvs);
+        sp.roughness *= c.g;
+        sp.metallic *= c.b;
+    }
+    if (mat.emissiveTex != kNoTexture) sp.emission *= materialTexture(mat.emissiveTex, uvs).rgb;
+    if (mat.transmissionTex != kNoTexture) sp.transmission *= materialTexture(mat.transmissionTex, uvs).r;
+    if ((kFeatures & kFeatureNormalMap) != 0u && mat.normalTex != kNoTexture)
+        sp.ns = normalMapped(mat, triangle, bary, uvs, n, nsInterpolated);
+    return sp;
+}
+
+// Emitted radiance of material `materialIndex` at a point of `triangle`
+// (next-event estimation on textured emitters).
+vec3 emissionAt(uint materialIndex, uint triangle, vec2 bary) {
+    Material mat = materials[materialIndex];
+    if ((kFeatures & kFeatureTextures) == 0u || mat.emissiveTex == kNoTexture) return mat.emission;
+    return mat.emission * materialTexture(mat.emissiveTex, texcoordsAt(triangle, bary)).rgb;
+}
+
+// Per-ray hash for stochastic transparency: a pure function of the ray's
+// bits, so the closest-hit and any-hit traversals of one ray make the same
+// decisions, and a render is deterministic per seed.
+uint alphaRayHash(vec3 origin, vec3 dir) {
+    uvec3 o = floatBitsToUint(origin), d = floatBitsToUint(dir);
+    return hash4(hash4(o.x, o.y, o.z, d.x), d.y, d.z, 0x9e3779b9u);
+}
+
+// True when the ray (hash `rayHash`) passes through `triangle` at `bary`:
+// MASK: alpha < alphaCutoff; BLEND: with probability 1 - alpha. alpha =
+// baseColorFactor.a times the baseColor texture's alpha.
+bool alphaHole(uint triangle, vec2 bary, uint rayHash) {
+    uint materialIndex = shading[triangle].material;
+    uint flags = materials[materialIndex].flags;
+    if ((flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return false;
+    Material mat = materials[materialIndex];
+    float alpha = mat.baseColor.a;
+    if ((kFeatures & kFeatureTextures) != 0u && mat.baseColorTex != kNoTexture)
+        alpha *= materialTexture(mat.baseColorTex, texcoordsAt(triangle, bary)).a;
+    if ((flags & kMaterialAlphaMask) != 0u) return alpha < mat.alphaCutoff;
+    return uintToUnit(hash4(rayHash, triangle, 0x85ebca6bu, 0xc2b2ae35u)) >= alpha;
+}
+
+#endif

@@ -1,0 +1,498 @@
+// glTF textures: known answers rendered by the real shaders (lavapipe,
+// validation on), plus CPU checks of texture-coordinate decoding and tangent
+// generation. Scenes: tests/data/textures/, written by
+// scripts/make_texture_scenes.py, whose constants are mirrored here.
+//
+// "Direct" scenes are seen at max depth 0 with a box filter of radius 1e-5
+// pixels, so every sample sees the pixel centre's uv (within 1e-6) and a
+// pixel is exactly emissiveFactor x the decoded texture there.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <numbers>
+
+#include "render/gpu_textures.h"
+#include "render/tracer.h"
+#include "scene/tangents.h"
+#include "stats/stats.h"
+#include "test_util.h"
+
+using namespace strata;
+using namespace strata::test;
+
+namespace {
+
+const std::string kDir = "tests/data/textures/";
+constexpr glm::dvec3 kEmissive{1.0, 0.5, 0.25};
+// 4 x 2 sRGB texels, rows top to bottom (checker.png).
+constexpr int kChecker[2][4][3] = {{{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}},
+                                   {{10, 20, 30}, {128, 64, 200}, {40, 200, 90}, {0, 0, 0}}};
+// 3 x 2 16-bit texels (rgb; alpha 65535).
+constexpr int kChecker16[2][3][3] = {{{65535, 0, 1000}, {300, 40000, 65535}, {12345, 54321, 7}},
+                                     {{0, 0, 0}, {65535, 65535, 65535}, {32768, 16384, 49152}}};
+
+enum class WrapMode { Repeat, Clamp, Mirror };
+
+// OpenGL 4.6 sec. 8.14.2, written independently of the shader.
+int wrapIndex(int i, int n, WrapMode mode) {
+    if (mode == WrapMode::Clamp) return std::clamp(i, 0, n - 1);
+    if (mode == WrapMode::Mirror) {
+        const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+        return m < n ? m : 2 * n - 1 - m;
+    }
+    return ((i % n) + n) % n;
+}
+
+glm::dvec3 checkerTexel(int x, int y) {
+    glm::dvec3 c;
+    for (int k = 0; k < 3; ++k) c[k] = srgbToLinear(kChecker[y][x][k] / 255.0);
+    return c;
+}
+
+// Nearest lookup of checker.png: the texel, and the distance (in texels) of
+// uv from the nearest texel boundary.
+glm::dvec3 checkerNearest(glm::dvec2 uv, WrapMode s, WrapMode t, double* boundary = nullptr) {
+    const glm::dvec2 x = uv * glm::dvec2(4.0, 2.0);
+    if (boundary) {
+        const glm::dvec2 f = x - glm::floor(x);
+        *boundary = std::min({f.x, 1.0 - f.x, f.y, 1.0 - f.y});
+    }
+    return checkerTexel(wrapIndex(static_cast<int>(std::floor(x.x)), 4, s),
+                        wrapIndex(static_cast<int>(std::floor(x.y)), 2, t));
+}
+
+glm::dvec3 checkerBilinear(glm::dvec2 uv, WrapMode s, WrapMode t) {
+    const glm::dvec2 c = uv * glm::dvec2(4.0, 2.0) - 0.5;
+    const glm::dvec2 b = glm::floor(c), f = c - b;
+    auto at = [&](int dx, int dy) {
+        return checkerTexel(wrapIndex(static_cast<int>(b.x) + dx, 4, s),
+                            wrapIndex(static_cast<int>(b.y) + dy, 2, t));
+    };
+    return glm::mix(glm::mix(at(0, 0), at(1, 0), f.x), glm::mix(at(0, 1), at(1, 1), f.x), f.y);
+}
+
+RenderSettings centreSettings(int size, std::uint32_t spp, std::uint32_t maxDepth, std::uint32_t seed) {
+    RenderSettings s;
+    s.width = s.height = size;
+    s.spp = spp;
+    s.maxDepth = maxDepth;
+    s.seed = seed;
+    s.filter.radius = 1e-5f;
+    return s;
+}
+
+struct DirectCheck {
+    double maxRelError = 0.0;
+    std::size_t skipped = 0;  // pixels whose centre is within 1e-5 texel of a texel boundary
+};
+
+// Renders a direct scene and compares every pixel with `expected(s, t)`, the
+// radiance at pixel centre (s, t) in [0, 1]^2; returns the largest relative
+// error max |r - e| / max(e, 1e-3) over channels.
+DirectCheck checkDirect(const std::string& file, int size,
+                        const std::function<glm::dvec3(glm::dvec2, double*)>& expected) {
+    const Rendered r = renderFile(kDir + file, centreSettings(size, 4, 0, 3));
+    const auto mean = r.result.film.mean();
+    DirectCheck out;
+    for (int py = 0; py < size; ++py) {
+        for (int px = 0; px < size; ++px) {
+            double boundary = 1.0;
+            const glm::dvec2 st((px + 0.5) / size, (py + 0.5) / size);
+            const glm::dvec3 e = expected(st, &boundary);
+            // Samples lie within 1e-5 px of the centre: < 5e-6 texel here.
+            if (boundary < 1e-5) {
+                ++out.skipped;
+                continue;
+            }
+            for (int c = 0; c < 3; ++c) {
+                const double v = mean[(static_cast<std::size_t>(py) * size + px) * 3 + c];
+                out.maxRelError = std::max(out.maxRelError, std::abs(v - e[c]) / std::max(e[c], 1e-3));
+            }
+        }
+    }
+    return out;
+}
+
+// uv of the direct scenes' quad: UV0 + (s, t) * span.
+glm::dvec2 quadUv(glm::dvec2 st, glm::dvec2 uv0, glm::dvec2 span) { return uv0 + st * span; }
+
+}  // namespace
+
+TEST_CASE("texture: an emissive checker seen directly is emissiveFactor x the sRGB-decoded texel") {
+    const DirectCheck d = checkDirect("nearest.gltf", 24, [](glm::dvec2 st, double* b) {
+        return kEmissive * checkerNearest(st, WrapMode::Repeat, WrapMode::Repeat, b);
+    });
+    CAPTURE(d.maxRelError);
+    CHECK(d.skipped == 0);
+    CHECK(d.maxRelError < 1e-5);  // float32 pow/unpack against the double curve
+
+    const DirectCheck d16 = checkDirect("nearest-16bit.gltf", 24, [](glm::dvec2 st, double* b) {
+        const glm::dvec2 x = st * glm::dvec2(3.0, 2.0);
+        const glm::dvec2 f = x - glm::floor(x);
+        *b = std::min({f.x, 1.0 - f.x, f.y, 1.0 - f.y});
+        glm::dvec3 c;
+        for (int k = 0; k < 3; ++k)
+            c[k] = srgbToLinear(kChecker16[static_cast<int>(x.y)][static_cast<int>(x.x)][k] / 65535.0);
+        return kEmissive * c;
+    });
+    CAPTURE(d16.maxRelError);
+    CHECK(d16.skipped == 0);
+    CHECK(d16.maxRelError < 1e-5);  // 16-bit PNG: decoded to 16 bits, not 8
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: wrap modes REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT per axis") {
+    struct Case {
+        const char* file;
+        WrapMode s, t;
+    };
+    for (const Case c : {Case{"wrap-repeat.gltf", WrapMode::Repeat, WrapMode::Repeat},
+                         Case{"wrap-clamp-mirror.gltf", WrapMode::Clamp, WrapMode::Mirror},
+                         Case{"wrap-mirror-clamp.gltf", WrapMode::Mirror, WrapMode::Clamp}}) {
+        CAPTURE(c.file);
+        // uv spans [-1, 2]^2: three periods per axis.
+        const DirectCheck d = checkDirect(c.file, 24, [&](glm::dvec2 st, double* b) {
+            return kEmissive * checkerNearest(quadUv(st, {-1, -1}, {3, 3}), c.s, c.t, b);
+        });
+        CAPTURE(d.maxRelError);
+        CHECK(d.skipped == 0);
+        CHECK(d.maxRelError < 1e-5);
+        // The test can tell the modes apart: the expected image of every
+        // other mode pair differs in at least a sixth of the pixels.
+        for (const WrapMode s : {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror}) {
+            for (const WrapMode t : {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror}) {
+                if (s == c.s && t == c.t) continue;
+                int differ = 0;
+                for (int i = 0; i < 24 * 24; ++i) {
+                    const glm::dvec2 uv = quadUv({(i % 24 + 0.5) / 24, (i / 24 + 0.5) / 24}, {-1, -1}, {3, 3});
+                    differ += checkerNearest(uv, s, t) != checkerNearest(uv, c.s, c.t);
+                }
+                CHECK(differ >= 24 * 24 / 6);
+            }
+        }
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: KHR_texture_transform offset, rotation, scale and texCoord override") {
+    // offset (0.25, -0.5), rotation 0.6 rad, scale (1.5, -2), TEXCOORD_1;
+    // uv' = offset + R (scale * uv), R columns (cos, -sin), (sin, cos).
+    const double c = std::cos(0.6), s = std::sin(0.6);
+    const DirectCheck d = checkDirect("transform.gltf", 24, [&](glm::dvec2 st, double* b) {
+        const glm::dvec2 q = st * glm::dvec2(1.5, -2.0);
+        const glm::dvec2 uv(0.25 + c * q.x + s * q.y, -0.5 - s * q.x + c * q.y);
+        return kEmissive * checkerNearest(uv, WrapMode::Repeat, WrapMode::Repeat, b);
+    });
+    CAPTURE(d.maxRelError);
+    CAPTURE(d.skipped);
+    CHECK(d.skipped == 0);
+    CHECK(d.maxRelError < 1e-5);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: bilinear filtering, and half-way between texel centres is their average") {
+    // 23 x 23 pixels: pixel (11, 11) sees uv (0.5, 0.5), half-way between
+    // the centres of texels (1..2, 0..1).
+    const DirectCheck d = checkDirect("bilinear.gltf", 23, [](glm::dvec2 st, double*) {
+        return kEmissive * checkerBilinear(st, WrapMode::Clamp, WrapMode::Repeat);
+    });
+    CAPTURE(d.maxRelError);
+    CHECK(d.maxRelError < 1e-4);
+    const Rendered r = renderFile(kDir + "bilinear.gltf", centreSettings(23, 1, 0, 5));
+    const auto mean = r.result.film.mean();
+    const glm::dvec3 average =
+        0.25 * (checkerTexel(1, 0) + checkerTexel(2, 0) + checkerTexel(1, 1) + checkerTexel(2, 1));
+    for (int k = 0; k < 3; ++k) {
+        CAPTURE(k);
+        CHECK(mean[(11 * 23 + 11) * 3 + k] == doctest::Approx(kEmissive[k] * average[k]).epsilon(1e-4));
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: alpha MASK holes (alpha 127/255 < cutoff 0.5 <= 128/255) show the emitter behind") {
+    // 8 x 8 checker of alpha 127 (hole) and 128 (kept) over a white emitter.
+    const Rendered r = renderFile(kDir + "alpha-mask.gltf", centreSettings(24, 4, 0, 9));
+    const auto mean = r.result.film.mean();
+    std::size_t wrong = 0, lit = 0;
+    for (int py = 0; py < 24; ++py) {
+        for (int px = 0; px < 24; ++px) {
+            const bool hole = (px / 3 + py / 3) % 2 == 0;
+            const float v = mean[(static_cast<std::size_t>(py) * 24 + px) * 3];
+            wrong += v != (hole ? 1.0f : 0.0f);
+            lit += v == 1.0f;
+        }
+    }
+    CHECK(wrong == 0);
+    CHECK(lit == 24 * 24 / 2);
+    CHECK((r.gpu.features.bits & gpu::kFeatureAlphaTest) != 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: alpha BLEND 0.3 lets 70% of camera rays through, deterministically per seed") {
+    RenderSettings s = centreSettings(32, 64, 0, 21);
+    s.filter = PixelFilter{};  // box, radius 0.5: every sample is another ray
+    const Rendered a = renderFile(kDir + "alpha-blend.gltf", s);
+    const Rendered b = renderFile(kDir + "alpha-blend.gltf", s);
+    const auto ma = a.result.film.mean(), mb = b.result.film.mean();
+    CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
+    // Each sample is 1 (through) or 0 (stopped): Bernoulli(0.7).
+    const double n = 32.0 * 32.0 * 64.0;
+    double through = 0.0, sq = 0.0;
+    for (std::size_t i = 0; i < ma.size(); i += 3) {
+        through += ma[i];
+        sq += static_cast<double>(ma[i]) * ma[i];
+    }
+    const double pixels = 32.0 * 32.0;
+    const double p = through / pixels;
+    const double se = std::sqrt(0.7 * 0.3 / n);  // 0.0018
+    CAPTURE(p);
+    CHECK(std::abs(p - 0.7) <= 4.0 * se);
+    // Per-pixel fractions spread as Binomial(64, 0.7) / 64 (variance
+    // 0.00328) when the samples of a pixel are independent; the sample
+    // variance over 1024 pixels has a relative standard deviation of 4.4%,
+    // so +-20% is a 4.5-sigma bound.
+    const double var = sq / pixels - p * p;
+    CAPTURE(var);
+    CHECK(var == doctest::Approx(0.7 * 0.3 / 64.0).epsilon(0.2));
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: alpha holes are skipped by trace.comp's closest-hit and any-hit alike") {
+    const Scene scene = loadGltf(sourcePath(kDir + "alpha-mask.gltf"));
+    const GpuScene gpu = packScene(scene);
+    // Rays down -Z through the centres of the blocker's 8 x 8 cells (z = 0.5,
+    // [-0.75, 0.75]^2); the emitter is at z = 0.
+    std::vector<gpu::TraceRay> rays;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+            rays.push_back({glm::vec3(-0.75f + (x + 0.5f) * 0.1875f, 0.75f - (y + 0.5f) * 0.1875f, 1.0f), 0.0f,
+                            glm::vec3(0, 0, -1), 0.75f});
+    const auto any = traceOnDevice(context(), gpu, rays, Traversal::Auto, gpu::kTraceAny);
+    for (auto& r : rays) r.tmax = 2.0f;
+    const auto closest = traceOnDevice(context(), gpu, rays, Traversal::Auto, gpu::kTraceClosest);
+    for (int i = 0; i < 64; ++i) {
+        const bool hole = (i % 8 + i / 8) % 2 == 0;
+        CAPTURE(i);
+        CHECK((any[i].t < 0.0f) == hole);                                // tmax 0.75 ends before the emitter
+        CHECK(closest[i].t == doctest::Approx(hole ? 1.0 : 0.5));        // the emitter, else the blocker
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+namespace {
+
+// Normal-map scenes: a square emitter [-0.5, 0.5]^2 at y = 1 (radiance 1,
+// facing down) over the Lambertian plane y = 0 (albedo 0.5); the camera at
+// (0, 0.9, 0) looks straight down. Tangent frame on the plane: T = +X
+// (uv's u), bitangent = -Z (v grows along +Z; the normal map's +Y points to
+// decreasing v), N = +Y.
+constexpr double kPlaneAlbedo = 0.5;
+using Polygon = std::array<glm::dvec3, 4>;
+constexpr Polygon kLight = {{{-0.5, 1, -0.5}, {0.5, 1, -0.5}, {0.5, 1, 0.5}, {-0.5, 1, 0.5}}};
+// The emitting half of plane-half-light.gltf's textured light, and its mirror image.
+constexpr Polygon kHalfLight = {{{-0.5, 1, -0.5}, {0.0, 1, -0.5}, {0.0, 1, 0.5}, {-0.5, 1, 0.5}}};
+constexpr Polygon kOtherHalf = {{{0.0, 1, -0.5}, {0.5, 1, -0.5}, {0.5, 1, 0.5}, {0.0, 1, 0.5}}};
+
+// The shading normal a constant normal texel gives (glTF: n = 2 c / 255 - 1).
+glm::dvec3 mappedNormal(int r, int g, int b) {
+    const glm::dvec3 m(2.0 * r / 255.0 - 1.0, 2.0 * g / 255.0 - 1.0, 2.0 * b / 255.0 - 1.0);
+    return glm::normalize(m.x * glm::dvec3(1, 0, 0) + m.y * glm::dvec3(0, 0, -1) + m.z * glm::dvec3(0, 1, 0));
+}
+
+// Irradiance at p with normal n from the uniform polygon emitter (radiance
+// 1), by Lambert's formula: E = 1/2 sum_i Theta_i (n . Gamma_i), Theta_i the
+// angle the edge (v_i, v_i+1) subtends at p, Gamma_i the unit normal of the
+// plane through p and the edge (Arvo 1995, "Applications of Irradiance
+// Tensors"). Exact when the whole polygon is above the tangent plane of n.
+double polygonIrradiance(const glm::dvec3& p, const glm::dvec3& n, const Polygon& light = kLight) {
+    double e = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+        const glm::dvec3 a = glm::normalize(light[i] - p);
+        const glm::dvec3 b = glm::normalize(light[(i + 1) % 4] - p);
+        e += 0.5 * std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, glm::normalize(glm::cross(a, b)));
+    }
+    return std::abs(e);
+}
+
+// The plane point seen through pixel (px, py)'s centre, with the camera
+// model of shaders/pathtrace.comp and render/renderer.cpp.
+glm::dvec3 planePoint(const Camera& cam, int px, int py, int size) {
+    const glm::dvec3 f(cam.forward);
+    const glm::dvec3 right = glm::normalize(glm::cross(f, glm::dvec3(cam.up)));
+    const glm::dvec3 up = glm::cross(right, f);
+    const double t = std::tan(0.5 * static_cast<double>(cam.yfov));
+    const glm::dvec3 d = glm::normalize(f + (2.0 * (px + 0.5) / size - 1.0) * t * right +
+                                        (1.0 - 2.0 * (py + 0.5) / size) * t * up);
+    return glm::dvec3(cam.position) + (-static_cast<double>(cam.position.y) / d.y) * d;
+}
+
+struct PlaneFit {
+    stats::MeanTestResult mean;
+    double expectedMean = 0.0;
+    std::size_t pixels = 0;
+    std::size_t within = 0;     // pixels within 4.5 sigma of the expected value
+    std::size_t otherFails = 0; // pixels more than 4.5 sigma from the `other` answer
+};
+
+// Renders a plane scene at max depth 1 and tests its pixels against
+// L = (albedo / pi) E(p, n) in the mean (4 standard errors).
+PlaneFit fitPlane(const std::string& file, const glm::dvec3& n, std::uint32_t seed,
+                  const Polygon& light = kLight, const Polygon& other = kLight) {
+    constexpr int kSize = 16;
+    const Rendered r = renderFile(kDir + file, centreSettings(kSize, 256, 1, seed));
+    const auto mean = r.result.film.mean();
+    const auto var = r.result.film.varianceOfMean();
+    std::vector<double> diff, diffVar;
+    PlaneFit fit;
+    for (int py = 0; py < kSize; ++py) {
+        for (int px = 0; px < kSize; ++px) {
+            const glm::dvec3 p = planePoint(r.scene.cameras[0], px, py, kSize);
+            for (const glm::dvec3& c : light) REQUIRE(glm::dot(c - p, n) > 0.0);
+            const double expected = kPlaneAlbedo / std::numbers::pi * polygonIrradiance(p, n, light);
+            const std::size_t i = (static_cast<std::size_t>(py) * kSize + px) * 3;
+            diff.push_back(mean[i] - expected);
+            diffVar.push_back(var[i]);
+            fit.expectedMean += expected / (kSize * kSize);
+            const double sigma = std::sqrt(static_cast<double>(var[i]));
+            const double otherValue = kPlaneAlbedo / std::numbers::pi * polygonIrradiance(p, n, other);
+            ++fit.pixels;
+            fit.within += std::abs(mean[i] - expected) <= 4.5 * sigma;
+            fit.otherFails += std::abs(mean[i] - otherValue) > 4.5 * sigma;
+        }
+    }
+    fit.mean = stats::meanTest(diff, diffVar, 0.0, 4.0);
+    return fit;
+}
+
+}  // namespace
+
+TEST_CASE("texture: the polygon irradiance formula agrees with the square-light form factor") {
+    // Below the centre, normal +Y: E = pi F, F = 0.2394564704607735
+    // (tests/test_known_answers.cpp, Howell B-3).
+    CHECK(polygonIrradiance({0, 0, 0}, {0, 1, 0}) ==
+          doctest::Approx(std::numbers::pi * 0.2394564704607735).epsilon(1e-12));
+}
+
+TEST_CASE("texture: a tilted constant normal map shades a diffuse plane by the tilted cosine") {
+    const glm::dvec3 tilted = mappedNormal(191, 128, 221);
+    const double tilt = std::acos(tilted.y);
+    CAPTURE(tilt);
+    CHECK(tilt > 0.5);  // 34 degrees towards +X
+    const PlaneFit flat = fitPlane("plane-no-map.gltf", {0, 1, 0}, 31);
+    const PlaneFit mapped = fitPlane("plane-tilted-map.gltf", tilted, 32);
+    for (const PlaneFit* f : {&flat, &mapped}) {
+        CAPTURE(f->mean.mean);
+        CAPTURE(f->mean.stdError);
+        CAPTURE(f->expectedMean);
+        CAPTURE(f->within);
+        CHECK(f->mean.passed);
+        CHECK(f->mean.stdError < 2e-3 * f->expectedMean);
+        CHECK(static_cast<double>(f->within) >= 0.99 * f->pixels);
+    }
+    // The tilt changes the answer by far more than the test's resolution.
+    CHECK(std::abs(mapped.expectedMean - flat.expectedMean) > 20.0 * mapped.mean.stdError);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: next-event estimation reads an emissive texture at the sampled point") {
+    // Half the light is black: the plane sees the other half's irradiance
+    // (BSDF-sampled hits and light samples both go through emissionAt).
+    const PlaneFit half = fitPlane("plane-half-light.gltf", {0, 1, 0}, 51, kHalfLight, kOtherHalf);
+    CAPTURE(half.mean.mean);
+    CAPTURE(half.mean.stdError);
+    CAPTURE(half.expectedMean);
+    CAPTURE(half.within);
+    CAPTURE(half.otherFails);
+    CHECK(half.mean.passed);
+    CHECK(half.mean.stdError < 5e-3 * half.expectedMean);
+    // Per pixel (4.5 sigma, 99% of pixels): the texture is read where the
+    // light was sampled. Reading it at the wrong point, e.g. mirrored, gives
+    // the other half's light, which most pixels reject.
+    CHECK(static_cast<double>(half.within) >= 0.99 * half.pixels);
+    CHECK(static_cast<double>(half.otherFails) >= 0.5 * half.pixels);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: a flat normal map (128, 128, 255) renders as no normal map") {
+    // Same seed, so the same samples: only the 0.0055 rad tilt of
+    // (128, 128, 255) (2 * 128 / 255 - 1 = 0.0039) separates the images.
+    const RenderSettings s = centreSettings(16, 16, 1, 41);
+    const Rendered a = renderFile(kDir + "plane-no-map.gltf", s);
+    const Rendered b = renderFile(kDir + "plane-flat-map.gltf", s);
+    CHECK((b.gpu.features.bits & gpu::kFeatureNormalMap) != 0);
+    CHECK((a.gpu.features.bits & gpu::kFeatureNormalMap) == 0);
+    const auto ma = a.result.film.mean(), mb = b.result.film.mean();
+    double maxRel = 0.0, sumA = 0.0, sumB = 0.0;
+    std::vector<double> rel;
+    for (std::size_t i = 0; i < ma.size(); ++i) {
+        rel.push_back(std::abs(static_cast<double>(mb[i]) - ma[i]) / ma[i]);
+        maxRel = std::max(maxRel, std::abs(static_cast<double>(mb[i]) - ma[i]) / ma[i]);
+        sumA += ma[i];
+        sumB += mb[i];
+    }
+    // The tilt changes cosines by at most 0.0055 tan(45 deg) (the steepest
+    // light direction in view): 0.55%. Larger differences come only from the
+    // few BSDF-sampled rays that cross the light's edge in one image and not
+    // in the other.
+    std::sort(rel.begin(), rel.end());
+    const double median = rel[rel.size() / 2], p95 = rel[rel.size() * 95 / 100];
+    CAPTURE(median);
+    CAPTURE(p95);
+    CAPTURE(maxRel);
+    CHECK(median < 2e-3);
+    CHECK(p95 < 5.5e-3);
+    CHECK(maxRel < 0.1);
+    CHECK(sumB / sumA == doctest::Approx(1.0).epsilon(2e-3));
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("texture: texture coordinates decode from normalized u8/u16, tangents go to world space") {
+    const Scene scene = loadGltf(sourcePath(kDir + "loader.gltf"), LoadOptions{false, false});
+    REQUIRE(scene.triangles.size() == 2);
+    REQUIRE(scene.texcoords.size() == 2);  // the plain primitive is back-filled with zeros
+    REQUIRE(scene.tangents.size() == 2);
+    for (const glm::vec4& uv : scene.texcoords[0]) CHECK(uv == glm::vec4(0.0f));
+    // The mirrored node swaps vertices 1 and 2 to keep the front face.
+    const TriangleUv& uv = scene.texcoords[1];
+    CHECK(uv[0] == glm::vec4(0.0f, 1.0f, 0.0f, 1.0f));                         // (0, 255), (0, 65535)
+    CHECK(uv[2] == glm::vec4(0.2f, 0.4f, 13107.0f / 65535.0f, 0.0f));          // (51, 102), (13107, 0)
+    CHECK(uv[1] == glm::vec4(1.0f, 0.0f, 1.0f, 32768.0f / 65535.0f));          // (255, 0), (65535, 32768)
+    // TANGENT (1, 0, 0, +1) under scale (-1, 1, 1): (-1, 0, 0), handedness -1.
+    for (const glm::vec4& t : scene.tangents[1]) CHECK(t == glm::vec4(-1.0f, 0.0f, 0.0f, -1.0f));
+    const MaterialDesc& m = scene.materials[scene.triangles[1].material];
+    CHECK(m.normalTexture.used());
+    CHECK(m.normalScale == 0.5f);
+}
+
+TEST_CASE("texture: generated tangents follow +u, with glTF handedness, and survive degenerate uvs") {
+    // Unit quad in the XY plane facing +Z; image convention: v grows downwards (-Y).
+    const std::vector<glm::vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const std::vector<glm::vec3> n(4, glm::vec3(0, 0, 1));
+    const std::vector<std::uint32_t> idx = {0, 1, 2, 0, 2, 3};
+    const std::vector<glm::vec2> uv = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    for (const glm::vec4& t : generateTangents(p, n, uv, idx)) CHECK(t == glm::vec4(1, 0, 0, 1));
+    // u mirrored: tangent -X, and the bitangent w cross(n, t) still points to -dP/dv (+Y).
+    const std::vector<glm::vec2> mirrored = {{1, 1}, {0, 1}, {0, 0}, {1, 0}};
+    for (const glm::vec4& t : generateTangents(p, n, mirrored, idx)) {
+        CHECK(t == glm::vec4(-1, 0, 0, -1));
+        CHECK(t.w * glm::cross(n[0], glm::vec3(t)) == glm::vec3(0, 1, 0));
+    }
+    // uv rotated by 90 degrees: u grows along +Y.
+    const std::vector<glm::vec2> rotated = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+    for (const glm::vec4& t : generateTangents(p, n, rotated, idx)) CHECK(t == glm::vec4(0, 1, 0, 1));
+    // A tangent with a normal component is orthogonalised: normals tilted in x-z.
+    const std::vector<glm::vec3> tiltedN(4, glm::normalize(glm::vec3(1, 0, 1)));
+    for (const glm::vec4& t : generateTangents(p, tiltedN, uv, idx)) {
+        CHECK(std::abs(glm::dot(glm::vec3(t), tiltedN[0])) < 1e-6f);
+        CHECK(glm::length(glm::vec3(t)) == doctest::Approx(1.0f));
+    }
+    // All uvs equal: any unit tangent orthogonal to the normal.
+    const std::vector<glm::vec2> same(4, glm::vec2(0.5f));
+    for (const glm::vec4& t : generateTangents(p, n, same, idx)) {
+        CHECK(std::abs(glm::dot(glm::vec3(t), n[0])) < 1e-6f);
+        CHECK(glm::length(glm::vec3(t)) == doctest::Approx(1.0f));
+    }
+}
