@@ -2,10 +2,11 @@
 // Progressive path tracer: one path per pixel of the dispatch's tile, one
 // sample per dispatch, added into the accumulation buffer (sum, count, sum of
 // squares). Lambertian BSDF with cosine sampling; next-event estimation on
-// emissive triangles combined with BSDF-sampled emission by the power
-// heuristic (Veach 1997); Russian roulette after depth 3.
-// maxDepth counts scattering events (pbrt's convention): 0 shows emitters
-// seen directly, 1 is direct lighting.
+// all lights (emissive triangles, KHR_lights_punctual, the environment;
+// lib/lights.glsl) combined with BSDF-sampled emission by the power
+// heuristic (Veach 1997) except for delta lights; Russian roulette after
+// depth 3. maxDepth counts scattering events (pbrt's convention): 0 shows
+// emitters and the environment seen directly, 1 is direct lighting.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -13,7 +14,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "lib/scene.glsl"
 #include "lib/sampler.glsl"
 
-layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
+layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;  // any light at all
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
@@ -37,16 +38,51 @@ vec3 cameraRay(vec2 pixel) {
     return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
 }
 
+// The BSDF, called at exactly two places in tracePath: bsdfEval (f cos and
+// pdf for a light direction) and bsdfSample. Lambertian today: f = albedo / pi.
+// `ns` is the shading normal, `n` the geometric normal, both on the side of
+// the incoming ray; directions below either give nothing.
+struct BsdfSample {
+    vec3 wi;
+    vec3 weight;    // f cos / pdf
+    float pdf;      // solid angle
+    bool isDelta;   // specular event: the next emitter hit gets MIS weight 1
+};
+
+vec3 bsdfEval(vec3 albedo, vec3 ns, vec3 n, vec3 wi, out float pdf) {
+    float cosSurface = dot(ns, wi);
+    pdf = 0.0;
+    if (cosSurface <= 0.0 || dot(n, wi) <= 0.0) return vec3(0.0);
+    pdf = cosSurface * kInvPi;
+    return albedo * kInvPi * cosSurface;
+}
+
+bool bsdfSample(vec3 albedo, vec3 ns, vec3 n, vec2 u, out BsdfSample bs) {
+    bs.wi = toWorld(sampleCosineHemisphere(u), ns);
+    float cosSurface = dot(ns, bs.wi);
+    bs.pdf = cosSurface * kInvPi;
+    bs.weight = albedo;  // cosine-weighted: f cos / pdf = albedo
+    bs.isDelta = false;
+    return cosSurface > 0.0 && dot(n, bs.wi) > 0.0;
+}
+
 vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     const uint maxDepth = frame.image.z;
-    const uint emitterCount = frame.counts.x;
     vec3 L = vec3(0.0);
     vec3 beta = vec3(1.0);
     float prevBsdfPdf = 0.0;
+    bool prevDelta = true;  // the camera ray: emitters it finds get weight 1
 
     for (uint depth = 0u;; ++depth) {
         TraceHit hit;
-        if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) break;
+        if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) {
+            // Escaped: the environment, weighted against light sampling.
+            if (kHasEmitters != 0u && hasFeature(kFeatureEnvironment)) {
+                float w = prevDelta ? 1.0 : powerHeuristic(prevBsdfPdf, lightPdfEnvironment(dir));
+                L += beta * w * environmentRadiance(dir);
+            }
+            break;
+        }
 
         TriVerts tv = bvhFetchTri(hit.triangle);
         vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
@@ -59,11 +95,8 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         if (kHasEmitters != 0u && sh.light != kNoLight) {
             if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
                 float w = 1.0;
-                if (depth > 0u) {
-                    Emitter em = emitters[sh.light];
-                    float lightPdf = emitterPdfSolidAngle(em.pmf, em.area, hit.t, abs(dot(dir, ng)));
-                    w = powerHeuristic(prevBsdfPdf, lightPdf);
-                }
+                if (!prevDelta)
+                    w = powerHeuristic(prevBsdfPdf, lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng))));
                 L += beta * w * mat.emission;
             }
         }
@@ -77,39 +110,36 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         vec3 origin2 = spawnOrigin(tv, hit.u, hit.v, n);
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
 
-        // Next-event estimation: one shadow ray to a point on an emitter.
+        // Next-event estimation: one light sample, one shadow ray.
         if (kHasEmitters != 0u) {
-            LightSample ls = sampleEmitter(emitterCount, sample2D(smp));
-            vec3 toLight = ls.position - p;
-            float dist = length(toLight);
-            vec3 wi = toLight / dist;
-            float cosSigned = -dot(wi, ls.normal);
-            vec3 lightSide = cosSigned > 0.0 ? ls.normal : -ls.normal;  // faces p
-            bool emits = cosSigned > 0.0 || (ls.flags & kMaterialDoubleSided) != 0u;
-            float cosLight = abs(cosSigned);
-            float cosSurface = dot(ns, wi);
-            if (emits && cosSurface > 0.0 && dot(n, wi) > 0.0 && dist > 0.0) {
-                float lightPdf = emitterPdfSolidAngle(ls.pmf, ls.area, dist, cosLight);
-                if (lightPdf > 0.0) {
-                    vec3 target = spawnOriginOnEmitter(ls.position, ls.v0, ls.e1, ls.e2, lightSide);
-                    vec3 seg = target - origin2;
-                    float segLen = length(seg);
-                    if (segLen > 0.0 && !bvhTraceAny(origin2, seg / segLen, 0.0, segLen)) {
-                        float bsdfPdf = cosSurface * kInvPi;
-                        float w = powerHeuristic(lightPdf, bsdfPdf);
-                        L += beta * (albedo * kInvPi * cosSurface) * ls.radiance * (w / lightPdf);
+            LightSample ls = sampleLight(p, sample2D(smp));
+            if (ls.pdf > 0.0 && any(greaterThan(ls.Li, vec3(0.0)))) {
+                float bsdfPdf;
+                vec3 fcos = bsdfEval(albedo, ns, n, ls.wi, bsdfPdf);
+                if (any(greaterThan(fcos, vec3(0.0)))) {
+                    bool visible;
+                    if (ls.dist < kLightFar) {
+                        vec3 seg = ls.target - origin2;
+                        float segLen = length(seg);
+                        visible = segLen > 0.0 && !bvhTraceAny(origin2, seg / segLen, 0.0, segLen);
+                    } else {
+                        visible = !bvhTraceAny(origin2, ls.wi, 0.0, kRayMax);
+                    }
+                    if (visible) {
+                        float w = ls.isDelta ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
+                        L += beta * fcos * ls.Li * (w / ls.pdf);
                     }
                 }
             }
         }
 
-        // BSDF sampling: cosine-weighted, so f cos / pdf = albedo.
+        // BSDF sampling.
         samplerSetDim(smp, 2u + depth * kDimsPerVertex + 4u);
-        vec3 wi = toWorld(sampleCosineHemisphere(sample2D(smp)), ns);
-        float cosSurface = dot(ns, wi);
-        if (cosSurface <= 0.0 || dot(n, wi) <= 0.0) break;
-        beta *= albedo;
-        prevBsdfPdf = cosSurface * kInvPi;
+        BsdfSample bs;
+        if (!bsdfSample(albedo, ns, n, sample2D(smp), bs)) break;
+        beta *= bs.weight;
+        prevBsdfPdf = bs.pdf;
+        prevDelta = bs.isDelta;
 
         // Russian roulette after depth 3, survival probability max(beta) (>= 0.05).
         float u = sample1D(smp);
@@ -119,7 +149,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
             beta /= 1.0 - q;
         }
         origin = origin2;
-        dir = wi;
+        dir = bs.wi;
     }
     return L;
 }

@@ -32,7 +32,14 @@ DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal
     d.emitters = vk::uploadVector(ctx, scene.emitters, storage);
     d.nodesTexel = vk::TexelView(ctx, d.nodes);
     d.trisTexel = vk::TexelView(ctx, d.tris);
+    uploadEnvironment(ctx, scene, d);
     return d;
+}
+
+void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& d) {
+    d.envTexels = vk::uploadVector(ctx, scene.envTexels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    d.envTexelView = vk::TexelView(ctx, d.envTexels, VK_FORMAT_R32G32B32A32_SFLOAT);
+    d.envTables = vk::uploadVector(ctx, scene.envTables, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {

@@ -15,6 +15,8 @@ enum class Traversal { Auto, Texel, Storage };
 struct DeviceScene {
     vk::Buffer nodes, tris, shading, materials, emitters;
     vk::TexelView nodesTexel, trisTexel;
+    vk::Buffer envTexels, envTables;  // 16-byte placeholders without an environment map
+    vk::TexelView envTexelView;       // RGBA32F over envTexels
     bool texel = false;  // traversal reads nodes/triangles through the texel views
 };
 
@@ -27,5 +29,8 @@ DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal
 
 // Binds nodes, triangles and their texel views (the BVH traversal's inputs).
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene);
+
+// Uploads the environment map's texels (with their RGBA32F view) and tables.
+void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& dev);
 
 }  // namespace strata

@@ -44,4 +44,15 @@ std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::
 // KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.
 MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& model, int index);
 
+// The KHR_lights_punctual light index of node `node`
+// (node.extensions.KHR_lights_punctual.light), or -1 when it has none.
+int nodeLight(const std::string& path, const tinygltf::Model& model, int node,
+              const std::string& nodeLabel);
+
+// KHR_lights_punctual light `index` placed by the node's world transform:
+// type point, spot or directional; color 3 finite numbers >= 0; intensity
+// finite and >= 0; spot 0 <= innerConeAngle < outerConeAngle <= pi/2.
+PunctualLight convertLight(const std::string& path, const tinygltf::Model& model, int index,
+                           const glm::dmat4& world, const std::string& nodeLabel);
+
 }  // namespace strata::gltf
