@@ -1,5 +1,6 @@
 #include "render/env_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -39,6 +40,20 @@ void piecewiseConstant(const double* f, std::size_t n, float* pdf, float* cdf) {
 }
 
 }  // namespace
+
+glm::dvec3 envDirection(double u, double v, double rotation) {
+    const double theta = std::numbers::pi * v, phi = 2.0 * std::numbers::pi * (u - 0.5);
+    const glm::dvec3 m(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+    const double c = std::cos(rotation), s = std::sin(rotation);  // R_y(rotation) m
+    return {c * m.x + s * m.z, m.y, -s * m.x + c * m.z};
+}
+
+glm::dvec2 envUv(const glm::dvec3& d, double rotation) {
+    const double c = std::cos(rotation), s = std::sin(rotation);  // R_y(-rotation) d
+    const glm::dvec3 m(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
+    const double u = (m.x == 0.0 && m.z == 0.0) ? 0.5 : 0.5 + std::atan2(m.x, -m.z) / (2.0 * std::numbers::pi);
+    return {u, std::acos(std::clamp(m.y / glm::length(m), -1.0, 1.0)) / std::numbers::pi};
+}
 
 std::vector<float> buildEnvTables(const Environment& env) {
     const std::size_t w = static_cast<std::size_t>(env.width), h = static_cast<std::size_t>(env.height);

@@ -15,6 +15,11 @@
 
 namespace strata {
 
+// The mapping of scene.h: world direction of map coordinates (u, v) in
+// [0,1]^2 for an environment turned by `rotation` radians about +Y, and back.
+glm::dvec3 envDirection(double u, double v, double rotation);
+glm::dvec2 envUv(const glm::dvec3& dir, double rotation);
+
 // Rec. 709 luminance of linear RGB.
 inline double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 

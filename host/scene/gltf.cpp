@@ -299,6 +299,7 @@ public:
     }
 
     bool usesDefaultMaterial() const { return usesDefault_; }
+    std::size_t zeroLights() const { return zeroLights_; }
 
     // One warning each, after the walk: zero-power lights dropped, ranges ignored.
     void warnLights() const {
@@ -476,7 +477,6 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     }
     SceneBuilder builder(path, model, scene);
     builder.walk(sceneIndex);
-    builder.warnLights();
     if (builder.usesDefaultMaterial() || scene.materials.empty()) {
         MaterialDesc fallback;  // glTF defaults
         fallback.name = "default";
@@ -502,8 +502,11 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
             "no light: no triangle has an emissive material (emissiveFactor * emissiveStrength > 0)"
             " and a non-zero area, no node has a KHR_lights_punctual light, and no --env is given";
         if (scene.droppedEmitters > 0) msg += "; " + dropped;
+        if (builder.zeroLights() > 0)
+            msg += "; " + std::to_string(builder.zeroLights()) + " punctual light(s) have zero intensity or a black color";
         fail(path, msg);
     }
+    builder.warnLights();
     if (scene.droppedEmitters > 0) {
         warn(path, dropped + "; they are kept as geometry but emit no light");
     }
