@@ -101,6 +101,14 @@ std::pair<double, double> sphereBounds(const Scene& scene) {
     return {hMin, rMax};
 }
 
+// A file of tests/data/lights/ lit by --env-color 1,1,1.
+Scene loadWithWhiteEnvironment(const std::string& name) {
+    EnvironmentOptions env;
+    env.hasColor = true;
+    env.color = glm::vec3(1.0f);
+    return loadSceneWithEnvironment(lightsPath(name), env);
+}
+
 }  // namespace
 
 TEST_CASE("lights: KHR_lights_punctual lights are loaded in world space") {
@@ -320,10 +328,7 @@ TEST_CASE("lights: directional light on a plane gives a/pi * E * cos on every pi
 // a convex cone), background when a 9 x 9 grid of rays over the pixel misses
 // the circumscribed sphere by more than the grid spacing.
 TEST_CASE("lights: constant environment furnace: a convex sphere of albedo a is a, the background exactly 1") {
-    EnvironmentOptions env;
-    env.hasColor = true;
-    env.color = glm::vec3(1.0f);
-    Scene scene = loadSceneWithEnvironment(lightsPath("sphere.gltf"), env);
+    Scene scene = loadWithWhiteEnvironment("sphere.gltf");
     REQUIRE(scene.environment.enabled);
     const auto [hMin, rMax] = sphereBounds(scene);
     constexpr int kSize = 32;
@@ -429,10 +434,7 @@ TEST_CASE("lights: an environment map over a tilted plane gives the map's cosine
 // must both use the pmf to sum to 1: leaving it out of lightPdfEnvironment
 // biases L by 2.3% (z = -15 measured), a failure of this test.
 TEST_CASE("lights: a constant environment and a directional light share the choice and MIS (pmf 1/2)") {
-    EnvironmentOptions env;
-    env.hasColor = true;
-    env.color = glm::vec3(1.0f);
-    Scene scene = loadSceneWithEnvironment(lightsPath("env-plane.gltf"), env);
+    Scene scene = loadWithWhiteEnvironment("env-plane.gltf");
     const glm::dvec3 n = glm::normalize(glm::dvec3(1.0, 1.5, -0.5));
     PunctualLight sun;
     sun.type = PunctualLight::Type::Directional;
