@@ -1,6 +1,7 @@
 // strata command line. Errors: one line on stderr; exit 2 for bad input
 // (scene, flags, files), 3 for device failures, 1 for anything else.
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -15,6 +16,7 @@
 #include "image/image_io.h"
 #include "render/command.h"
 #include "render/sampler_kind.h"
+#include "scene/environment.h"
 #include "util/error.h"
 #include "vk/check.h"
 #include "vk/context.h"
@@ -29,12 +31,15 @@ constexpr const char* kUsage =
     "                     [--time SECONDS] [--traversal auto|texel|storage] [--quiet]\n"
     "                     [--sampler independent|regular|rotated|stratified|sobol|bluenoise]\n"
     "                     [--filter box|tent|gaussian|blackman-harris] [--filter-radius PIXELS]\n"
+    "                     [--mis power|bsdf|light]\n"
     "                     [--stats] [--stats-json FILE] [--validation]\n"
+    "                     [--env MAP.hdr|MAP.exr | --env-color R,G,B] [--env-intensity S]\n"
+    "                     [--env-rotate DEGREES]\n"
     "       strata reference SCENE --spp N -o REF.exr [render options]\n"
     "       strata compare IMAGE.exr REFERENCE.exr [--json FILE]\n"
     "       strata converge SCENE --reference REF.exr -o REPORT.csv|.json [--spp 1,2,4,...]\n"
     "                       [--seeds K] [--plot PLOT.png] [--seed S] [--max-depth D] [--camera I]\n"
-    "                       [--sampler NAME|all]\n"
+    "                       [--sampler NAME|all] [--env ... (as render)]\n"
     "       strata edges [--spp 64] [--sampler NAME|all] [--seed S] [-o TABLE.csv] [--plot PLOT.png]\n"
     "       strata bench SCENE [--width W] [--height H] [--reps R] [--camera I] [--device I] [--json FILE]\n"
     "       strata devices\n"
@@ -42,7 +47,9 @@ constexpr const char* kUsage =
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
     "  0 shows emitters only, 1 is direct lighting; default 16.\n"
     "  reference writes EXR with variance.R/G/B channels (variance of each pixel's mean).\n"
-    "  relMSE = mean (x - r)^2 / (r^2 + 0.01).\n";
+    "  relMSE = mean (x - r)^2 / (r^2 + 0.01).\n"
+    "  --env: equirectangular map, +Y up, image centre -Z, u towards +X; --env-color:\n"
+    "  constant radiance; both scaled by --env-intensity and turned about +Y by --env-rotate.\n";
 
 [[noreturn]] void badFlag(const std::string& what) { throw Error("strata: error: " + what); }
 
@@ -64,6 +71,52 @@ double parsePositive(const std::string& flag, const std::string& value, double m
         badFlag(flag + " expects " + what + " in (0, " + std::to_string(static_cast<long long>(max)) + "], got '" +
                 value + "'");
     return v;
+}
+
+double parseFinite(const std::string& flag, const std::string& value) {
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(v))
+        badFlag(flag + " expects a finite number, got '" + value + "'");
+    return v;
+}
+
+// --env-color R,G,B: three finite numbers >= 0, not all 0.
+glm::vec3 parseColor(const std::string& flag, const std::string& value) {
+    double c[3];
+    std::size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t comma = value.find(',', start);
+        if ((k < 2) != (comma != std::string::npos)) badFlag(flag + " expects R,G,B, got '" + value + "'");
+        const std::string item = value.substr(start, k < 2 ? comma - start : std::string::npos);
+        char* end = nullptr;
+        c[k] = std::strtod(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !std::isfinite(c[k]) || c[k] < 0.0)
+            badFlag(flag + " expects R,G,B, three finite numbers >= 0, got '" + value + "'");
+        start = comma + 1;
+    }
+    if (c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0)
+        badFlag(flag + " is black; leave out --env-color for no environment");
+    return glm::vec3(c[0], c[1], c[2]);
+}
+
+// The environment flags shared by render, reference and converge; true when
+// `a` is one of them.
+template <class Value>
+bool parseEnvFlag(const std::string& a, Value&& value, strata::EnvironmentOptions& env) {
+    if (a == "--env") env.file = value();
+    else if (a == "--env-color") env.color = parseColor(a, value()), env.hasColor = true;
+    else if (a == "--env-intensity") env.intensity = static_cast<float>(parsePositive(a, value(), 1e30, "a factor"));
+    else if (a == "--env-rotate") env.rotateDegrees = static_cast<float>(parseFinite(a, value()));
+    else return false;
+    return true;
+}
+
+void checkEnvFlags(const std::vector<std::string>& args, const strata::EnvironmentOptions& env) {
+    if (!env.file.empty() && env.hasColor) badFlag("--env and --env-color exclude each other");
+    for (const auto& a : args)
+        if ((a == "--env-intensity" || a == "--env-rotate") && !env.given())
+            badFlag(a + " needs --env or --env-color");
 }
 
 strata::RenderCommand parseRender(const std::vector<std::string>& args) {
@@ -90,6 +143,14 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
         else if (a == "--stats-json") cmd.statsJson = value();
         else if (a == "--validation") cmd.validation = true;
         else if (a == "--sampler") cmd.settings.sampler = strata::samplerByName(value()).kind;
+        else if (parseEnvFlag(a, value, cmd.env)) continue;
+        else if (a == "--mis") {
+            const std::string& v = value();
+            if (v == "power") cmd.settings.mis = strata::gpu::kMisPower;
+            else if (v == "bsdf") cmd.settings.mis = strata::gpu::kMisBsdf;
+            else if (v == "light") cmd.settings.mis = strata::gpu::kMisLight;
+            else badFlag("--mis expects power, bsdf or light, got '" + v + "'");
+        }
         else if (a == "--filter") {
             const float radius = cmd.settings.filter.radius;
             const bool customRadius = radiusGiven;
@@ -109,6 +170,7 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
         else badFlag("unexpected argument '" + a + "' (one scene per render)");
     }
     if (cmd.scene.empty()) badFlag("render needs a scene file (see 'strata --help')");
+    checkEnvFlags(args, cmd.env);
     if (cmd.outputs.empty()) {
         const std::string stem = std::filesystem::path(cmd.scene).stem().string();
         cmd.outputs = {stem + ".exr", stem + ".png"};
@@ -183,11 +245,13 @@ int runConverge(const std::vector<std::string>& args) {
         else if (a == "--device") cmd.device = parseUnsigned(a, value(), 0, 1024);
         else if (a == "--validation") cmd.validation = true;
         else if (a == "--quiet") cmd.quiet = true;
+        else if (parseEnvFlag(a, value, cmd.env)) continue;
         else if (!a.empty() && a[0] == '-') badFlag("unknown option '" + a + "' (see 'strata --help')");
         else if (cmd.scene.empty()) cmd.scene = a;
         else badFlag("unexpected argument '" + a + "'");
     }
     if (cmd.scene.empty()) badFlag("converge needs a scene file");
+    checkEnvFlags(args, cmd.env);
     if (cmd.reference.empty()) badFlag("converge needs --reference REF.exr");
     if (cmd.report.empty()) badFlag("converge needs -o REPORT.csv or REPORT.json");
     return strata::runConverge(cmd);

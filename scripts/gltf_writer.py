@@ -175,10 +175,29 @@ class GltfWriter:
                                      "orthographic": {"xmag": xmag, "ymag": ymag,
                                                       "znear": znear, "zfar": zfar}})
 
-    def add_node(self, name, **fields):
-        """fields: mesh, camera, children, translation, rotation, scale, matrix."""
+    def add_light(self, name, type_, color=None, intensity=None, spot=None, range_=None):
+        """KHR_lights_punctual light; spot = (innerConeAngle, outerConeAngle) in
+        radians. Returns its index; a node refers to it with light=index."""
+        light = {"name": name, "type": type_}
+        if color is not None:
+            light["color"] = list(color)
+        if intensity is not None:
+            light["intensity"] = intensity
+        if spot is not None:
+            light["spot"] = {"innerConeAngle": spot[0], "outerConeAngle": spot[1]}
+        if range_ is not None:
+            light["range"] = range_
+        ext = self.doc.setdefault("extensions", {}).setdefault("KHR_lights_punctual", {"lights": []})
+        ext["lights"].append(light)
+        return len(ext["lights"]) - 1
+
+    def add_node(self, name, light=None, **fields):
+        """fields: mesh, camera, children, translation, rotation, scale, matrix;
+        light: a KHR_lights_punctual light index."""
         node = {"name": name}
         node.update(fields)
+        if light is not None:
+            node["extensions"] = {"KHR_lights_punctual": {"light": light}}
         return self._add("nodes", node)
 
     def set_scene(self, nodes, name=None):

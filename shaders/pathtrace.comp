@@ -2,11 +2,13 @@
 // Progressive path tracer: one path per pixel of the dispatch's tile, one
 // sample per dispatch, added into the accumulation buffer (sum, count, sum of
 // squares). The glTF BSDF (lib/bsdf.glsl; plain Lambert when no material has
-// a specular or transmission lobe); next-event estimation on emissive
-// triangles combined with BSDF-sampled emission by the power heuristic
-// (Veach 1997; delta lobes take no MIS); Russian roulette after depth 3.
-// maxDepth counts scattering events (pbrt's convention): 0 shows emitters
-// seen directly, 1 is direct lighting.
+// a specular or transmission lobe); next-event estimation on all lights
+// (emissive triangles, KHR_lights_punctual, the environment; lib/lights.glsl)
+// combined with BSDF sampling by the power heuristic (Veach 1997; delta
+// lights and delta lobes take no MIS; SPEC_MIS can keep one technique only);
+// Russian roulette after depth 3. maxDepth counts scattering events (pbrt's
+// convention): 0 shows emitters and the environment seen directly, 1 is
+// direct lighting.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -14,7 +16,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "lib/scene.glsl"
 #include "lib/sampler.glsl"
 
-layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
+layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;  // any light at all
+layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;             // kMis* (types.h)
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
@@ -41,17 +44,32 @@ vec3 cameraRay(vec2 pixel) {
 // Lambert only: no material of the scene has a specular or transmission lobe.
 const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
 
+// MIS weight of a light found by BSDF sampling with density bsdfPdf, which
+// light sampling finds with density lightPdf.
+float misWeightBsdf(bool prevDelta, float bsdfPdf, float lightPdf) {
+    if (prevDelta || kMis == kMisBsdf) return 1.0;
+    if (kMis == kMisLight) return 0.0;
+    return powerHeuristic(bsdfPdf, lightPdf);
+}
+
 vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     const uint maxDepth = frame.image.z;
-    const uint emitterCount = frame.counts.x;
+    const bool lightSampling = kHasEmitters != 0u && kMis != kMisBsdf;
     vec3 L = vec3(0.0);
     vec3 beta = vec3(1.0);
     float prevBsdfPdf = 0.0;
-    bool prevDelta = true;  // the camera ray: emission seen directly counts fully
+    bool prevDelta = true;  // the camera ray: emitters it finds get weight 1
 
     for (uint depth = 0u;; ++depth) {
         TraceHit hit;
-        if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) break;
+        if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) {
+            // Escaped: the environment, weighted against light sampling.
+            if (kHasEmitters != 0u && hasFeature(kFeatureEnvironment)) {
+                float w = misWeightBsdf(prevDelta, prevBsdfPdf, prevDelta ? 0.0 : lightPdfEnvironment(dir));
+                L += beta * w * environmentRadiance(dir);
+            }
+            break;
+        }
 
         TriVerts tv = bvhFetchTri(hit.triangle);
         vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
@@ -63,12 +81,8 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         // Emission found by the previous vertex's BSDF sample (or directly).
         if (kHasEmitters != 0u && sh.light != kNoLight) {
             if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
-                float w = 1.0;
-                if (!prevDelta) {
-                    Emitter em = emitters[sh.light];
-                    float lightPdf = emitterPdfSolidAngle(em.pmf, em.area, hit.t, abs(dot(dir, ng)));
-                    w = powerHeuristic(prevBsdfPdf, lightPdf);
-                }
+                float lightPdf = prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
+                float w = misWeightBsdf(prevDelta, prevBsdfPdf, lightPdf);
                 L += beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
             }
         }
@@ -94,34 +108,29 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
 
-        // Next-event estimation: one shadow ray to a point on an emitter.
-        if (kHasEmitters != 0u) {
-            LightSample ls = sampleEmitter(emitterCount, sample2D(smp));
-            vec3 toLight = ls.position - p;
-            float dist = length(toLight);
-            vec3 wi = toLight / dist;
-            float cosSigned = -dot(wi, ls.normal);
-            vec3 lightSide = cosSigned > 0.0 ? ls.normal : -ls.normal;  // faces p
-            bool emits = cosSigned > 0.0 || (ls.flags & kMaterialDoubleSided) != 0u;
-            float cosLight = abs(cosSigned);
-            vec3 wiL = vec3(dot(wi, t), dot(wi, b), dot(wi, ns));
-            float geoSide = dot(n, wi);
+        // Next-event estimation: one light sample, one shadow ray.
+        if (lightSampling) {
+            LightSample ls = sampleLight(p, sample2D(smp));
+            vec3 wiL = vec3(dot(ls.wi, t), dot(ls.wi, b), dot(ls.wi, ns));
+            float geoSide = dot(n, ls.wi);
             // The shading and geometric normals must agree on the side wi leaves to.
-            if (emits && dist > 0.0 && geoSide != 0.0 && (geoSide > 0.0) == (wiL.z > 0.0)) {
-                float lightPdf = emitterPdfSolidAngle(ls.pmf, ls.area, dist, cosLight);
+            if (ls.pdf > 0.0 && any(greaterThan(ls.Li, vec3(0.0))) && geoSide != 0.0 &&
+                (geoSide > 0.0) == (wiL.z > 0.0)) {
                 float bsdfPdf;
                 vec3 f = evalBsdf(bsdf, woL, wiL, bsdfPdf);
-                if (lightPdf > 0.0 && any(greaterThan(f, vec3(0.0)))) {
+                if (any(greaterThan(f, vec3(0.0)))) {
                     vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
-                    vec3 target = spawnOriginOnEmitter(ls.position, ls.v0, ls.e1, ls.e2, lightSide);
-                    vec3 seg = target - from;
-                    float segLen = length(seg);
-                    if (segLen > 0.0 && !bvhTraceAny(from, seg / segLen, 0.0, segLen)) {
-                        float w = powerHeuristic(lightPdf, bsdfPdf);
-                        vec3 Le = (kFeatures & kFeatureTextures) != 0u
-                                      ? emissionAt(shading[ls.triangle].material, ls.triangle, ls.bary)
-                                      : ls.radiance;
-                        L += beta * f * Le * (w / lightPdf);
+                    bool visible;
+                    if (ls.dist < kLightFar) {
+                        vec3 seg = ls.target - from;
+                        float segLen = length(seg);
+                        visible = segLen > 0.0 && !bvhTraceAny(from, seg / segLen, 0.0, segLen);
+                    } else {
+                        visible = !bvhTraceAny(from, ls.wi, 0.0, kRayMax);
+                    }
+                    if (visible) {
+                        float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
+                        L += beta * f * ls.Li * (w / ls.pdf);
                     }
                 }
             }

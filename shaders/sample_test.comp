@@ -8,6 +8,7 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 #include "shared/types.h"
 #include "shared/bindings.h"
 
+layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
 layout(std430, set = 0, binding = BINDING_SAMPLES) writeonly buffer SampleBuffer { vec4 samples[]; };
 layout(push_constant) uniform Push { SampleTestParams params; };
@@ -83,9 +84,18 @@ void main() {
     } else if (params.routine == kSampleFilter) {
         out4.xy = sampleFilter(sample2D(smp));
     } else if (params.routine == kSampleEmitterChoice) {
-        LightSample ls = sampleEmitter(params.emitterCount, sample2D(smp));
+        float rest;
         // Identify the emitter by its pmf-independent payload: radiance.x holds its index.
-        out4.x = ls.radiance.x;
+        out4.x = emitters[chooseLight(params.emitterCount, sample2D(smp).x, rest)].radiance.x;
+    } else if (params.routine == kSampleLight) {
+        LightSample ls = sampleLight(vec3(0.0), sample2D(smp));
+        out4 = vec4(ls.wi, ls.pdf);
+    } else if (params.routine == kSampleEnvironmentPdf) {
+        uint rows = params.count / params.width;
+        vec2 c = (vec2(i % params.width, i / params.width) + 0.5) / vec2(params.width, rows);
+        float z = 2.0 * c.y - 1.0, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * c.x;
+        vec3 d = vec3(r * cos(phi), r * sin(phi), z);
+        out4 = vec4(d, lightPdfEnvironment(d));
     } else if (params.routine == kSampleBsdf || params.routine == kSampleBsdfWeight) {
         vec3 wo;
         Bsdf b = testBsdf(wo);

@@ -313,8 +313,8 @@ TEST_CASE("gltf: the zero-area-only emitter error counts the zero-area triangles
     const std::string path = dataPath("broken/zero-area-only-emitter.gltf");
     CHECK_THROWS_WITH_AS(strata::loadGltf(path),
                          (path + ": error: no light: no triangle has an emissive material "
-                                 "(emissiveFactor * emissiveStrength > 0) and a non-zero area; "
-                                 "2 emissive triangle(s) have zero area")
+                                 "(emissiveFactor * emissiveStrength > 0) and a non-zero area, no node has a "
+                                 "KHR_lights_punctual light, and no --env is given; 2 emissive triangle(s) have zero area")
                              .c_str(),
                          strata::Error);
 }

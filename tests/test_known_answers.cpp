@@ -61,17 +61,11 @@ struct ExpectedPixel {
 };
 
 // The pixel's expected value under the box filter: the mean of planeRadiance
-// over sub x sub camera rays at the centres of a sub-pixel grid. Camera model
-// of shaders/pathtrace.comp with the frame vectors of render/renderer.cpp:
-// ndc = (2 px / W - 1, 1 - 2 py / H), dir = normalize(forward + ndc.x right
-// tan(yfov / 2) aspect + ndc.y up tan(yfov / 2)), right = normalize(cross(
-// forward, up)), up = cross(right, forward). Evaluated in double.
+// over sub x sub camera rays at the centres of a sub-pixel grid (CameraRays,
+// test_util.h), evaluated in double.
 std::vector<ExpectedPixel> expectedImage(const Camera& cam, int width, int height, int sub) {
-    const glm::dvec3 o(cam.position), f(cam.forward);
-    const double tanHalf = std::tan(0.5 * static_cast<double>(cam.yfov));
-    const double aspect = static_cast<double>(width) / height;
-    const glm::dvec3 right = glm::normalize(glm::cross(f, glm::dvec3(cam.up)));
-    const glm::dvec3 up = glm::cross(right, f);
+    const CameraRays rays(cam, width, height);
+    const glm::dvec3 o = rays.origin;
     std::vector<ExpectedPixel> out(static_cast<std::size_t>(width) * height);
     for (int py = 0; py < height; ++py) {
         for (int px = 0; px < width; ++px) {
@@ -80,10 +74,7 @@ std::vector<ExpectedPixel> expectedImage(const Camera& cam, int width, int heigh
             double sum = 0.0;
             for (int j = 0; j < sub && e.onPlane; ++j) {
                 for (int i = 0; i < sub && e.onPlane; ++i) {
-                    const double sx = px + (i + 0.5) / sub, sy = py + (j + 0.5) / sub;
-                    const double nx = 2.0 * sx / width - 1.0, ny = 1.0 - 2.0 * sy / height;
-                    const glm::dvec3 d =
-                        glm::normalize(f + nx * tanHalf * aspect * right + ny * tanHalf * up);
+                    const glm::dvec3 d = rays.subDir(px, py, i, j, sub);
                     // The plane y = 0 (seen from above) and the emitter y = h.
                     const double tPlane = d.y < 0.0 ? -o.y / d.y : -1.0;
                     const glm::dvec3 p = o + tPlane * d;

@@ -27,6 +27,10 @@ TEST_CASE("shared structs have the std430 offsets the shaders assume") {
     CHECK(offsetof(Emitter, radiance) == 48);
     CHECK(offsetof(Emitter, aliasProb) == 64);
     CHECK(offsetof(FrameUniforms, image) == 64);
+    CHECK(offsetof(FrameUniforms, scene) == 96);
+    CHECK(offsetof(FrameUniforms, envScale) == 112);
+    CHECK(offsetof(FrameUniforms, envRotation) == 128);
+    CHECK(offsetof(FrameUniforms, envInfo) == 144);
     CHECK(offsetof(TraceRay, tmin) == 12);
     CHECK(offsetof(TraceHit, triangle) == 4);
     // Texel views read nodes as 2 and triangles as 3 RGBA32 texels.

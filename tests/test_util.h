@@ -56,4 +56,28 @@ inline ImageMean imageMean(const Film& film) {
     return {sum / n, std::sqrt(3.0 * var) / n};
 }
 
+// Camera rays of shaders/pathtrace.comp with the frame vectors of
+// render/renderer.cpp, in double: through image position (sx, sy) in pixels,
+// ndc = (2 sx / W - 1, 1 - 2 sy / H), dir = normalize(forward + ndc.x right
+// tan(yfov / 2) aspect + ndc.y up tan(yfov / 2)), right = normalize(cross(
+// forward, up)), up = cross(right, forward).
+struct CameraRays {
+    glm::dvec3 origin, forward, right, up;  // right and up scaled as above
+    int width, height;
+    CameraRays(const Camera& cam, int w, int h) : origin(cam.position), forward(cam.forward), width(w), height(h) {
+        const double tanHalf = std::tan(0.5 * static_cast<double>(cam.yfov));
+        const glm::dvec3 r = glm::normalize(glm::cross(forward, glm::dvec3(cam.up)));
+        right = r * tanHalf * (static_cast<double>(w) / h);
+        up = glm::cross(r, forward) * tanHalf;
+    }
+    glm::dvec3 dir(double sx, double sy) const {
+        return glm::normalize(forward + (2.0 * sx / width - 1.0) * right + (1.0 - 2.0 * sy / height) * up);
+    }
+    // Centre of sub-pixel (i, j) of pixel (px, py) on a sub x sub grid (the
+    // midpoint rule for the box filter of radius 0.5).
+    glm::dvec3 subDir(int px, int py, int i, int j, int sub) const {
+        return dir(px + (i + 0.5) / sub, py + (j + 0.5) / sub);
+    }
+};
+
 }  // namespace strata::test

@@ -1,5 +1,7 @@
 #include "measure/converge.h"
 
+#include "scene/environment.h"
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +13,7 @@
 #include "measure/plot.h"
 #include "render/gpu_scene.h"
 #include "render/sampler_kind.h"
+#include "scene/environment.h"
 #include "scene/scene.h"
 #include "stats/stats.h"
 #include "util/error.h"
@@ -88,7 +91,7 @@ nlohmann::json ConvergeReport::toJson() const {
 ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
     const RgbImage ref = readRgb(cmd.reference);
-    Scene scene = loadGltf(cmd.scene);
+    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
     if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
         fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist");
     GpuScene gpu = packScene(scene);

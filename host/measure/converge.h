@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/renderer.h"
+#include "scene/environment.h"
 
 namespace strata {
 
@@ -22,6 +23,7 @@ struct ConvergeCommand {
     std::string report;                 // .csv or .json
     std::string plot;                   // .png, optional
     RenderSettings settings;            // width/height come from the reference; settings.sampler
+    EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     bool allSamplers = false;           // --sampler all: every sampler that suits the spp list
     int camera = 0;
     int device = -1;

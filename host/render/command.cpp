@@ -8,6 +8,7 @@
 #include "render/gpu_scene.h"
 #include "render/sampler_kind.h"
 #include "render/stats.h"
+#include "scene/environment.h"
 #include "scene/scene.h"
 #include "util/error.h"
 #include "util/files.h"
@@ -29,7 +30,7 @@ int runRender(const RenderCommand& cmd) {
                          cmd.settings.height);
 
     auto t0 = std::chrono::steady_clock::now();
-    Scene scene = loadGltf(cmd.scene);
+    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
     const double loadMs = msSince(t0);
     if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
         fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist (the scene has " +

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "render/renderer.h"
+#include "scene/environment.h"
 
 namespace strata {
 
@@ -12,6 +13,7 @@ struct RenderCommand {
     std::string scene;
     std::vector<std::string> outputs;   // .exr and/or .png
     RenderSettings settings;
+    EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     int camera = 0;
     int device = -1;
     bool quiet = false;

@@ -38,7 +38,14 @@ DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal
     d.textureRefs = vk::uploadVector(ctx, scene.textureRefs, storage);
     d.texels = vk::uploadVector(ctx, scene.texels, texel);
     d.texelsView = vk::TexelView(ctx, d.texels, VK_FORMAT_R32_UINT);
+    uploadEnvironment(ctx, scene, d);
     return d;
+}
+
+void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& d) {
+    d.envTexels = vk::uploadVector(ctx, scene.envTexels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    d.envTexelView = vk::TexelView(ctx, d.envTexels, VK_FORMAT_R32G32B32A32_SFLOAT);
+    d.envTables = vk::uploadVector(ctx, scene.envTables, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
 void checkTexelLimit(const vk::Context& ctx, const GpuScene& scene) {

@@ -19,6 +19,8 @@ struct DeviceScene {
     // (every binding the shaders declare stays valid for the validation layers).
     vk::Buffer texcoords, tangents, textureRefs, texels;
     vk::TexelView texelsView;  // R32UI over `texels`
+    vk::Buffer envTexels, envTables;  // 16-byte placeholders without an environment map
+    vk::TexelView envTexelView;       // RGBA32F over envTexels
     bool texel = false;  // traversal reads nodes/triangles through the texel views
 };
 
@@ -39,5 +41,8 @@ void checkTexelLimit(const vk::Context& ctx, const GpuScene& scene);
 // their descriptor types for a vk::Kernel.
 std::vector<vk::BindingDesc> sceneBindings();
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene);
+
+// Uploads the environment map's texels (with their RGBA32F view) and tables.
+void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& dev);
 
 }  // namespace strata

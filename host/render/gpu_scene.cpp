@@ -1,8 +1,11 @@
 #include "render/gpu_scene.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
+#include "render/env_tables.h"
 #include "render/gpu_textures.h"
 
 namespace strata {
@@ -26,7 +29,78 @@ std::uint64_t GpuScene::bytes() const {
            shading.size() * sizeof(gpu::TriShading) + materials.size() * sizeof(gpu::Material) +
            emitters.size() * sizeof(gpu::Emitter) + texcoords.size() * sizeof(gpu::TriTexcoords) +
            tangents.size() * sizeof(gpu::TriTangents) +
-           textureRefs.size() * sizeof(gpu::TextureRef) + texels.size() * sizeof(std::uint32_t);
+           textureRefs.size() * sizeof(gpu::TextureRef) + texels.size() * sizeof(std::uint32_t) +
+           envTexels.size() * sizeof(glm::vec4) + envTables.size() * sizeof(float);
+}
+
+namespace {
+
+double sceneRadius(const Scene& scene) {
+    if (scene.triangles.empty()) return 1.0;
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const Triangle& t : scene.triangles)
+        for (const glm::vec3& v : t.v) lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
+    const double r = 0.5 * glm::length(hi - lo);
+    return r > 0.0 ? r : 1.0;
+}
+
+// Appends the punctual lights and the environment to g.emitters, their
+// estimated powers to `weights` (packScene's comment lists them).
+void packLights(const Scene& scene, GpuScene& g, std::vector<double>& weights) {
+    const double pi = std::numbers::pi, r2 = g.sceneRadius * g.sceneRadius;
+    for (const PunctualLight& l : scene.lights) {
+        gpu::Emitter e{};
+        e.radiance = l.intensityRgb();
+        const double y = luminance(glm::dvec3(e.radiance));
+        switch (l.type) {
+            case PunctualLight::Type::Point:
+                e.kind = gpu::kLightPoint;
+                e.v0 = l.position;
+                weights.push_back(4.0 * pi * y);
+                break;
+            case PunctualLight::Type::Spot: {
+                e.kind = gpu::kLightSpot;
+                e.v0 = l.position;
+                e.e1 = l.direction;
+                const double cosInner = std::cos(double(l.innerConeAngle)), cosOuter = std::cos(double(l.outerConeAngle));
+                // KHR_lights_punctual's falloff: scale = 1 / max(0.001, cos inner - cos outer).
+                const double scale = 1.0 / std::max(0.001, cosInner - cosOuter);
+                e.e2 = glm::vec3(static_cast<float>(scale), static_cast<float>(-cosOuter * scale), 0.0f);
+                weights.push_back(2.0 * pi * (1.0 - 0.5 * (cosInner + cosOuter)) * y);
+                break;
+            }
+            case PunctualLight::Type::Directional:
+                e.kind = gpu::kLightDirectional;
+                e.e1 = l.direction;
+                weights.push_back(pi * r2 * y);
+                break;
+        }
+        g.emitters.push_back(e);
+    }
+    const Environment& env = scene.environment;
+    if (!env.enabled) return;
+    gpu::Emitter e{};
+    e.kind = gpu::kLightEnvironment;
+    g.environment = static_cast<std::uint32_t>(g.emitters.size());
+    g.emitters.push_back(e);
+    weights.push_back(pi * r2 * 4.0 * pi * envMeanLuminance(env));
+    g.envScale = env.scale;
+    g.envRotation = env.rotation;
+    g.envWidth = static_cast<std::uint32_t>(env.width);
+    g.envHeight = static_cast<std::uint32_t>(env.height);
+    g.envTexels = envTexels(env);
+    g.envTables = buildEnvTables(env);
+    g.features.bits |= gpu::kFeatureEnvironment;
+    if (env.width > 0) g.features.bits |= gpu::kFeatureEnvMap;
+}
+
+}  // namespace
+
+void setLightUniforms(gpu::FrameUniforms& f, const GpuScene& g) {
+    f.counts.x = static_cast<std::uint32_t>(g.emitters.size());
+    f.envScale = glm::vec4(g.envScale, 0.0f);
+    f.envRotation = glm::vec4(std::cos(g.envRotation), std::sin(g.envRotation), 0.0f, 0.0f);
+    f.envInfo = glm::uvec4(g.environment, g.envWidth, g.envHeight, 0u);
 }
 
 void buildAliasTable(const std::vector<double>& weights, std::vector<gpu::Emitter>& emitters) {
@@ -156,7 +230,7 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
             // not the triangle's uv footprint: the pmf only steers sampling).
             const glm::dvec3 scaled =
                 glm::dvec3(le) * (m.emissiveTexture.used() ? emissiveMean(scene, m) : glm::dvec3(1.0));
-            const double lum = 0.2126 * scaled.r + 0.7152 * scaled.g + 0.0722 * scaled.b;
+            const double lum = luminance(scaled);
             gpu::Emitter e{};
             e.v0 = t.v[0];
             e.e1 = t.v[1] - t.v[0];
@@ -171,6 +245,9 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
             weights.push_back(lum * e.area * std::numbers::pi * sides);
         }
     }
+    g.sceneRadius = sceneRadius(scene);
+    packLights(scene, g, weights);
+    if (!scene.lights.empty()) g.features.bits |= gpu::kFeaturePunctual;
     for (double w : weights) g.totalPower += w;
     // Only black emissive textures: sample emitters by area instead.
     if (!weights.empty() && g.totalPower <= 0.0)

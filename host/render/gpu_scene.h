@@ -24,22 +24,41 @@ struct GpuScene {
     std::vector<gpu::TriVerts> tris;        // BVH order
     std::vector<gpu::TriShading> shading;   // BVH order
     std::vector<gpu::Material> materials;
-    std::vector<gpu::Emitter> emitters;     // with the alias table filled in
     // Filled only when features.bits has kFeatureTextures (texcoords,
     // textureRefs, texels) or kFeatureNormalMap (tangents); empty otherwise.
     std::vector<gpu::TriTexcoords> texcoords;  // BVH order
     std::vector<gpu::TriTangents> tangents;    // BVH order
     std::vector<gpu::TextureRef> textureRefs;
     std::vector<std::uint32_t> texels;         // R32UI words (types.h, TextureRef)
-    double totalPower = 0.0;                // sum of luminance(Le) * area * pi * sides
+    std::vector<gpu::Emitter> emitters;     // triangles, then punctual lights, then the
+                                            // environment; with the alias table filled in
+    double totalPower = 0.0;                // sum of the emitters' estimated powers (packScene)
+    double sceneRadius = 0.0;               // bounding sphere of the triangles' bounds (1 if none)
+    std::uint32_t environment = gpu::kNoLight;  // the environment's emitter index
+    glm::vec3 envScale{0.0f};               // Environment::scale
+    float envRotation = 0.0f;               // radians about +Y
+    std::uint32_t envWidth = 0, envHeight = 0;  // 0 without a map
+    std::vector<glm::vec4> envTexels;       // RGBA32F, row 0 at the top (render/env_tables.h)
+    std::vector<float> envTables;           // sampling tables (render/env_tables.h)
     SceneFeatures features;
     BvhStats bvh;
     std::uint64_t bytes() const;
 };
 
 // Builds the BVH and packs everything. Emitters are the triangles for which
-// isEmitter (scene.h) holds.
+// isEmitter (scene.h) holds, the punctual lights and the environment. The
+// alias table's weights are estimated powers (any positive choice is
+// unbiased; these make the choice roughly proportional to contribution),
+// with Y = Rec. 709 luminance and R = sceneRadius:
+//   triangle     Y(Le) * area * pi * sides
+//   point        4 pi Y(I)
+//   spot         2 pi (1 - (cos inner + cos outer) / 2) Y(I)
+//   directional  pi R^2 Y(E)
+//   environment  pi R^2 * 4 pi * (solid-angle mean of Y(L))   (as pbrt-v4)
 GpuScene packScene(const Scene& scene, const BvhBuildOptions& options = {});
+
+// Fills FrameUniforms.counts.x and the env* members from the packed scene.
+void setLightUniforms(gpu::FrameUniforms& frame, const GpuScene& scene);
 
 // Walker/Vose alias table over `weights` (all >= 0, sum > 0): fills
 // aliasProb/alias/pmf of `emitters` in place.

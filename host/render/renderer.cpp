@@ -34,6 +34,7 @@ gpu::FrameUniforms frameUniforms(const GpuScene& scene, const Camera& cam, const
     f.image = glm::uvec4(s.width, s.height, s.maxDepth, s.seed);
     f.counts = glm::uvec4(scene.emitters.size(), scene.tris.size(), scene.nodes.size(), s.spp);
     f.scene = glm::vec4(static_cast<float>(scene.totalPower), 0.0f, 0.0f, 0.0f);
+    setLightUniforms(f, scene);
     return f;
 }
 
@@ -73,12 +74,15 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+        {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     });
-    std::vector<std::uint32_t> spec(4);
+    std::vector<std::uint32_t> spec(5);
     spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
     spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
     spec[SPEC_SAMPLER] = s.sampler;
     spec[SPEC_FEATURES] = scene.features.bits;
+    spec[SPEC_MIS] = s.mis;
     vk::Kernel kernel(ctx, {kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4},
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);
@@ -87,6 +91,8 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     kernel.bind(BINDING_ACCUM, accum);
     kernel.bind(BINDING_COUNTERS, counters);
     kernel.bind(BINDING_FILTER, filterTable);
+    kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
+    kernel.bind(BINDING_ENV_CDF, dev.envTables);
 
     RenderResult result;
     result.film = Film(s.width, s.height);

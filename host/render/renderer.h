@@ -26,6 +26,8 @@ struct RenderSettings {
     std::uint32_t sampler = gpu::kSamplerSobol;  // render/sampler_kind.h; default: Sobol,
                                         // the best time-to-error measured (README, Sampling)
     PixelFilter filter;                 // pixel reconstruction filter (box, radius 0.5)
+    std::uint32_t mis = gpu::kMisPower; // gpu::kMis*: light and BSDF sampling by the power
+                                        // heuristic, or one technique alone (for comparisons)
     std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
     double submitSeconds = 0.25;        // target wall time of one submission (sets how many
                                         // samples each carries; never changes the image)

@@ -7,6 +7,7 @@
 
 #include "../../shaders/shared/bindings.h"
 #include "../../shaders/shared/types.h"
+#include "render/device_scene.h"
 #include "render/filter.h"
 #include "render/sampler_kind.h"
 #include "vk/buffer.h"
@@ -16,21 +17,36 @@ namespace strata {
 
 std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::SampleTestParams& params,
                                        std::uint32_t sampler, const std::vector<gpu::Emitter>& emitters,
-                                       const PixelFilter& filter) {
+                                       const PixelFilter& filter, const GpuScene* lights) {
     using namespace gpu;
-    vk::Buffer em = vk::uploadVector(ctx, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const GpuScene none;
+    const GpuScene& scene = lights ? *lights : none;
+    vk::Buffer em = vk::uploadVector(ctx, lights ? lights->emitters : emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    FrameUniforms fu{};
+    setLightUniforms(fu, scene);
+    vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
+    std::memcpy(frame.mapped(), &fu, sizeof fu);
+    DeviceScene env;
+    uploadEnvironment(ctx, scene, env);
     vk::Buffer table = vk::uploadVector(ctx, filterInverseCdf(filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const VkDeviceSize bytes = std::max<VkDeviceSize>(16, VkDeviceSize(params.count) * sizeof(glm::vec4));
     vk::Buffer out(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                    vk::MemoryUse::Device);
     vk::Buffer back(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
-    std::vector<std::uint32_t> spec(3, 0u);
+    std::vector<std::uint32_t> spec(4, 0u);
     spec[SPEC_SAMPLER] = sampler;
+    spec[SPEC_FEATURES] = scene.features.bits;
     vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
-                      {{BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                      {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                       {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                       {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                       {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                       {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
                       sizeof(SampleTestParams), spec);
+    kernel.bind(BINDING_FRAME, frame);
+    kernel.bind(BINDING_ENV_TEXELS, env.envTexelView);
+    kernel.bind(BINDING_ENV_CDF, env.envTables);
     kernel.bind(BINDING_EMITTERS, em);
     kernel.bind(BINDING_SAMPLES, out);
     kernel.bind(BINDING_FILTER, table);

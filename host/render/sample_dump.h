@@ -9,6 +9,7 @@
 
 #include "../../shaders/shared/types.h"
 #include "render/filter.h"
+#include "render/gpu_scene.h"
 #include "vk/context.h"
 
 namespace strata {
@@ -26,9 +27,11 @@ std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampl
 
 // Runs sample_test.comp once: params.count samples of routine params.routine
 // (types.h, kSample*), with the sampler compiled in as `sampler`, the given
-// emitters (kSampleEmitterChoice) and pixel filter (kSampleFilter).
+// emitters (kSampleEmitterChoice) and pixel filter (kSampleFilter). With
+// `lights` (kSampleLight, kSampleEnvironmentPdf), its emitters, environment
+// and feature bits are used instead of `emitters`, as the path tracer sees them.
 std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::SampleTestParams& params,
                                        std::uint32_t sampler, const std::vector<gpu::Emitter>& emitters = {},
-                                       const PixelFilter& filter = {});
+                                       const PixelFilter& filter = {}, const GpuScene* lights = nullptr);
 
 }  // namespace strata

@@ -12,12 +12,15 @@ nlohmann::json statsJson(const StatsInput& in) {
     const auto& dev = in.ctx->info;
     j["device"] = {{"index", dev.index}, {"name", dev.name}, {"type", dev.type},
                    {"driver", dev.driver}, {"api_version", dev.apiVersion}};
-    std::size_t emissiveTriangles = in.gpu->emitters.size();
+    std::size_t emissiveTriangles = 0;
+    for (const auto& e : in.gpu->emitters) emissiveTriangles += e.kind == gpu::kLightTriangle;
     j["scene"] = {{"file", in.scene->path},
                   {"triangles", in.scene->triangles.size()},
                   {"materials", in.scene->materials.size()},
                   {"emissive_triangles", emissiveTriangles},
                   {"dropped_zero_area_emitters", in.scene->droppedEmitters},
+                  {"punctual_lights", in.scene->lights.size()},
+                  {"environment", in.scene->environment.enabled ? in.scene->environment.source : ""},
                   {"cameras", in.scene->cameras.size()},
                   {"features", in.gpu->features.names()},
                   {"gpu_bytes", in.gpu->bytes()},
@@ -58,7 +61,9 @@ std::string statsText(const nlohmann::json& j) {
     std::string features;
     for (const auto& f : s["features"]) features += (features.empty() ? "" : ", ") + f.get<std::string>();
     o << "scene      " << s["file"].get<std::string>() << ": " << s["triangles"] << " triangles, "
-      << s["materials"] << " materials, " << s["emissive_triangles"] << " emissive triangles"
+      << s["materials"] << " materials, " << s["emissive_triangles"] << " emissive triangles, "
+      << s["punctual_lights"] << " punctual lights"
+      << (s["environment"].get<std::string>().empty() ? "" : ", environment " + s["environment"].get<std::string>())
       << " (load " << s["load_ms"].get<double>() << " ms)\n";
     o << "features   " << (features.empty() ? "none" : features) << "\n";
     const auto& b = j["bvh"];

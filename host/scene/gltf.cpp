@@ -29,9 +29,9 @@ using gltf::quoted;
 
 // Extensions strata reads; others named in extensionsUsed are ignored with a
 // warning, and in extensionsRequired are an error.
-constexpr std::array<std::string_view, 5> kSupportedExtensions = {
-    "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
-    "KHR_materials_transmission", "KHR_texture_transform"};
+constexpr std::array<std::string_view, 6> kSupportedExtensions = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
+    "KHR_materials_specular", "KHR_materials_transmission", "KHR_texture_transform"};
 
 std::string supportedList() {
     std::string out;
@@ -328,6 +328,17 @@ public:
     }
 
     bool usesDefaultMaterial() const { return usesDefault_; }
+    std::size_t zeroLights() const { return zeroLights_; }
+
+    // One warning each, after the walk: zero-power lights dropped, ranges ignored.
+    void warnLights() const {
+        if (zeroLights_ > 0)
+            warn(path_, std::to_string(zeroLights_) +
+                            " punctual light(s) have zero intensity or a black color; they emit nothing and are dropped");
+        if (rangeIgnored_ > 0)
+            warn(path_, std::to_string(rangeIgnored_) +
+                            " punctual light(s) give a range; strata ignores it (falloff is 1/d^2 to infinity)");
+    }
 
 private:
     // Tangents of a primitive without normal map: unused, any unit vector.
@@ -400,6 +411,20 @@ private:
         const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
         if (node.camera >= 0 || node.camera < -1) addCamera(nodeIndex, world);
         if (node.mesh >= 0 || node.mesh < -1) addMesh(nodeIndex, world);
+        const int light = gltf::nodeLight(path_, model_, nodeIndex, nodeLabel(model_, nodeIndex));
+        if (light >= 0) addLight(nodeIndex, light, world);
+    }
+
+    void addLight(int nodeIndex, int light, const glm::dmat4& world) {
+        const PunctualLight l =
+            gltf::convertLight(path_, model_, light, world, nodeLabel(model_, nodeIndex));
+        const glm::vec3 i = l.intensityRgb();
+        if (!(i.x > 0.0f || i.y > 0.0f || i.z > 0.0f)) {
+            ++zeroLights_;
+            return;
+        }
+        if (model_.lights[static_cast<std::size_t>(light)].range != 0.0) ++rangeIgnored_;
+        scene_.lights.push_back(l);
     }
 
     void addCamera(int nodeIndex, const glm::dmat4& world) {
@@ -531,6 +556,8 @@ private:
     Scene& scene_;
     std::vector<std::optional<std::vector<LocalPrimitive>>> meshes_;  // decoded on first use
     bool usesDefault_ = false;
+    std::size_t zeroLights_ = 0;
+    std::size_t rangeIgnored_ = 0;
 };
 
 }  // namespace
@@ -575,13 +602,16 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     }
     const std::string dropped =
         std::to_string(scene.droppedEmitters) + " emissive triangle(s) have zero area";
-    if (options.requireEmitter && emitters == 0) {
+    if (options.requireEmitter && emitters == 0 && scene.lights.empty() && !options.externalLight) {
         std::string msg =
             "no light: no triangle has an emissive material (emissiveFactor * emissiveStrength > 0)"
-            " and a non-zero area";
+            " and a non-zero area, no node has a KHR_lights_punctual light, and no --env is given";
         if (scene.droppedEmitters > 0) msg += "; " + dropped;
+        if (builder.zeroLights() > 0)
+            msg += "; " + std::to_string(builder.zeroLights()) + " punctual light(s) have zero intensity or a black color";
         fail(path, msg);
     }
+    builder.warnLights();
     if (scene.droppedEmitters > 0) {
         warn(path, dropped + "; they are kept as geometry but emit no light");
     }

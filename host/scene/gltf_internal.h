@@ -60,5 +60,15 @@ void convertTextures(const std::string& path, const tinygltf::Model& model, Scen
 TextureSlot convertTextureSlot(const std::string& path, const tinygltf::Model& model,
                                const std::string& label, int index, int texCoord,
                                const tinygltf::Value* transform);
+// The KHR_lights_punctual light index of node `node`
+// (node.extensions.KHR_lights_punctual.light), or -1 when it has none.
+int nodeLight(const std::string& path, const tinygltf::Model& model, int node,
+              const std::string& nodeLabel);
+
+// KHR_lights_punctual light `index` placed by the node's world transform:
+// type point, spot or directional; color 3 finite numbers >= 0; intensity
+// finite and >= 0; spot 0 <= innerConeAngle < outerConeAngle <= pi/2.
+PunctualLight convertLight(const std::string& path, const tinygltf::Model& model, int index,
+                           const glm::dmat4& world, const std::string& nodeLabel);
 
 }  // namespace strata::gltf

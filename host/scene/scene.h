@@ -97,6 +97,40 @@ struct Triangle {
     std::uint32_t material = 0;
 };
 
+// KHR_lights_punctual light in world space. Units are the extension's,
+// read radiometrically: point and spot `color * intensity` is radiant
+// intensity (W/sr, falling off as 1/d^2); directional is the irradiance
+// (W/m^2) on a surface facing the light. `range` is ignored.
+struct PunctualLight {
+    enum class Type { Point, Spot, Directional } type = Type::Point;
+    std::string name;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    glm::vec3 position{0.0f};                // point, spot: the node's world origin
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot, directional: unit, where the light travels
+                                             // (the node's local -Z in world space)
+    float innerConeAngle = 0.0f;             // spot, radians: 0 <= inner < outer <= pi/2
+    float outerConeAngle = 0.7853982f;
+    glm::vec3 intensityRgb() const { return color * intensity; }
+};
+
+// Environment light from the command line (--env FILE or --env-color).
+// Radiance arriving from world direction d is `scale * map(d)`, or `scale`
+// without a map. The map is equirectangular (latitude-longitude), +Y up:
+// row 0 is +Y, the bottom row -Y; the image centre is -Z (the direction an
+// unrotated glTF camera looks) and u grows towards +X, so
+//   u = 1/2 + atan2(d.x, -d.z) / (2 pi),   v = acos(d.y) / pi.
+// `rotation` turns the environment about +Y by that angle (counter-clockwise
+// seen from above): d sees the map at R_y(-rotation) d.
+struct Environment {
+    bool enabled = false;
+    std::string source;          // the file, or "--env-color" (for messages)
+    glm::vec3 scale{1.0f};       // --env-color times --env-intensity (map: intensity in rgb)
+    float rotation = 0.0f;       // radians
+    int width = 0, height = 0;   // 0 x 0 without a map
+    std::vector<float> rgb;      // linear RGB, 3 floats per texel, row 0 at the top
+};
+
 struct Scene {
     std::string path;                 // file it was loaded from (for messages)
     std::vector<Triangle> triangles;
@@ -105,6 +139,8 @@ struct Scene {
     // has no materials: never empty.
     std::vector<MaterialDesc> materials;
     std::vector<Camera> cameras;      // in node order (depth-first)
+    std::vector<PunctualLight> lights;  // KHR_lights_punctual, in node order; zero-power lights dropped
+    Environment environment;          // set by the caller (command line), not by the loader
     std::vector<std::string> extensionsUsed;
     std::vector<TextureImage> images;
     std::vector<Texture> textures;
@@ -137,7 +173,8 @@ inline bool isEmitter(const Scene& scene, const Triangle& t) {
 
 struct LoadOptions {
     bool requireCamera = true;
-    bool requireEmitter = true;
+    bool requireEmitter = true;   // some light: an emitter triangle, a punctual light, or externalLight
+    bool externalLight = false;   // an environment light comes from the command line
 };
 
 // Loads .gltf or .glb (binary when the file starts with the 'glTF' magic).

@@ -1,53 +1,48 @@
-// Emissive-triangle lights: choice in proportion to emitted power through
-// the host-built alias table (Walker 1977 / Vose 1991), then a uniform point
-// on the chosen triangle. Needs `emitters[]` declared by the includer.
+// Lights: one choice over all emitters (emissive triangles, KHR_lights_punctual
+// lights and the environment) in proportion to estimated power through the
+// host-built alias table (Walker 1977 / Vose 1991; weights in
+// render/gpu_scene.cpp), then a point or direction on the chosen one.
+// Code for punctual lights and the environment is compiled out through the
+// kFeature* bits when the scene has none. Needs `emitters[]` and `frame`
+// (FrameUniforms) declared by the includer.
 #ifndef STRATA_LIB_LIGHTS_GLSL
 #define STRATA_LIB_LIGHTS_GLSL
 
 #include "lib/sampling.glsl"
+#include "lib/features.glsl"
+#include "lib/environment.glsl"
+
+const float kLightFar = 3.0e38;  // distance of directional and environment lights
 
 struct LightSample {
-    vec3 position;
-    vec3 v0, e1, e2;   // the emitter triangle (for the shadow ray's end point)
-    vec3 normal;       // unit geometric normal of the emitter (front side)
-    vec3 radiance;     // the material's emission factor (times its texture: emissionAt)
-    uint triangle;     // the emitter's triangle (BVH order)
-    vec2 bary;         // barycentrics of the point (of vertices 1 and 2)
-    float pmf;         // probability of having chosen this emitter
-    float area;
-    uint flags;
+    vec3 wi;        // unit direction from p towards the light
+    float dist;     // distance from p to the sampled point; kLightFar at infinity
+    vec3 Li;        // radiance arriving at p along -wi; for delta lights the
+                    // intensity x cone falloff / d^2, or the directional irradiance;
+                    // 0 when the light does not face p
+    float pdf;      // solid-angle density of wi including the choice pmf; the pmf
+                    // alone for delta lights; 0: no sample
+    vec3 target;    // shadow ray end (dist < kLightFar): the triangle point moved off
+                    // the emitter towards p (spawnOriginOnEmitter), or the light position
+    bool isDelta;   // point, spot, directional: BSDF sampling cannot find them, no MIS
 };
 
-// One 2D sample picks the emitter and the point on it: u.x chooses the alias
-// slot, its leftover fraction decides slot-or-alias and is then rescaled to
-// [0,1) again as the point's first coordinate (u.y the second). The light
-// sample is one 2D pair, so a stratified pair stratifies the points over all
-// emitters together. The rescaled coordinate keeps 24 - log2(emitters) bits.
-LightSample sampleEmitter(uint emitterCount, vec2 u) {
-    float scaled = u.x * float(emitterCount);
+// u.x picks the alias slot; its leftover fraction decides slot-or-alias and
+// is then rescaled to [0,1) again (`rest`) for use as the sample's first
+// coordinate. The light sample is one 2D pair, so a stratified pair
+// stratifies the samples over all emitters together. The rescaled coordinate
+// keeps 24 - log2(emitters) bits.
+uint chooseLight(uint emitterCount, float ux, out float rest) {
+    float scaled = ux * float(emitterCount);
     uint slot = min(uint(scaled), emitterCount - 1u);
     float f = clamp(scaled - float(slot), 0.0, 1.0);
-    Emitter e = emitters[slot];
-    if (f < e.aliasProb) {
-        f = f / e.aliasProb;
-    } else {
-        f = (f - e.aliasProb) / (1.0 - e.aliasProb);
-        e = emitters[e.alias];
+    float aliasProb = emitters[slot].aliasProb;
+    if (f < aliasProb) {
+        rest = f / aliasProb;
+        return slot;
     }
-    vec2 b = sampleTriangle(vec2(min(f, 0.99999994), u.y));
-    LightSample ls;
-    ls.position = e.v0 + b.x * e.e1 + b.y * e.e2;
-    ls.v0 = e.v0;
-    ls.e1 = e.e1;
-    ls.e2 = e.e2;
-    ls.normal = normalize(cross(e.e1, e.e2));
-    ls.radiance = e.radiance;
-    ls.triangle = e.triangle;
-    ls.bary = b;
-    ls.pmf = e.pmf;
-    ls.area = e.area;
-    ls.flags = e.flags;
-    return ls;
+    rest = (f - aliasProb) / (1.0 - aliasProb);
+    return emitters[slot].alias;
 }
 
 // Solid-angle density of reaching a point on an emitter (area `area`, chosen
@@ -55,6 +50,93 @@ LightSample sampleEmitter(uint emitterCount, vec2 u) {
 // the direction to it.
 float emitterPdfSolidAngle(float pmf, float area, float dist, float cosLight) {
     return cosLight > 0.0 ? pmf * dist * dist / (cosLight * area) : 0.0;
+}
+
+// For MIS when a BSDF-sampled ray hits emitter triangle `light` at distance
+// `dist` with |cosine| `cosLight` to its normal.
+float lightPdfTriangle(uint light, float dist, float cosLight) {
+    return emitterPdfSolidAngle(emitters[light].pmf, emitters[light].area, dist, cosLight);
+}
+
+// For MIS when a BSDF-sampled ray escapes along `dir`.
+float lightPdfEnvironment(vec3 dir) {
+    return emitters[frame.envInfo.x].pmf * environmentPdf(dir);
+}
+
+LightSample noLight(vec3 p) {
+    return LightSample(vec3(0.0, 0.0, 1.0), kLightFar, vec3(0.0), 0.0, p, false);
+}
+
+// A uniform point on the triangle (the square-root map); one-sided emitters
+// give nothing behind them.
+LightSample sampleTriangleLight(Emitter e, vec3 p, vec2 u) {
+    vec2 b = sampleTriangle(u);
+    vec3 pos = e.v0 + b.x * e.e1 + b.y * e.e2;
+    vec3 normal = normalize(cross(e.e1, e.e2));
+    vec3 toLight = pos - p;
+    float dist = length(toLight);
+    LightSample ls = noLight(p);
+    if (!(dist > 0.0)) return ls;
+    ls.wi = toLight / dist;
+    ls.dist = dist;
+    float cosSigned = -dot(ls.wi, normal);
+    bool emits = cosSigned > 0.0 || (e.flags & kMaterialDoubleSided) != 0u;
+    if (!emits) return ls;
+    ls.pdf = emitterPdfSolidAngle(e.pmf, e.area, dist, abs(cosSigned));
+    if (ls.pdf > 0.0) {
+        ls.Li = e.radiance;
+#ifdef STRATA_LIB_MATERIAL_GLSL
+        // An emissive texture varies over the triangle (lib/material.glsl;
+        // kernels without materials, such as sample_test.comp, skip this).
+        if (hasFeature(kFeatureTextures)) ls.Li = emissionAt(shading[e.triangle].material, e.triangle, b);
+#endif
+        ls.target = spawnOriginOnEmitter(pos, e.v0, e.e1, e.e2, cosSigned > 0.0 ? normal : -normal);
+    }
+    return ls;
+}
+
+// Point and spot lights: radiant intensity I falls off as 1/d^2; a spot is
+// scaled by KHR_lights_punctual's smooth falloff clamp(cos * scale + offset,
+// 0, 1)^2. Directional: irradiance E from -e1.
+LightSample samplePunctualLight(Emitter e, vec3 p) {
+    LightSample ls = noLight(p);
+    ls.isDelta = true;
+    ls.pdf = e.pmf;
+    if (e.kind == kLightDirectional) {
+        ls.wi = -e.e1;
+        ls.Li = e.radiance;
+        return ls;
+    }
+    vec3 toLight = e.v0 - p;
+    float d2 = dot(toLight, toLight);
+    if (!(d2 > 0.0)) return noLight(p);
+    ls.dist = sqrt(d2);
+    ls.wi = toLight / ls.dist;
+    ls.target = e.v0;
+    float falloff = 1.0;
+    if (e.kind == kLightSpot) {
+        float t = clamp(dot(-ls.wi, e.e1) * e.e2.x + e.e2.y, 0.0, 1.0);
+        falloff = t * t;
+    }
+    ls.Li = e.radiance * (falloff / d2);
+    return ls;
+}
+
+// One light sample for shading point p from one 2D pair u.
+LightSample sampleLight(vec3 p, vec2 u) {
+    float rest;
+    Emitter e = emitters[chooseLight(frame.counts.x, u.x, rest)];
+    vec2 u2 = vec2(min(rest, 0.99999994), u.y);
+    if (hasFeature(kFeatureEnvironment) && e.kind == kLightEnvironment) {
+        LightSample ls = noLight(p);
+        float pdf;
+        ls.wi = sampleEnvironment(u2, pdf);
+        ls.pdf = e.pmf * pdf;
+        if (ls.pdf > 0.0) ls.Li = environmentRadiance(ls.wi);
+        return ls;
+    }
+    if (hasFeature(kFeaturePunctual) && e.kind != kLightTriangle) return samplePunctualLight(e, p);
+    return sampleTriangleLight(e, p, u2);
 }
 
 #endif

@@ -8,7 +8,7 @@
 #include "shared/bindings.h"
 
 layout(constant_id = SPEC_TEXEL_FETCH) const uint kTexelFetch = 0u;
-layout(constant_id = SPEC_FEATURES) const uint kFeatures = 0u;  // kFeature* bits (types.h)
+#include "lib/features.glsl"
 
 layout(std430, set = 0, binding = BINDING_NODES) readonly buffer NodeBuffer { BvhNode nodes[]; };
 layout(std430, set = 0, binding = BINDING_TRIS) readonly buffer TriBuffer { TriVerts tris[]; };

@@ -37,6 +37,7 @@ STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // 1: read nodes/triangles through tex
 STRATA_BINDING(SPEC_HAS_EMITTERS, 1);     // 0: no emissive triangles, NEE compiled out
 STRATA_BINDING(SPEC_SAMPLER, 2);          // kSampler* (types.h)
 STRATA_BINDING(SPEC_FEATURES, 3);         // kFeature* bits (types.h): what the scene uses
+STRATA_BINDING(SPEC_MIS, 4);              // kMis* (types.h): how light and BSDF samples combine
 
 #ifdef __cplusplus
 }  // namespace strata::gpu

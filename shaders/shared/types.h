@@ -66,6 +66,13 @@ STRATA_CONST(uint, kFeaturePunctual, 32u);     // KHR_lights_punctual lights
 STRATA_CONST(uint, kFeatureEnvironment, 64u);  // an environment light (constant or map)
 STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
 
+// Combination of the two techniques that find lights (SPEC_MIS): both by
+// the power heuristic, or one alone (Veach's comparison; not for production).
+STRATA_CONST(uint, kMisPower, 0u);
+STRATA_CONST(uint, kMisBsdf, 1u);    // BSDF sampling only: no next-event estimation
+STRATA_CONST(uint, kMisLight, 2u);   // light sampling only (emitters hit by BSDF rays count
+                                     // only after delta lobes, which light sampling cannot do)
+
 // Material flags.
 STRATA_CONST(uint, kMaterialDoubleSided, 1u);
 STRATA_CONST(uint, kMaterialAlphaMask, 2u);    // alphaMode MASK: alpha < alphaCutoff is a hole
@@ -144,18 +151,28 @@ STRATA_CONST(uint, kLightSpot, 2u);
 STRATA_CONST(uint, kLightDirectional, 3u);
 STRATA_CONST(uint, kLightEnvironment, 4u);
 
-// An emissive triangle, selected through a Walker alias table built on the
-// host: pick slot i = floor(u * count), keep it if the second uniform is
-// below `aliasProb`, else take `alias`. `pmf` is the probability of choosing
-// this emitter (its share of total emitted power).
+// A light, selected through a Walker alias table built on the host: pick
+// slot i = floor(u * count), keep it if the second uniform is below
+// `aliasProb`, else take `alias`. `pmf` is the probability of choosing this
+// emitter (its share of the estimated power, render/gpu_scene.cpp).
+// Fields by kind (unused ones are 0):
+//   kLightTriangle: v0, e1 = v1 - v0, e2 = v2 - v0, triangle, area;
+//                   radiance = emitted radiance (W sr^-1 m^-2); flags.
+//   kLightPoint:    v0 = position; radiance = radiant intensity (W/sr).
+//   kLightSpot:     v0 = position, e1 = unit axis (where the light travels),
+//                   e2.x = scale, e2.y = offset of the cone falloff
+//                   clamp(cos * scale + offset, 0, 1)^2; radiance as point.
+//   kLightDirectional: e1 = unit direction the light travels;
+//                   radiance = irradiance (W/m^2) on a surface facing it.
+//   kLightEnvironment: nothing here; FrameUniforms.env* describe it.
 struct Emitter {
     vec3 v0;
     uint triangle;    // index into TriVerts/TriShading (BVH order)
-    vec3 e1;          // v1 - v0
+    vec3 e1;
     float area;
-    vec3 e2;          // v2 - v0
+    vec3 e2;
     float pmf;
-    vec3 radiance;    // emitted radiance (material emission)
+    vec3 radiance;
     uint flags;       // kMaterialDoubleSided: emits from both sides
     float aliasProb;
     uint alias;
@@ -180,6 +197,11 @@ struct FrameUniforms {
     uvec4 image;        // width, height, maxDepth, seed
     uvec4 counts;       // emitterCount, triangleCount, nodeCount, spp (of the whole render)
     vec4 scene;         // x: total emitted power (for stats), yzw unused
+    // Environment light (scene.h states the equirectangular convention).
+    vec4 envScale;      // xyz: radiance (constant) or the map's multiplier; w unused
+    vec4 envRotation;   // x, y: cos, sin of the rotation about +Y; zw unused
+    uvec4 envInfo;      // x: the environment's emitter index (kNoLight: none);
+                        // y, z: map width, height (0 without a map); w unused
 };
 
 // Per-dispatch constants (push constants).
@@ -244,6 +266,12 @@ STRATA_CONST(uint, kSampleBsdfWeight, 6u);        // out: weight.r, eval.r / eva
 STRATA_CONST(uint, kBsdfPdfCells, 7u);            // out: x = integral of the pdf over cell i of
                                                   // a pixelX (theta in [0,pi]) x pixelY (phi)
                                                   // grid, row-major in theta
+STRATA_CONST(uint, kSampleLight, 8u);             // out: sampleLight(0, u): wi xyz, pdf w
+STRATA_CONST(uint, kSampleEnvironmentPdf, 9u);    // out: direction xyz at the centre of cell
+                                                  // (i % width, i / width) of a width x
+                                                  // (count / width) grid in (phi / 2pi,
+                                                  // (z + 1) / 2), polar axis +Z; w: its
+                                                  // lightPdfEnvironment
 
 struct SampleTestParams {
     uint count;
@@ -275,7 +303,7 @@ static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
 static_assert(sizeof(TextureRef) == 48);
-static_assert(sizeof(FrameUniforms) == 112);
+static_assert(sizeof(FrameUniforms) == 160);
 static_assert(sizeof(DispatchParams) == 32);
 static_assert(sizeof(RenderCounters) == 16);
 static_assert(sizeof(TraceRay) == 32);

@@ -1,0 +1,102 @@
+// The light options of the strata binary: --env, --env-color, --env-intensity,
+// --env-rotate, and KHR_lights_punctual files. Bad input: exit 2, one line
+// naming the file (or "strata: error:" for a flag), no output file.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "cli_util.h"
+#include "image/image_io.h"
+
+namespace fs = std::filesystem;
+using namespace strata::test;
+
+namespace {
+
+const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
+
+std::string lights(const std::string& name) { return std::string(STRATA_SOURCE_DIR) + "/tests/data/lights/" + name; }
+
+// Runs `args` with an EXR and a PNG output in a fresh directory and checks the
+// error contract: exit 2, one line starting with `prefix`, nothing written.
+void expectError(const std::string& args, const std::string& prefix) {
+    TempDir out;
+    const Run r = run(args + " -o " + out / "a.exr" + " -o " + out / "a.png" + kSmall);
+    CAPTURE(args);
+    CAPTURE(r.output);
+    CHECK(r.status == 2);
+    CHECK(lines(r.output) == 1);
+    CHECK(r.output.rfind(prefix, 0) == 0);
+    CHECK(out.empty());
+}
+
+}  // namespace
+
+TEST_CASE("lights cli: every broken light file gives one error line naming it, exit 2 and no output") {
+    std::size_t checked = 0;
+    for (const auto& entry : fs::directory_iterator(lights("broken"))) {
+        const std::string file = entry.path().string();
+        expectError("render " + file, file + ": error: ");
+        ++checked;
+    }
+    CHECK(checked >= 7);
+}
+
+TEST_CASE("lights cli: bad environment input is one line, exit 2, no output") {
+    const std::string sphere = "render " + lights("sphere.gltf");
+    const std::string missing = lights("does-not-exist.hdr");
+    expectError(sphere + " --env " + missing, missing + ": error: ");
+    expectError(sphere, lights("sphere.gltf") + ": error: no light: ");  // lit by nothing
+    for (const char* bad : {"1,2", "1,2,3,4", "a,b,c", "1,-1,0", "0,0,0", "nan,1,1", "1,,1", ""})
+        expectError(sphere + " --env-color '" + std::string(bad) + "'", "strata: error: --env-color ");
+    expectError(sphere + " --env-color 1,1,1 --env-intensity 0", "strata: error: --env-intensity ");
+    expectError(sphere + " --env-color 1,1,1 --env-intensity -2", "strata: error: --env-intensity ");
+    expectError(sphere + " --env-color 1,1,1 --env-rotate ten", "strata: error: --env-rotate ");
+    expectError(sphere + " --env-color 1,1,1 --env-rotate inf", "strata: error: --env-rotate ");
+    expectError(sphere + " --env-rotate 10", "strata: error: --env-rotate needs --env or --env-color");
+    expectError(sphere + " --env " + lights("sky.hdr") + " --env-color 1,1,1", "strata: error: --env and --env-color");
+
+    // Maps with a negative, a non-finite and only black texels.
+    TempDir maps;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<std::pair<std::string, std::vector<float>>> cases = {
+        {"negative.exr", {1, 1, 1, 1, -0.5f, 1, 1, 1, 1, 1, 1, 1}},
+        {"nan.exr", {1, 1, 1, 1, 1, 1, nan, 1, 1, 1, 1, 1}},
+        {"black.exr", std::vector<float>(12, 0.0f)},
+    };
+    for (const auto& [name, rgb] : cases) {
+        const std::string path = maps / name;
+        strata::writeImages({path}, 2, 2, rgb);
+        expectError(sphere + " --env " + path, path + ": error: environment map ");
+    }
+}
+
+TEST_CASE("lights cli: a scene lit only by the environment renders with render, reference and a map") {
+    TempDir out;
+    const std::string sphere = lights("sphere.gltf");
+    Run r = run("render " + sphere + " --env-color 0.5,0.6,0.7 --env-intensity 2 --env-rotate 45 -o " + out / "c.exr" + kSmall);
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    CHECK(fs::exists(out / "c.exr"));
+    r = run("reference " + sphere + " --env " + lights("sky.hdr") + " --env-rotate -30 -o " + out / "r.exr" + kSmall);
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    const strata::RgbImage ref = strata::readRgb(out / "r.exr");
+    CHECK(ref.variance.size() == ref.rgb.size());
+    r = run("render " + sphere + " --env " + lights("sky.hdr") + " --stats -o " + out / "m.exr" + kSmall);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("environment, environment-map") != std::string::npos);
+}
+
+TEST_CASE("lights cli: a light's range is ignored with one warning") {
+    TempDir out;
+    const Run r = run("render " + lights("range.gltf") + " -o " + out / "a.exr" + kSmall);
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    CHECK(lines(r.output) == 1);
+    CHECK(r.output.find(": warning: 1 punctual light(s) give a range") != std::string::npos);
+}
