@@ -13,7 +13,10 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "data"))
+from make_lights import add_sphere  # noqa: E402
 from make_scenes import Quads, camera, mesh, rotation_x, writer  # noqa: E402
 
 LAMP_HALF = 0.5
@@ -43,6 +46,37 @@ def mirror_scene(floor_material):
     return w.gltf_text()
 
 
+def glass_sphere():
+    """A faceted glass icosphere (level 3, flat facets: no normals), smooth,
+    ior 1.5, white: under a uniform environment it vanishes (radiance 1 up
+    to the depth cap). Camera at (0, 0, 3) looking down -Z."""
+    w = writer()
+    glass = w.add_material("Glass", base_color=(1, 1, 1, 1), metallic=0.0, roughness=0.0,
+                           transmission=1.0, ior=1.5)
+    sphere = add_sphere(w, 3, glass, inward=False)
+    roots = [w.add_node("Sphere", mesh=sphere),
+             w.add_node("Camera", camera=camera(w, "Camera", 40.0), translation=[0, 0, 3])]
+    w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_ior", "KHR_materials_transmission"])
+    return w.gltf_text()
+
+
+def plate(roughness, view_degrees):
+    """A 40 x 40 white GGX metal plate z = 0 facing +Z, seen at `view_degrees`
+    from its normal by a camera 5 units away with a 2-degree field of view:
+    under a uniform environment each pixel is the directional albedo E(mu)."""
+    w = writer()
+    metal = w.add_material("Metal", base_color=(1, 1, 1, 1), metallic=1.0, roughness=roughness)
+    quad = Quads().add((-20, -20, 0), (40, 0, 0), (0, 40, 0), (0, 0, 1))
+    t = math.radians(view_degrees)
+    roots = [w.add_node("Plate", mesh=mesh(w, "Plate", quad, metal)),
+             w.add_node("Camera", camera=camera(w, "Camera", 2.0),
+                        translation=[0.0, -5.0 * math.sin(t), 5.0 * math.cos(t)],
+                        rotation=rotation_x(t))]
+    w.set_scene(roots, name="Scene")
+    return w.gltf_text()
+
+
 def metal(roughness):
     return lambda w: w.add_material("Mirror", base_color=(1, 1, 1, 1), metallic=1.0,
                                     roughness=roughness)
@@ -60,6 +94,11 @@ def main():
         "mirror-r0.gltf": mirror_scene(metal(0.0)),
         "mirror-r1e-4.gltf": mirror_scene(metal(1e-4)),
         "black-gloss.gltf": mirror_scene(black_gloss),
+        "glass-sphere.gltf": glass_sphere(),
+        # alpha = roughness^2: 0.5 seen at mu = 1 and 0.5, 0.1 at mu = 1
+        "plate-a0.5-mu1.gltf": plate(math.sqrt(0.5), 0.0),
+        "plate-a0.5-mu0.5.gltf": plate(math.sqrt(0.5), 60.0),
+        "plate-a0.1-mu1.gltf": plate(math.sqrt(0.1), 0.0),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))
