@@ -30,6 +30,7 @@ sys.dont_write_bytecode = True  # keep the tree free of __pycache__
 sys.path.insert(0, HERE)
 
 from gltf_writer import ARRAY_BUFFER, FLOAT  # noqa: E402
+from make_texture_scenes import data_uri, png  # noqa: E402
 from make_scenes import (CORNELL_CAMERA, Quads, add, box_faces, camera,  # noqa: E402
                          cornell_materials, cornell_room, cross, dot, lambert, mesh,
                          normalize, sub, write, writer)
@@ -198,12 +199,60 @@ BOARD_ROWS = (  # name, z of the row, material factors (roughness per column)
 BOARD_RADIUS = 0.4
 BOARD_GLASS = (("GlassSmooth", -1.0, 0.0), ("GlassRough", 1.0, 0.3))  # name, x, roughness
 BOARD_GLASS_Z, BOARD_GLASS_RADIUS = 2.95, 0.45
+BOARD_TEXTURED_X = 2.4  # textured spheres at -x (checker plastic) and +x (bumpy brushed metal)
+TEXTURE_SIZE = 64
+LINEAR, REPEAT = 9729, 10497
+
+
+def texture(w, rows):
+    """A LINEAR / REPEAT texture of an embedded PNG."""
+    image = w._add("images", {"uri": data_uri(png(rows))})
+    sampler = w._add("samplers", {"magFilter": LINEAR, "minFilter": LINEAR, "wrapS": REPEAT, "wrapT": REPEAT})
+    return w._add("textures", {"source": image, "sampler": sampler})
+
+
+def checker_plastic(w):
+    """Plastic whose baseColor is an 8 x 4 checker (sRGB) over the sphere's uv."""
+    n = TEXTURE_SIZE
+    rows = [[(230, 200, 60) if ((x * 8 // n) + (y * 4 // n)) % 2 else (30, 60, 160) for x in range(n)]
+            for y in range(n)]
+    m = w.add_material("CheckerPlastic", base_color=(1, 1, 1, 1), metallic=0.0, roughness=0.3)
+    w.doc["materials"][m]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": texture(w, rows)}
+    return m
+
+
+def bumpy_metal(w):
+    """Metal with a tangent-space normal map of round bumps (12 x 6 over the
+    uv square) and a metallicRoughness texture of rough and polished bands."""
+    n = TEXTURE_SIZE
+    normals, mr = [], []
+    for y in range(n):
+        nrow, mrow = [], []
+        for x in range(n):
+            # Height h = sin(2 pi 12 u) sin(2 pi 6 v) * a; normal = (-dh/du, -dh/dv, 1).
+            u, v = (x + 0.5) / n, (y + 0.5) / n
+            a = 0.02
+            dhdu = a * 2 * math.pi * 12 * math.cos(2 * math.pi * 12 * u) * math.sin(2 * math.pi * 6 * v)
+            dhdv = a * 2 * math.pi * 6 * math.sin(2 * math.pi * 12 * u) * math.cos(2 * math.pi * 6 * v)
+            nx, ny, nz = -dhdu, dhdv, 1.0  # glTF: +Y of the map points to decreasing v
+            k = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)
+            nrow.append(tuple(int(round((c * k * 0.5 + 0.5) * 255)) for c in (nx, ny, nz)))
+            rough = 0.15 if (y * 8 // n) % 2 else 0.55
+            mrow.append((0, int(round(rough * 255)), 255))
+        normals.append(nrow)
+        mr.append(mrow)
+    m = w.add_material("BumpyMetal", base_color=(0.95, 0.93, 0.88, 1), metallic=1.0, roughness=1.0)
+    pbr = w.doc["materials"][m]["pbrMetallicRoughness"]
+    pbr["metallicRoughnessTexture"] = {"index": texture(w, mr)}
+    w.doc["materials"][m]["normalTexture"] = {"index": texture(w, normals)}
+    return m
 BOARD_EYE, BOARD_TARGET, BOARD_YFOV = (0.0, 4.8, 8.6), (0.0, 0.1, 0.6), 30.0
 BOARD_KEY = ((0.0, 5.5, 4.0), 2.6, 1.1, 9.0)   # centre, half width, half height, strength
 BOARD_RIM = ((-5.5, 2.2, -0.5), 0.6, 1.5, 6.0)
 
 
-def materials_board():
+def materials_board(lamps=True):
+    """The board; lamps=False leaves only the environment (--env) to light it."""
     w = writer()
     sphere = Sphere(32, 16)
     acc = add_sphere_accessors(w, sphere)
@@ -219,9 +268,15 @@ def materials_board():
         m = glass(w, name, r)
         roots.append(sphere_node(w, name, sphere_mesh(w, name, acc, m),
                                  (x, BOARD_GLASS_RADIUS, BOARD_GLASS_Z), BOARD_GLASS_RADIUS))
+    for name, x, material in (("Checker", -BOARD_TEXTURED_X, checker_plastic(w)),
+                              ("Bumpy", BOARD_TEXTURED_X, bumpy_metal(w))):
+        roots.append(sphere_node(w, name, sphere_mesh(w, name, acc, material),
+                                 (x, BOARD_GLASS_RADIUS, BOARD_GLASS_Z), BOARD_GLASS_RADIUS))
     ground = lambert(w, "Ground", (0.4, 0.4, 0.4))
     pos, nrm, idx = sweep(sweep_profile(front=9.0, floor_back=-2.5, radius=2.5, top=9.0), -12, 12)
     roots.append(w.add_node("Sweep", mesh=w.add_triangles("Sweep", pos, nrm, idx, ground)))
+    if not lamps:
+        return board_camera(w, roots)
     # Key: a wide softbox above the camera side, tilted down at the board.
     centre, hw, hh, le = BOARD_KEY
     facing = normalize(sub((0.0, 0.0, 0.3), centre))
@@ -238,6 +293,10 @@ def materials_board():
     rim = rect(centre, right, up, hw, hh)
     roots.append(w.add_node("RimLight", mesh=mesh(w, "RimLight", rim,
                                                   emitter(w, "Rim", le, (1.0, 0.9, 0.8)))))
+    return board_camera(w, roots)
+
+
+def board_camera(w, roots):
     cam = w.add_perspective("Camera", math.radians(BOARD_YFOV), znear=0.05, aspect_ratio=16 / 9)
     roots.append(w.add_node("Camera", camera=cam, translation=list(BOARD_EYE),
                             rotation=look_at_rotation(BOARD_EYE, BOARD_TARGET)))
@@ -328,9 +387,53 @@ def veach_mis():
     return w, finish(w, roots)
 
 
+# 4. An environment map --------------------------------------------------------
+
+SKY_SIZE = (256, 128)
+SKY_SUN = (0.62, 0.28, 0.012)  # u, v of the sun's centre, angular radius in v units
+
+
+def sky_texel(u, v):
+    """Linear radiance of a clear sky: a horizon-to-zenith gradient, a warm
+    ground below the horizon (v > 1/2), a small sun of radiance 2000."""
+    su, sv, sr = SKY_SUN
+    du = min(abs(u - su), 1.0 - abs(u - su)) * 2.0  # u spans twice the angle of v
+    if du * du + (v - sv) ** 2 < sr * sr:
+        return (2000.0, 1850.0, 1600.0)
+    if v < 0.5:
+        t = v / 0.5  # 0 at the zenith, 1 at the horizon
+        glow = 1.0 + 0.8 * math.exp(-((du ** 2 + (v - sv) ** 2) / 0.02))
+        return ((0.15 + 0.6 * t) * glow, (0.3 + 0.55 * t) * glow, (0.8 + 0.2 * t) * glow)
+    return (0.25, 0.2, 0.14)
+
+
+def rgbe(r, g, b):
+    v = max(r, g, b)
+    if v < 1e-32:
+        return bytes(4)
+    m, e = math.frexp(v)
+    k = m * 256.0 / v
+    return bytes((int(r * k), int(g * k), int(b * k), e + 128))
+
+
+def write_sky(path):
+    """Radiance RGBE (.hdr), flat scanlines, row 0 at the top (+Y)."""
+    w, h = SKY_SIZE
+    data = bytearray(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n" + f"-Y {h} +X {w}\n".encode())
+    for y in range(h):
+        for x in range(w):
+            data += rgbe(*sky_texel((x + 0.5) / w, (y + 0.5) / h))
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(bytes(data))
+    print("wrote", path)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "scenes")
+    write_sky(os.path.join(out, "env", "sky.hdr"))
     for name, build in (("materials-board.gltf", materials_board),
+                        ("materials-board-env.gltf", lambda: materials_board(lamps=False)),
                         ("cornell-glass.gltf", cornell_glass),
                         ("veach-mis.gltf", veach_mis)):
         w, text = build()
