@@ -1,6 +1,7 @@
 // Binned SAH BVH2 builder (Wald 2007, "On fast construction of SAH-based
 // bounding volume hierarchies"), flattened depth-first into gpu::BvhNode.
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -8,7 +9,10 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <utility>
+
+#include <sys/mman.h>
 
 #include "bvh/bvh.h"
 #include "bvh/task_pool.h"
@@ -157,10 +161,60 @@ constexpr std::uint32_t kTaskMinPrims = 1u << 12;
 constexpr std::uint32_t kParallelMinPrims = 1u << 15;
 constexpr std::uint32_t kChunkPrims = 1u << 13;
 
+// Asks the kernel for 2 MiB pages in [p, p + bytes): a large array then takes
+// one page fault per 2 MiB instead of one per 4 KiB when first written, which
+// otherwise costs more than filling it.
+void adviseHugePages(const void* p, std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+    constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+    const std::uintptr_t b = (std::uintptr_t(p) + kHuge - 1) & ~(kHuge - 1);
+    const std::uintptr_t e = (std::uintptr_t(p) + bytes) & ~(kHuge - 1);
+    if (e > b) madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
+// Uninitialised storage for `count` elements of a trivial type, huge pages
+// advised.
+template <class T>
+std::unique_ptr<T[]> allocateLarge(std::size_t count) {
+    static_assert(std::is_trivially_default_constructible_v<T>);
+    std::unique_ptr<T[]> p(new T[count]);
+    adviseHugePages(p.get(), count * sizeof(T));
+    return p;
+}
+
+// Node storage shared by all subtree tasks: a task with m triangles takes a
+// range of 2m - 1 nodes (its bound: every leaf holds a triangle). Where a
+// range lies depends on thread timing; only the copy into depth-first order
+// places nodes in the output.
+struct NodeArena {
+    explicit NodeArena(std::size_t capacity) : nodes(allocateLarge<gpu::BvhNode>(capacity)), capacity(capacity) {}
+    gpu::BvhNode* take(std::size_t count) {
+        const std::size_t at = next.fetch_add(count);
+        if (at + count > capacity) throw std::logic_error("buildBvh: node arena overflow");
+        return nodes.get() + at;
+    }
+    std::unique_ptr<gpu::BvhNode[]> nodes;
+    std::size_t capacity;
+    std::atomic<std::size_t> next{0};
+};
+
+// Appends nodes to a range taken from the arena.
+struct NodeList {
+    gpu::BvhNode* data = nullptr;
+    std::uint32_t size = 0;
+    void push_back(const gpu::BvhNode& node) { data[size++] = node; }
+    gpu::BvhNode& operator[](std::size_t i) { return data[i]; }
+};
+
 // A built subtree: either `nodes`, a depth-first subtree with indices local to
 // it, or (left set) one interior node nodes[0] over two child subtrees.
 struct Subtree {
-    std::vector<gpu::BvhNode> nodes;
+    NodeList nodes;
+    gpu::BvhNode top;  // the interior node when left is set
     std::unique_ptr<Subtree> left, right;
     std::uint32_t size = 0;  // nodes in the whole subtree, set by layout()
     std::uint32_t maxDepth = 0;
@@ -168,9 +222,9 @@ struct Subtree {
 
 class Builder {
 public:
-    Builder(std::vector<PrimRef>& prims, int bins, std::uint32_t maxLeaf, float traversalCost,
+    Builder(PrimRef* prims, NodeArena& arena, int bins, std::uint32_t maxLeaf, float traversalCost,
             TaskPool* pool)
-        : prims_(prims), bins_(bins), maxLeaf_(maxLeaf), traversalCost_(traversalCost), pool_(pool) {}
+        : prims_(prims), arena_(arena), bins_(bins), maxLeaf_(maxLeaf), traversalCost_(traversalCost), pool_(pool) {}
 
     // Builds the subtree of `task` into `out`, handing large children to the
     // pool as tasks of their own.
@@ -179,8 +233,7 @@ public:
 private:
     // Decides whether `task` splits; if so partitions it into left/right.
     bool split(const Task& task, Task& left, Task& right, BinSet& bins, bool parallel);
-    void buildSerial(const Task& task, std::vector<gpu::BvhNode>& nodes, std::uint32_t& maxDepth,
-                     BinSet& bins);
+    void buildSerial(const Task& task, NodeList& nodes, std::uint32_t& maxDepth, BinSet& bins);
     SahSplit findSah(const Task& task, BinSet& bins, bool parallel);
     void binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale, BinSet& bins) const;
     std::uint32_t partitionSah(const Task& task, const SahSplit& split, Box& lc, Box& rc,
@@ -189,7 +242,8 @@ private:
                                  const SahSplit& split, Box& lc, Box& rc);
     std::uint32_t partitionMedian(const Task& task, Task& left, Task& right);
 
-    std::vector<PrimRef>& prims_;
+    PrimRef* prims_;  // buildBvh's array, partitioned in place
+    NodeArena& arena_;
     int bins_;
     std::uint32_t maxLeaf_;
     float traversalCost_;
@@ -212,6 +266,9 @@ void Builder::binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale
     Bin* b0 = bins.axis(0);
     Bin* b1 = bins.axis(1);
     Bin* b2 = bins.axis(2);
+    // Occupancy kept in registers (bins <= 64) or marked per triangle.
+    const bool wide = bins_ > 64;
+    std::uint64_t u0 = 0, u1 = 0, u2 = 0;
     for (std::uint32_t i = begin; i < end; ++i) {
         const PrimRef& p = prims_[i];
         const V4i k = binOf(centroid2(p), cmin, scale, top);
@@ -227,10 +284,19 @@ void Builder::binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale
         z.count++;
         z.box.lo = vmin(z.box.lo, p.lo);
         z.box.hi = vmax(z.box.hi, p.hi);
-        bins.mark(0, k[0]);
-        bins.mark(1, k[1]);
-        bins.mark(2, k[2]);
+        if (wide) {
+            bins.mark(0, k[0]);
+            bins.mark(1, k[1]);
+            bins.mark(2, k[2]);
+        } else {
+            u0 |= std::uint64_t(1) << k[0];
+            u1 |= std::uint64_t(1) << k[1];
+            u2 |= std::uint64_t(1) << k[2];
+        }
     }
+    bins.used[0][0] |= u0;
+    bins.used[1][0] |= u1;
+    bins.used[2][0] |= u2;
 }
 
 SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
@@ -372,7 +438,7 @@ std::uint32_t Builder::partitionSah(const Task& task, const SahSplit& split, Box
     std::uint32_t li = wrongLeft.empty() ? 0 : wrongLeft[0].from;
     while (r < wrongRight.size() && l < wrongLeft.size()) {
         const std::uint32_t n = std::min(wrongRight[r].to - ri, wrongLeft[l].to - li);
-        std::swap_ranges(prims_.begin() + ri, prims_.begin() + ri + n, prims_.begin() + li);
+        std::swap_ranges(prims_ + ri, prims_ + ri + n, prims_ + li);
         ri += n;
         li += n;
         if (ri == wrongRight[r].to && ++r < wrongRight.size()) ri = wrongRight[r].from;
@@ -391,7 +457,7 @@ std::uint32_t Builder::partitionMedian(const Task& task, Task& left, Task& right
         return c == c ? c : -kInf;
     };
     const std::uint32_t mid = task.begin + (task.end - task.begin) / 2;
-    std::nth_element(prims_.begin() + task.begin, prims_.begin() + mid, prims_.begin() + task.end,
+    std::nth_element(prims_ + task.begin, prims_ + mid, prims_ + task.end,
                      [&](const PrimRef& x, const PrimRef& y) {
                          float kx = key(x), ky = key(y);
                          return kx < ky || (kx == ky && x.id() < y.id());
@@ -435,18 +501,18 @@ bool Builder::split(const Task& task, Task& left, Task& right, BinSet& bins, boo
     return true;
 }
 
-void Builder::buildSerial(const Task& task, std::vector<gpu::BvhNode>& nodes,
-                          std::uint32_t& maxDepth, BinSet& bins) {
+void Builder::buildSerial(const Task& task, NodeList& nodes, std::uint32_t& maxDepth,
+                          BinSet& bins) {
     Task left, right;
     if (!split(task, left, right, bins, false)) {
         nodes.push_back(makeNode(task.box, task.begin, task.end - task.begin));
         maxDepth = std::max(maxDepth, task.depth);
         return;
     }
-    const std::size_t index = nodes.size();
+    const std::uint32_t index = nodes.size;
     nodes.push_back(makeNode(task.box, 0, 0));
     buildSerial(left, nodes, maxDepth, bins);
-    nodes[index].leftOrFirst = std::uint32_t(nodes.size());
+    nodes[index].leftOrFirst = nodes.size;
     buildSerial(right, nodes, maxDepth, bins);
 }
 
@@ -454,17 +520,18 @@ void Builder::buildTask(const Task& task, Subtree& out) {
     const std::uint32_t n = task.end - task.begin;
     BinSet bins(bins_);
     if (n < kTaskMinPrims) {
-        out.nodes.reserve(2 * std::size_t(n));
+        out.nodes.data = arena_.take(2 * std::size_t(n) - 1);
         buildSerial(task, out.nodes, out.maxDepth, bins);
         return;
     }
     Task left, right;
     if (!split(task, left, right, bins, n >= kParallelMinPrims)) {
+        out.nodes.data = arena_.take(1);
         out.nodes.push_back(makeNode(task.box, task.begin, n));
         out.maxDepth = task.depth;
         return;
     }
-    out.nodes.push_back(makeNode(task.box, 0, 0));
+    out.top = makeNode(task.box, 0, 0);
     out.maxDepth = task.depth;
     out.left = std::make_unique<Subtree>();
     out.right = std::make_unique<Subtree>();
@@ -476,7 +543,7 @@ void Builder::buildTask(const Task& task, Subtree& out) {
 // Sets `size` bottom-up; returns the deepest leaf.
 std::uint32_t measure(Subtree& t) {
     if (!t.left) {
-        t.size = std::uint32_t(t.nodes.size());
+        t.size = t.nodes.size;
         return t.maxDepth;
     }
     const std::uint32_t d = std::max(measure(*t.left), measure(*t.right));
@@ -492,7 +559,7 @@ void layout(Subtree& t, std::uint32_t base, std::vector<gpu::BvhNode>& out,
         copies.emplace_back(&t, base);
         return;
     }
-    out[base] = t.nodes[0];
+    out[base] = t.top;
     out[base].leftOrFirst = base + 1 + t.left->size;
     layout(*t.left, base + 1, out, copies);
     layout(*t.right, base + 1 + t.left->size, out, copies);
@@ -526,7 +593,7 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
         TaskPool pool(std::max(threads, 1u) - 1);
         const std::uint32_t chunks = (n + kChunkPrims - 1) / kChunkPrims;
 
-        std::vector<PrimRef> prims(n);
+        std::unique_ptr<PrimRef[]> prims = allocateLarge<PrimRef>(n);
         std::vector<Task> parts(chunks);
         pool.parallelFor(chunks, [&](std::uint32_t c) {
             Task& part = parts[c];
@@ -549,7 +616,8 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
             root.cbox.grow(part.cbox);
         }
 
-        Builder builder(prims, std::clamp(options.bins, kMinBins, kMaxBins),
+        NodeArena arena(2 * std::size_t(n));
+        Builder builder(prims.get(), arena, std::clamp(options.bins, kMinBins, kMaxBins),
                         std::uint32_t(std::max(options.maxLeafSize, 1)), options.traversalCost,
                         &pool);
         Subtree tree;
@@ -559,9 +627,13 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
         // Depth-first layout: the parallel top first, then the built
         // subtrees copied in parallel with their node indices offset.
         bvh.stats.maxDepth = measure(tree);
+        bvh.nodes.reserve(tree.size);
+        adviseHugePages(bvh.nodes.data(), std::size_t(tree.size) * sizeof(gpu::BvhNode));
         bvh.nodes.resize(tree.size);
         std::vector<std::pair<const Subtree*, std::uint32_t>> copies;
         layout(tree, 0, bvh.nodes, copies);
+        bvh.triIndices.reserve(n);
+        adviseHugePages(bvh.triIndices.data(), std::size_t(n) * sizeof(std::uint32_t));
         bvh.triIndices.resize(n);
         const std::uint32_t jobs = std::uint32_t(copies.size());
         pool.parallelFor(jobs + chunks, [&](std::uint32_t j) {
@@ -574,7 +646,8 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
             }
             const auto [sub, base] = copies[j];
             gpu::BvhNode* dst = bvh.nodes.data() + base;
-            for (gpu::BvhNode node : sub->nodes) {
+            for (std::uint32_t k = 0; k < sub->nodes.size; ++k) {
+                gpu::BvhNode node = sub->nodes.data[k];
                 if (node.count == 0) node.leftOrFirst += base;
                 *dst++ = node;
             }
