@@ -128,23 +128,28 @@ struct BinSet {
     std::uint64_t used[3][kMaxBins / 64] = {};
     Bin* axis(int a) { return &bin[std::size_t(a * bins)]; }
 
+    std::uint16_t occupied[3][kMaxBins] = {};  // filled by collect(), ascending
+    int occupiedCount[3] = {};
+
     void mark(int a, int k) { used[a][k >> 6] |= std::uint64_t(1) << (k & 63); }
-    // Occupied bins of axis a in ascending order; returns their number.
-    int occupied(int a, std::uint16_t* out) const {
-        int m = 0;
-        for (int w = 0; w < kMaxBins / 64; ++w) {
-            for (std::uint64_t bits = used[a][w]; bits != 0; bits &= bits - 1) {
-                out[m++] = std::uint16_t(w * 64 + std::countr_zero(bits));
-            }
-        }
-        return m;
-    }
-    void clear() {
-        std::uint16_t idx[kMaxBins];
+    // Lists the occupied bins of each axis and resets `used`.
+    void collect() {
+        const int words = (bins + 63) / 64;
         for (int a = 0; a < 3; ++a) {
-            const int m = occupied(a, idx);
-            for (int j = 0; j < m; ++j) axis(a)[idx[j]] = Bin{};
-            for (std::uint64_t& w : used[a]) w = 0;
+            int m = 0;
+            for (int w = 0; w < words; ++w) {
+                for (std::uint64_t bits = used[a][w]; bits != 0; bits &= bits - 1) {
+                    occupied[a][m++] = std::uint16_t(w * 64 + std::countr_zero(bits));
+                }
+                used[a][w] = 0;
+            }
+            occupiedCount[a] = m;
+        }
+    }
+    // Empties the bins listed by collect().
+    void clear() {
+        for (int a = 0; a < 3; ++a) {
+            for (int j = 0; j < occupiedCount[a]; ++j) axis(a)[occupied[a][j]] = Bin{};
         }
     }
 };
@@ -287,13 +292,14 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
 
     // Right-to-left sweep stores the right side's area and count per split
     // (after occupied bin j of the m occupied ones).
-    std::uint16_t idx[kMaxBins];
+    bins.collect();
     float rightArea[kMaxBins];
     std::uint32_t rightCount[kMaxBins];
     for (int a = 0; a < 3; ++a) {
         if (!valid[a]) continue;
         const Bin* ab = bins.axis(a);
-        const int m = bins.occupied(a, idx);
+        const std::uint16_t* idx = bins.occupied[a];
+        const int m = bins.occupiedCount[a];
         Box acc;
         std::uint32_t n = 0;
         for (int j = m - 1; j > 0; --j) {
@@ -319,7 +325,8 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
     if (best.found) {
         best.scale = scale[best.axis];
         const Bin* ab = bins.axis(best.axis);
-        const int m = bins.occupied(best.axis, idx);
+        const std::uint16_t* idx = bins.occupied[best.axis];
+        const int m = bins.occupiedCount[best.axis];
         for (int j = 0; j < m; ++j) {
             (idx[j] <= best.bin ? best.left : best.right).grow(ab[idx[j]].box);
         }
