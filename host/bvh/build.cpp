@@ -4,23 +4,21 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
+#include <memory>
 #include <stdexcept>
-#include <system_error>
 #include <thread>
 #include <utility>
 
 #include "bvh/bvh.h"
+#include "bvh/build_memory.h"
+#include "bvh/task_pool.h"
 
 namespace strata {
 namespace {
 
 constexpr int kMinBins = 2;
 constexpr int kMaxBins = 256;
-// Nodes with at least this many triangles hand their left subtree to a second
-// thread (root only); below it a thread costs more than it saves.
-constexpr std::uint32_t kParallelMinPrims = 1u << 14;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Four float lanes (GCC/Clang vector extension); lane 3 carries no geometry.
@@ -119,44 +117,142 @@ struct SahSplit {
     Box left, right;
 };
 
+// Bins of the three axes and which of them are occupied. The sweep visits
+// occupied bins only: a split next to an empty bin divides the triangles as
+// the split at the previous occupied bin does, at the same cost, so the
+// chosen split equals the one of a sweep over all bins.
+struct BinSet {
+    explicit BinSet(int bins) : bins(bins), bin(std::size_t(3 * bins)) {}
+    int bins;
+    std::vector<Bin> bin;  // 3 axes x bins, all empty between uses
+    std::uint64_t used[3][kMaxBins / 64] = {};
+    Bin* axis(int a) { return &bin[std::size_t(a * bins)]; }
+
+    std::uint16_t occupied[3][kMaxBins] = {};  // filled by collect(), ascending
+    int occupiedCount[3] = {};
+
+    void mark(int a, int k) { used[a][k >> 6] |= std::uint64_t(1) << (k & 63); }
+    // Lists the occupied bins of each axis and resets `used`.
+    void collect() {
+        const int words = (bins + 63) / 64;
+        for (int a = 0; a < 3; ++a) {
+            int m = 0;
+            for (int w = 0; w < words; ++w) {
+                for (std::uint64_t bits = used[a][w]; bits != 0; bits &= bits - 1) {
+                    occupied[a][m++] = std::uint16_t(w * 64 + std::countr_zero(bits));
+                }
+                used[a][w] = 0;
+            }
+            occupiedCount[a] = m;
+        }
+    }
+    // Empties the bins listed by collect().
+    void clear() {
+        for (int a = 0; a < 3; ++a) {
+            for (int j = 0; j < occupiedCount[a]; ++j) axis(a)[occupied[a][j]] = Bin{};
+        }
+    }
+};
+
+// Nodes with at least this many triangles are built as tasks of their own
+// (children handed to the pool); smaller ones are built by one thread.
+constexpr std::uint32_t kTaskMinPrims = 1u << 12;
+// Nodes with at least this many triangles bin and partition in chunks of
+// kChunkPrims on all threads. Chunk bounds do not depend on the thread
+// count, so neither does the output.
+constexpr std::uint32_t kParallelMinPrims = 1u << 15;
+constexpr std::uint32_t kChunkPrims = 1u << 13;
+
+// A built subtree: either `nodes`, a depth-first subtree with indices local to
+// it, or (left set) one interior node nodes[0] over two child subtrees.
+struct Subtree {
+    NodeList nodes;
+    gpu::BvhNode top;  // the interior node when left is set
+    std::unique_ptr<Subtree> left, right;
+    std::uint32_t size = 0;  // nodes in the whole subtree, set by layout()
+    std::uint32_t maxDepth = 0;
+};
+
 class Builder {
 public:
-    Builder(std::vector<PrimRef>& prims, int bins, std::uint32_t maxLeaf, float traversalCost)
-        : prims_(prims), bins_(bins), maxLeaf_(maxLeaf), traversalCost_(traversalCost),
-          binScratch_(std::size_t(3 * bins)) {}
+    Builder(PrimRef* prims, NodeArena& arena, int bins, std::uint32_t maxLeaf, float traversalCost,
+            TaskPool* pool)
+        : prims_(prims), arena_(arena), bins_(bins), maxLeaf_(maxLeaf), traversalCost_(traversalCost), pool_(pool) {}
 
-    // Appends the subtree of `task` to nodes_, node indices relative to
-    // nodes_.front(). `parallel` lets the root split run on two threads.
-    void build(const Task& task, bool parallel);
-
-    std::vector<gpu::BvhNode> nodes_;
-    std::uint32_t maxDepth_ = 0;
+    // Builds the subtree of `task` into `out`, handing large children to the
+    // pool as tasks of their own.
+    void buildTask(const Task& task, Subtree& out);
 
 private:
-    void makeLeaf(const Task& task);
-    SahSplit findSah(const Task& task);
-    std::uint32_t partitionSah(const Task& task, const SahSplit& split, Box& lc, Box& rc);
+    // Decides whether `task` splits; if so partitions it into left/right.
+    bool split(const Task& task, Task& left, Task& right, BinSet& bins, bool parallel);
+    void buildSerial(const Task& task, NodeList& nodes, std::uint32_t& maxDepth, BinSet& bins);
+    SahSplit findSah(const Task& task, BinSet& bins, bool parallel);
+    void binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale, BinSet& bins) const;
+    std::uint32_t partitionSah(const Task& task, const SahSplit& split, Box& lc, Box& rc,
+                               bool parallel);
+    std::uint32_t partitionRange(std::uint32_t begin, std::uint32_t end, int a, float cmin,
+                                 const SahSplit& split, Box& lc, Box& rc);
     std::uint32_t partitionMedian(const Task& task, Task& left, Task& right);
-    void append(const Builder& sub);
 
-    std::vector<PrimRef>& prims_;
+    PrimRef* prims_;  // buildBvh's array, partitioned in place
+    NodeArena& arena_;
     int bins_;
     std::uint32_t maxLeaf_;
     float traversalCost_;
-    std::vector<Bin> binScratch_;  // 3 axes x bins_
+    TaskPool* pool_;
 };
 
-void Builder::makeLeaf(const Task& task) {
+gpu::BvhNode makeNode(const Box& box, std::uint32_t leftOrFirst, std::uint32_t count) {
     gpu::BvhNode node;
-    node.bmin = toVec3(task.box.lo);
-    node.bmax = toVec3(task.box.hi);
-    node.leftOrFirst = task.begin;
-    node.count = task.end - task.begin;
-    nodes_.push_back(node);
-    maxDepth_ = std::max(maxDepth_, task.depth);
+    node.bmin = toVec3(box.lo);
+    node.bmax = toVec3(box.hi);
+    node.leftOrFirst = leftOrFirst;
+    node.count = count;
+    return node;
 }
 
-SahSplit Builder::findSah(const Task& task) {
+void Builder::binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale,
+                       BinSet& bins) const {
+    const float topf = float(bins_ - 1);
+    const V4 top = {topf, topf, topf, topf};
+    Bin* b0 = bins.axis(0);
+    Bin* b1 = bins.axis(1);
+    Bin* b2 = bins.axis(2);
+    // Occupancy kept in registers (bins <= 64) or marked per triangle.
+    const bool wide = bins_ > 64;
+    std::uint64_t u0 = 0, u1 = 0, u2 = 0;
+    for (std::uint32_t i = begin; i < end; ++i) {
+        const PrimRef& p = prims_[i];
+        const V4i k = binOf(centroid2(p), cmin, scale, top);
+        Bin& x = b0[k[0]];
+        Bin& y = b1[k[1]];
+        Bin& z = b2[k[2]];
+        x.count++;
+        x.box.lo = vmin(x.box.lo, p.lo);
+        x.box.hi = vmax(x.box.hi, p.hi);
+        y.count++;
+        y.box.lo = vmin(y.box.lo, p.lo);
+        y.box.hi = vmax(y.box.hi, p.hi);
+        z.count++;
+        z.box.lo = vmin(z.box.lo, p.lo);
+        z.box.hi = vmax(z.box.hi, p.hi);
+        if (wide) {
+            bins.mark(0, k[0]);
+            bins.mark(1, k[1]);
+            bins.mark(2, k[2]);
+        } else {
+            u0 |= std::uint64_t(1) << k[0];
+            u1 |= std::uint64_t(1) << k[1];
+            u2 |= std::uint64_t(1) << k[2];
+        }
+    }
+    bins.used[0][0] |= u0;
+    bins.used[1][0] |= u1;
+    bins.used[2][0] |= u2;
+}
+
+SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
     SahSplit best;
     V4 scale = {0.0f, 0.0f, 0.0f, 0.0f};
     bool valid[3];
@@ -168,69 +264,85 @@ SahSplit Builder::findSah(const Task& task) {
     }
     if (!valid[0] && !valid[1] && !valid[2]) return best;
 
-    std::fill(binScratch_.begin(), binScratch_.end(), Bin{});
-    Bin* bins[3] = {&binScratch_[0], &binScratch_[std::size_t(bins_)],
-                    &binScratch_[std::size_t(2 * bins_)]};
     const V4 cmin = task.cbox.lo;
-    const float topf = float(bins_ - 1);
-    const V4 top = {topf, topf, topf, topf};
-    for (std::uint32_t i = task.begin; i < task.end; ++i) {
-        const PrimRef& p = prims_[i];
-        const V4i k = binOf(centroid2(p), cmin, scale, top);
-        for (int a = 0; a < 3; ++a) {
-            Bin& b = bins[a][k[a]];
-            b.count++;
-            b.box.lo = vmin(b.box.lo, p.lo);
-            b.box.hi = vmax(b.box.hi, p.hi);
+    if (parallel) {
+        // Bin fixed chunks into their own sets, then merge them in order
+        // (min, max and counts: the merged bins do not depend on the order).
+        const std::uint32_t chunks = (task.end - task.begin + kChunkPrims - 1) / kChunkPrims;
+        std::vector<BinSet> part(chunks, BinSet(bins_));
+        pool_->parallelFor(chunks, [&](std::uint32_t c) {
+            const std::uint32_t b = task.begin + c * kChunkPrims;
+            binRange(b, std::min(task.end, b + kChunkPrims), cmin, scale, part[c]);
+        });
+        for (BinSet& p : part) {
+            for (int a = 0; a < 3; ++a) {
+                for (int k = 0; k < bins_; ++k) {
+                    const Bin& s = p.axis(a)[k];
+                    if (s.count == 0) continue;
+                    Bin& d = bins.axis(a)[k];
+                    d.count += s.count;
+                    d.box.grow(s.box);
+                    bins.mark(a, k);
+                }
+            }
         }
+    } else {
+        binRange(task.begin, task.end, cmin, scale, bins);
     }
 
-    // Right-to-left sweep stores the right side's area and count per split.
+    // Right-to-left sweep stores the right side's area and count per split
+    // (after occupied bin j of the m occupied ones).
+    bins.collect();
     float rightArea[kMaxBins];
     std::uint32_t rightCount[kMaxBins];
     for (int a = 0; a < 3; ++a) {
         if (!valid[a]) continue;
+        const Bin* ab = bins.axis(a);
+        const std::uint16_t* idx = bins.occupied[a];
+        const int m = bins.occupiedCount[a];
         Box acc;
         std::uint32_t n = 0;
-        for (int i = bins_ - 1; i > 0; --i) {
-            acc.grow(bins[a][i].box);
-            n += bins[a][i].count;
-            rightArea[i - 1] = acc.halfArea();
-            rightCount[i - 1] = n;
+        for (int j = m - 1; j > 0; --j) {
+            acc.grow(ab[idx[j]].box);
+            n += ab[idx[j]].count;
+            rightArea[j - 1] = acc.halfArea();
+            rightCount[j - 1] = n;
         }
         acc = Box();
         n = 0;
-        for (int i = 0; i < bins_ - 1; ++i) {
-            acc.grow(bins[a][i].box);
-            n += bins[a][i].count;
-            if (n == 0 || rightCount[i] == 0) continue;
-            float cost = acc.halfArea() * float(n) + rightArea[i] * float(rightCount[i]);
+        for (int j = 0; j < m - 1; ++j) {
+            acc.grow(ab[idx[j]].box);
+            n += ab[idx[j]].count;
+            float cost = acc.halfArea() * float(n) + rightArea[j] * float(rightCount[j]);
             if (cost < best.cost || !best.found) {
                 best.found = true;
                 best.axis = a;
-                best.bin = i;
+                best.bin = idx[j];
                 best.cost = cost;
             }
         }
     }
     if (best.found) {
         best.scale = scale[best.axis];
-        for (int i = 0; i < bins_; ++i) {
-            (i <= best.bin ? best.left : best.right).grow(bins[best.axis][i].box);
+        const Bin* ab = bins.axis(best.axis);
+        const std::uint16_t* idx = bins.occupied[best.axis];
+        const int m = bins.occupiedCount[best.axis];
+        for (int j = 0; j < m; ++j) {
+            (idx[j] <= best.bin ? best.left : best.right).grow(ab[idx[j]].box);
         }
     }
+    bins.clear();
     return best;
 }
 
-// Hoare partition by bin; returns the first index of the right side and the
-// doubled-centroid bounds of both sides.
-std::uint32_t Builder::partitionSah(const Task& task, const SahSplit& split, Box& lc, Box& rc) {
-    const int a = split.axis;
-    const float cmin = task.cbox.lo[a];
+// Hoare partition of [begin, end) by bin; returns the first index of the
+// right side and grows lc/rc by the doubled centroids of both sides.
+std::uint32_t Builder::partitionRange(std::uint32_t begin, std::uint32_t end, int a, float cmin,
+                                      const SahSplit& split, Box& lc, Box& rc) {
     auto isLeft = [&](const PrimRef& p) {
         return binOf(centroid2(p)[a], cmin, split.scale, bins_) <= split.bin;
     };
-    std::uint32_t i = task.begin, j = task.end;
+    std::uint32_t i = begin, j = end;
     for (;;) {
         while (i < j && isLeft(prims_[i])) lc.grow(centroid2(prims_[i++]));
         while (i < j && !isLeft(prims_[j - 1])) rc.grow(centroid2(prims_[--j]));
@@ -240,6 +352,54 @@ std::uint32_t Builder::partitionSah(const Task& task, const SahSplit& split, Box
         rc.grow(centroid2(prims_[--j]));
     }
     return i;
+}
+
+std::uint32_t Builder::partitionSah(const Task& task, const SahSplit& split, Box& lc, Box& rc,
+                                    bool parallel) {
+    const int a = split.axis;
+    const float cmin = task.cbox.lo[a];
+    if (!parallel) return partitionRange(task.begin, task.end, a, cmin, split, lc, rc);
+
+    // Each fixed chunk is partitioned in place; then the right-side triangles
+    // left of the final split point swap, in order, with the left-side
+    // triangles right of it.
+    const std::uint32_t chunks = (task.end - task.begin + kChunkPrims - 1) / kChunkPrims;
+    std::vector<std::uint32_t> mid(chunks);
+    std::vector<Box> lcs(chunks), rcs(chunks);
+    pool_->parallelFor(chunks, [&](std::uint32_t c) {
+        const std::uint32_t b = task.begin + c * kChunkPrims;
+        mid[c] = partitionRange(b, std::min(task.end, b + kChunkPrims), a, cmin, split, lcs[c],
+                                rcs[c]);
+    });
+    std::uint32_t split0 = task.begin;
+    for (std::uint32_t c = 0; c < chunks; ++c) {
+        split0 += mid[c] - (task.begin + c * kChunkPrims);
+        lc.grow(lcs[c]);
+        rc.grow(rcs[c]);
+    }
+    // Misplaced runs: [from, to) ranges, ascending.
+    struct Run {
+        std::uint32_t from, to;
+    };
+    std::vector<Run> wrongRight, wrongLeft;
+    for (std::uint32_t c = 0; c < chunks; ++c) {
+        const std::uint32_t b = task.begin + c * kChunkPrims;
+        const std::uint32_t e = std::min(task.end, b + kChunkPrims);
+        if (mid[c] < split0 && mid[c] < e) wrongRight.push_back({mid[c], std::min(e, split0)});
+        if (b < mid[c] && mid[c] > split0) wrongLeft.push_back({std::max(b, split0), mid[c]});
+    }
+    std::size_t r = 0, l = 0;
+    std::uint32_t ri = wrongRight.empty() ? 0 : wrongRight[0].from;
+    std::uint32_t li = wrongLeft.empty() ? 0 : wrongLeft[0].from;
+    while (r < wrongRight.size() && l < wrongLeft.size()) {
+        const std::uint32_t n = std::min(wrongRight[r].to - ri, wrongLeft[l].to - li);
+        std::swap_ranges(prims_ + ri, prims_ + ri + n, prims_ + li);
+        ri += n;
+        li += n;
+        if (ri == wrongRight[r].to && ++r < wrongRight.size()) ri = wrongRight[r].from;
+        if (li == wrongLeft[l].to && ++l < wrongLeft.size()) li = wrongLeft[l].from;
+    }
+    return split0;
 }
 
 // Object median on the axis of largest centroid extent, ties broken by input
@@ -252,7 +412,7 @@ std::uint32_t Builder::partitionMedian(const Task& task, Task& left, Task& right
         return c == c ? c : -kInf;
     };
     const std::uint32_t mid = task.begin + (task.end - task.begin) / 2;
-    std::nth_element(prims_.begin() + task.begin, prims_.begin() + mid, prims_.begin() + task.end,
+    std::nth_element(prims_ + task.begin, prims_ + mid, prims_ + task.end,
                      [&](const PrimRef& x, const PrimRef& y) {
                          float kx = key(x), ky = key(y);
                          return kx < ky || (kx == ky && x.id() < y.id());
@@ -265,25 +425,12 @@ std::uint32_t Builder::partitionMedian(const Task& task, Task& left, Task& right
     return mid;
 }
 
-void Builder::append(const Builder& sub) {
-    const std::uint32_t offset = std::uint32_t(nodes_.size());
-    for (gpu::BvhNode node : sub.nodes_) {
-        if (node.count == 0) node.leftOrFirst += offset;
-        nodes_.push_back(node);
-    }
-    maxDepth_ = std::max(maxDepth_, sub.maxDepth_);
-}
-
-void Builder::build(const Task& task, bool parallel) {
+bool Builder::split(const Task& task, Task& left, Task& right, BinSet& bins, bool parallel) {
     const std::uint32_t n = task.end - task.begin;
     const V4 cext = task.cbox.hi - task.cbox.lo;
     const bool coincide = !(cext[0] > 0.0f || cext[1] > 0.0f || cext[2] > 0.0f);
-    if (n <= 1 || coincide) {
-        makeLeaf(task);
-        return;
-    }
+    if (n <= 1 || coincide) return false;
 
-    Task left, right;
     left.depth = right.depth = task.depth + 1;
     left.begin = task.begin;
     right.end = task.end;
@@ -291,69 +438,86 @@ void Builder::build(const Task& task, bool parallel) {
     // so switching to it here keeps every leaf at depth < kBvhStackSize.
     if (task.depth + ceilLog2(n) >= kBvhStackSize - 1) {
         left.end = right.begin = partitionMedian(task, left, right);
-    } else {
-        SahSplit split = findSah(task);
-        if (split.found) {
-            const float area = task.box.halfArea();
-            const float splitCost = traversalCost_ * area + split.cost;
-            const float leafCost = area * float(n);
-            if (n <= maxLeaf_ && !(splitCost < leafCost)) {
-                makeLeaf(task);
-                return;
-            }
-            left.box = split.left;
-            right.box = split.right;
-            left.end = right.begin = partitionSah(task, split, left.cbox, right.cbox);
-        } else if (n <= maxLeaf_) {
-            makeLeaf(task);
-            return;
-        } else {
-            left.end = right.begin = partitionMedian(task, left, right);
-        }
+        return true;
     }
+    SahSplit sah = findSah(task, bins, parallel);
+    if (sah.found) {
+        const float area = task.box.halfArea();
+        const float splitCost = traversalCost_ * area + sah.cost;
+        const float leafCost = area * float(n);
+        if (n <= maxLeaf_ && !(splitCost < leafCost)) return false;
+        left.box = sah.left;
+        right.box = sah.right;
+        left.end = right.begin = partitionSah(task, sah, left.cbox, right.cbox, parallel);
+        return true;
+    }
+    if (n <= maxLeaf_) return false;
+    left.end = right.begin = partitionMedian(task, left, right);
+    return true;
+}
 
-    const std::uint32_t index = std::uint32_t(nodes_.size());
-    gpu::BvhNode node;
-    node.bmin = toVec3(task.box.lo);
-    node.bmax = toVec3(task.box.hi);
-    node.leftOrFirst = 0;
-    node.count = 0;
-    nodes_.push_back(node);
-
-    if (parallel && n >= kParallelMinPrims) {
-        // Both subtrees build into their own node arrays and are appended in
-        // order, so the output equals the single-threaded one.
-        Builder subLeft(prims_, bins_, maxLeaf_, traversalCost_);
-        Builder subRight(prims_, bins_, maxLeaf_, traversalCost_);
-        std::exception_ptr error;
-        std::thread worker;
-        try {
-            worker = std::thread([&] {
-                try {
-                    subLeft.build(left, false);
-                } catch (...) {
-                    error = std::current_exception();
-                }
-            });
-        } catch (const std::system_error&) {
-            subLeft.build(left, false);  // no thread available
-        }
-        try {
-            subRight.build(right, false);
-        } catch (...) {
-            if (worker.joinable()) worker.join();
-            throw;
-        }
-        if (worker.joinable()) worker.join();
-        if (error) std::rethrow_exception(error);
-        append(subLeft);
-        nodes_[index].leftOrFirst = std::uint32_t(nodes_.size());
-        append(subRight);
+void Builder::buildSerial(const Task& task, NodeList& nodes, std::uint32_t& maxDepth,
+                          BinSet& bins) {
+    Task left, right;
+    if (!split(task, left, right, bins, false)) {
+        nodes.push_back(makeNode(task.box, task.begin, task.end - task.begin));
+        maxDepth = std::max(maxDepth, task.depth);
         return;
     }
-    build(left, false);
-    nodes_[index].leftOrFirst = std::uint32_t(nodes_.size());
-    build(right, false);
+    const std::uint32_t index = nodes.size;
+    nodes.push_back(makeNode(task.box, 0, 0));
+    buildSerial(left, nodes, maxDepth, bins);
+    nodes[index].leftOrFirst = nodes.size;
+    buildSerial(right, nodes, maxDepth, bins);
+}
+
+void Builder::buildTask(const Task& task, Subtree& out) {
+    const std::uint32_t n = task.end - task.begin;
+    BinSet bins(bins_);
+    if (n < kTaskMinPrims) {
+        out.nodes.data = arena_.take(2 * std::size_t(n) - 1);
+        buildSerial(task, out.nodes, out.maxDepth, bins);
+        return;
+    }
+    Task left, right;
+    if (!split(task, left, right, bins, n >= kParallelMinPrims)) {
+        out.nodes.data = arena_.take(1);
+        out.nodes.push_back(makeNode(task.box, task.begin, n));
+        out.maxDepth = task.depth;
+        return;
+    }
+    out.top = makeNode(task.box, 0, 0);
+    out.maxDepth = task.depth;
+    out.left = std::make_unique<Subtree>();
+    out.right = std::make_unique<Subtree>();
+    pool_->submit(left.end - left.begin, [this, left, sub = out.left.get()] { buildTask(left, *sub); });
+    pool_->submit(right.end - right.begin,
+                  [this, right, sub = out.right.get()] { buildTask(right, *sub); });
+}
+
+// Sets `size` bottom-up; returns the deepest leaf.
+std::uint32_t measure(Subtree& t) {
+    if (!t.left) {
+        t.size = t.nodes.size;
+        return t.maxDepth;
+    }
+    const std::uint32_t d = std::max(measure(*t.left), measure(*t.right));
+    t.size = 1 + t.left->size + t.right->size;
+    return d;
+}
+
+// Places the subtree at node index `base` of the depth-first order: interior
+// nodes of the parallel top are written, built subtrees listed for copying.
+void layout(Subtree& t, std::uint32_t base, std::vector<gpu::BvhNode>& out,
+            std::vector<std::pair<const Subtree*, std::uint32_t>>& copies) {
+    if (!t.left) {
+        copies.emplace_back(&t, base);
+        return;
+    }
+    out[base] = t.top;
+    out[base].leftOrFirst = base + 1 + t.left->size;
+    layout(*t.left, base + 1, out, copies);
+    layout(*t.right, base + 1 + t.left->size, out, copies);
 }
 
 }  // namespace
@@ -378,35 +542,78 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
         empty.count = 0;
         bvh.nodes.push_back(empty);
     } else {
-        std::vector<PrimRef> prims(n);
+        unsigned threads = options.threads > 0 ? unsigned(options.threads)
+                                               : std::thread::hardware_concurrency();
+        if (n < kTaskMinPrims) threads = 1;
+        TaskPool pool(std::max(threads, 1u) - 1);
+        const std::uint32_t chunks = (n + kChunkPrims - 1) / kChunkPrims;
+
+        std::unique_ptr<PrimRef[]> prims = allocateLarge<PrimRef>(n);
+        std::vector<Task> parts(chunks);
+        pool.parallelFor(chunks, [&](std::uint32_t c) {
+            Task& part = parts[c];
+            for (std::uint32_t i = c * kChunkPrims, e = std::min(n, i + kChunkPrims); i < e; ++i) {
+                Box b;
+                b.grow(toV4(v0[i]));
+                b.grow(toV4(v1[i]));
+                b.grow(toV4(v2[i]));
+                part.box.grow(b);
+                b.lo[3] = std::bit_cast<float>(i);
+                b.hi[3] = 0.0f;
+                prims[i] = PrimRef{b.lo, b.hi};
+                part.cbox.grow(centroid2(prims[i]));
+            }
+        });
         Task root;
         root.end = n;
-        for (std::uint32_t i = 0; i < n; ++i) {
-            Box b;
-            b.grow(toV4(v0[i]));
-            b.grow(toV4(v1[i]));
-            b.grow(toV4(v2[i]));
-            root.box.grow(b);
-            b.lo[3] = std::bit_cast<float>(i);
-            b.hi[3] = 0.0f;
-            prims[i] = PrimRef{b.lo, b.hi};
-            root.cbox.grow(centroid2(prims[i]));
+        for (const Task& part : parts) {
+            root.box.grow(part.box);
+            root.cbox.grow(part.cbox);
         }
-        Builder builder(prims, std::clamp(options.bins, kMinBins, kMaxBins),
-                        std::uint32_t(std::max(options.maxLeafSize, 1)), options.traversalCost);
-        builder.build(root, std::thread::hardware_concurrency() > 1);
 
-        bvh.nodes = std::move(builder.nodes_);
+        NodeArena arena(2 * std::size_t(n));
+        Builder builder(prims.get(), arena, std::clamp(options.bins, kMinBins, kMaxBins),
+                        std::uint32_t(std::max(options.maxLeafSize, 1)), options.traversalCost,
+                        &pool);
+        Subtree tree;
+        builder.buildTask(root, tree);
+        pool.drain();
+
+        // Depth-first layout: the parallel top first, then the built
+        // subtrees copied in parallel with their node indices offset.
+        bvh.stats.maxDepth = measure(tree);
+        bvh.nodes.reserve(tree.size);
+        adviseHugePages(bvh.nodes.data(), std::size_t(tree.size) * sizeof(gpu::BvhNode));
+        bvh.nodes.resize(tree.size);
+        std::vector<std::pair<const Subtree*, std::uint32_t>> copies;
+        layout(tree, 0, bvh.nodes, copies);
+        bvh.triIndices.reserve(n);
+        adviseHugePages(bvh.triIndices.data(), std::size_t(n) * sizeof(std::uint32_t));
         bvh.triIndices.resize(n);
-        for (std::uint32_t i = 0; i < n; ++i) bvh.triIndices[i] = prims[i].id();
-        // SAH cost in node order, so it does not depend on the thread split.
+        const std::uint32_t jobs = std::uint32_t(copies.size());
+        pool.parallelFor(jobs + chunks, [&](std::uint32_t j) {
+            if (j >= jobs) {
+                const std::uint32_t b = (j - jobs) * kChunkPrims;
+                for (std::uint32_t i = b, e = std::min(n, b + kChunkPrims); i < e; ++i) {
+                    bvh.triIndices[i] = prims[i].id();
+                }
+                return;
+            }
+            const auto [sub, base] = copies[j];
+            gpu::BvhNode* dst = bvh.nodes.data() + base;
+            for (std::uint32_t k = 0; k < sub->nodes.size; ++k) {
+                gpu::BvhNode node = sub->nodes.data[k];
+                if (node.count == 0) node.leftOrFirst += base;
+                *dst++ = node;
+            }
+        });
+        // SAH cost in node order, so it does not depend on the thread count.
         double sum = 0.0;
         for (const gpu::BvhNode& node : bvh.nodes) {
             const double area = halfAreaD(node.bmin, node.bmax);
             sum += area * (node.count > 0 ? double(node.count) : double(options.traversalCost));
             bvh.stats.leaves += node.count > 0 ? 1u : 0u;
         }
-        bvh.stats.maxDepth = builder.maxDepth_;
         const double rootArea = halfAreaD(toVec3(root.box.lo), toVec3(root.box.hi));
         bvh.stats.sahCost = rootArea > 0.0 ? sum / rootArea : 0.0;
     }

@@ -21,6 +21,7 @@ struct BvhBuildOptions {
     int maxLeafSize = 8;      // a node with more triangles is always split
     float traversalCost = 1.0f;  // SAH cost of an interior node, relative to
                                  // one triangle intersection
+    int threads = 0;          // build threads; 0: std::thread::hardware_concurrency()
 };
 
 struct BvhStats {
@@ -40,7 +41,8 @@ struct Bvh {
 
 // Builds over triangles given by their three vertices. Degenerate triangles
 // (zero area, collinear) are kept; they are never hit. Output depends only on
-// the input (a second thread, if used, does not change it).
+// the input and options other than `threads`: neither the thread count nor
+// thread timing changes it.
 // No triangles: nodes holds one node with an empty box (bmin = +inf,
 // bmax = -inf), count 0 and leftOrFirst 0; stats.leaves is 0. An interior
 // node always has leftOrFirst >= 2, so traversals treat a root with

@@ -1,0 +1,67 @@
+// Memory for the BVH builder: large uninitialised arrays on huge pages and
+// the node arena that subtree tasks share.
+#pragma once
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <type_traits>
+
+#include <sys/mman.h>
+
+#include "../../shaders/shared/types.h"
+
+namespace strata {
+
+// Asks the kernel for 2 MiB pages in [p, p + bytes): a large array then takes
+// one page fault per 2 MiB instead of one per 4 KiB when first written, which
+// otherwise costs more than filling it.
+inline void adviseHugePages(const void* p, std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+    constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+    const std::uintptr_t b = (std::uintptr_t(p) + kHuge - 1) & ~(kHuge - 1);
+    const std::uintptr_t e = (std::uintptr_t(p) + bytes) & ~(kHuge - 1);
+    if (e > b) madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
+// Uninitialised storage for `count` elements of a trivial type, huge pages
+// advised.
+template <class T>
+std::unique_ptr<T[]> allocateLarge(std::size_t count) {
+    static_assert(std::is_trivially_default_constructible_v<T>);
+    std::unique_ptr<T[]> p(new T[count]);
+    adviseHugePages(p.get(), count * sizeof(T));
+    return p;
+}
+
+// Node storage shared by all subtree tasks: a task with m triangles takes a
+// range of 2m - 1 nodes (its bound: every leaf holds a triangle). Where a
+// range lies depends on thread timing; only the copy into depth-first order
+// places nodes in the output.
+struct NodeArena {
+    explicit NodeArena(std::size_t capacity)
+        : nodes(allocateLarge<gpu::BvhNode>(capacity)), capacity(capacity) {}
+    gpu::BvhNode* take(std::size_t count) {
+        const std::size_t at = next.fetch_add(count);
+        if (at + count > capacity) throw std::logic_error("buildBvh: node arena overflow");
+        return nodes.get() + at;
+    }
+    std::unique_ptr<gpu::BvhNode[]> nodes;
+    std::size_t capacity;
+    std::atomic<std::size_t> next{0};
+};
+
+// Appends nodes to a range taken from the arena.
+struct NodeList {
+    gpu::BvhNode* data = nullptr;
+    std::uint32_t size = 0;
+    void push_back(const gpu::BvhNode& node) { data[size++] = node; }
+    gpu::BvhNode& operator[](std::size_t i) { return data[i]; }
+};
+
+}  // namespace strata
