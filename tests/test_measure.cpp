@@ -174,6 +174,7 @@ TEST_CASE("bench reports every section with consistent numbers") {
     CHECK(su["pipeline_ms"].get<double>() > 0.0);
     CHECK(su["load_ms"].get<double>() > 0.0);
     CHECK(su["first_dispatch_pixels"].get<int>() == 64 * 48);
+    CHECK(su["first_dispatch_device_ms_64"].get<double>() > 0.0);
     CHECK(su["first_dispatch_device_ms"].get<double>() > 0.0);
     CHECK(su["bvh_build_ms"].get<double>() == j["bvh"]["build_ms"].get<double>());
 }
