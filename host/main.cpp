@@ -41,7 +41,8 @@ constexpr const char* kUsage =
     "                       [--seeds K] [--plot PLOT.png] [--seed S] [--max-depth D] [--camera I]\n"
     "                       [--sampler NAME|all] [--env ... (as render)]\n"
     "       strata edges [--spp 64] [--sampler NAME|all] [--seed S] [-o TABLE.csv] [--plot PLOT.png]\n"
-    "       strata bench SCENE [--width W] [--height H] [--reps R] [--camera I] [--device I] [--json FILE]\n"
+    "       strata bench SCENE [--width W] [--height H] [--spp N] [--reference REF.exr] [--seed S]\n"
+    "                    [--max-depth D] [--reps R] [--camera I] [--device I] [--quick] [--json FILE]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
@@ -292,6 +293,11 @@ int runBenchCommand(const std::vector<std::string>& args) {
         if (a == "--width") cmd.width = parseUnsigned(a, value(), 1, 16384);
         else if (a == "--height") cmd.height = parseUnsigned(a, value(), 1, 16384);
         else if (a == "--reps") cmd.reps = parseUnsigned(a, value(), 1, 1000);
+        else if (a == "--spp") cmd.spp = parseUnsigned(a, value(), 1, 1u << 20);
+        else if (a == "--seed") cmd.seed = parseUnsigned(a, value(), 0, 0xffffffffu);
+        else if (a == "--max-depth") cmd.maxDepth = parseUnsigned(a, value(), 0, 1024);
+        else if (a == "--reference") cmd.reference = value();
+        else if (a == "--quick") cmd.quick = true;
         else if (a == "--camera") cmd.camera = parseUnsigned(a, value(), 0, 1u << 20);
         else if (a == "--device") cmd.device = parseUnsigned(a, value(), 0, 1024);
         else if (a == "--json") cmd.json = value();

@@ -10,6 +10,7 @@
 // convention): 0 shows emitters and the environment seen directly, 1 is
 // direct lighting.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
@@ -18,6 +19,7 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;  // any light at all
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;             // kMis* (types.h)
+layout(constant_id = SPEC_COUNT_RAYS) const uint kCountRays = 1u;       // count rays in RenderCounters
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
@@ -34,6 +36,10 @@ layout(push_constant) uniform Push { DispatchParams params; };
 // direction, roulette (1D in a pair).
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
+
+// Rays this invocation traced (SPEC_COUNT_RAYS).
+uint gClosestRays = 0u;
+uint gShadowRays = 0u;
 
 vec3 cameraRay(vec2 pixel) {
     vec2 ndc = vec2(2.0 * pixel.x / float(frame.image.x) - 1.0,
@@ -62,6 +68,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
 
     for (uint depth = 0u;; ++depth) {
         TraceHit hit;
+        if (kCountRays != 0u) ++gClosestRays;
         if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) {
             // Escaped: the environment, weighted against light sampling.
             if (kHasEmitters != 0u && hasFeature(kFeatureEnvironment)) {
@@ -121,6 +128,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
                 if (any(greaterThan(f, vec3(0.0)))) {
                     vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
                     bool visible;
+                    if (kCountRays != 0u) ++gShadowRays;
                     if (ls.dist < kLightFar) {
                         vec3 seg = ls.target - from;
                         float segLen = length(seg);
@@ -171,6 +179,17 @@ void main() {
     vec2 offset = sampleFilter(sample2D(smp));  // filter importance sampling, weight 1
     vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
     vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
+
+    if (kCountRays != 0u) {
+        // One pair of atomics per subgroup; a carry into the high word when the low one wraps.
+        uint closest = subgroupAdd(gClosestRays), shadow = subgroupAdd(gShadowRays);
+        if (subgroupElect()) {
+            uint old = atomicAdd(counters.closestLo, closest);
+            if (old + closest < old) atomicAdd(counters.closestHi, 1u);
+            old = atomicAdd(counters.shadowLo, shadow);
+            if (old + shadow < old) atomicAdd(counters.shadowHi, 1u);
+        }
+    }
 
     if (any(isnan(L)) || any(isinf(L))) {
         atomicAdd(counters.nonFinite, 1u);

@@ -21,6 +21,16 @@ namespace {
 
 const std::string kBox = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
 
+// Bad input: exit 2 and one line that says "error: ".
+void checkRejected(const std::string& args) {
+    CAPTURE(args);
+    const Run r = run(args);
+    CAPTURE(r.output);
+    CHECK(r.status == 2);
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    CHECK(r.output.find("error: ") != std::string::npos);
+}
+
 }  // namespace
 
 TEST_CASE("reference stores per-pixel variance; compare measures against it; converge reports") {
@@ -66,31 +76,148 @@ TEST_CASE("measurement commands reject bad input with one line and exit 2") {
           "converge " + kBox + " -o " + (d / "c.csv"),
           "converge " + kBox + " --reference " + (d / "a.exr") + " -o " + (d / "c.txt"),
           "converge " + kBox + " --reference " + (d / "a.exr") + " --spp 4,2 -o " + (d / "c.csv")}) {
-        CAPTURE(args);
-        const Run r = run(args);
-        CAPTURE(r.output);
-        CHECK(r.status == 2);
-        CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
-        CHECK(r.output.find("error: ") != std::string::npos);
+        checkRejected(args);
     }
     CHECK_FALSE(fs::exists(d / "r.exr"));
     CHECK_FALSE(fs::exists(d / "c.csv"));
 }
 
-TEST_CASE("bench traces the peer's three ray sets and reports consistent counts") {
+namespace {
+
+nlohmann::json readJson(const std::string& path) {
+    std::ifstream f(path);
+    return nlohmann::json::parse(f);
+}
+
+}  // namespace
+
+TEST_CASE("bench reports every section with consistent numbers") {
     TempDir d;
-    const Run r = run("bench " + kBox + " --width 64 --height 48 --reps 1 --json " + (d / "b.json"));
+    const Run r = run("bench " + kBox + " --quick --width 64 --height 48 --spp 2 --reps 1 --json " + (d / "b.json"));
     CAPTURE(r.output);
     REQUIRE(r.status == 0);
-    std::ifstream f(d / "b.json");
-    const nlohmann::json j = nlohmann::json::parse(f);
-    const auto& rays = j["rays"];
+    for (const char* section : {"start-up:", "BVH:", "traversal (", "path tracing (", "dispatch throughput ("})
+        CHECK(r.output.find(section) != std::string::npos);
+    const nlohmann::json j = readJson(d / "b.json");
+    for (const char* key : {"features", "startup", "bvh", "traversal", "path_tracing", "dispatch"})
+        CHECK(j.contains(key));
+
+    // Traversal: the peer's three ray sets.
+    const auto& rays = j["traversal"]["rays"];
     CHECK(rays["primary"]["rays"].get<int>() == 64 * 48);
     // One diffuse ray per primary hit; occlusion rays only from hits facing the point.
     CHECK(rays["diffuse"]["rays"].get<int>() == rays["primary"]["hits"].get<int>());
     CHECK(rays["occlusion"]["rays"].get<int>() <= rays["primary"]["hits"].get<int>());
     CHECK(rays["primary"]["hits"].get<int>() > 64 * 48 / 2);
     for (const char* set : {"primary", "diffuse", "occlusion"}) CHECK(rays[set]["mrays_per_s"].get<double>() > 0.0);
+
+    // BVH and features: the Cornell box has emissive triangles and nothing else.
     CHECK(j["bvh"]["nodes"].get<int>() == 33);
-    CHECK(run("bench " + kBox + " --json " + (d / "b.txt")).status == 2);
+    CHECK(j["features"] == nlohmann::json::array({"lights"}));
+
+    // Path tracing: counts from the device's ray counters.
+    const auto& p = j["path_tracing"];
+    const auto samples = p["samples"].get<std::uint64_t>();
+    CHECK(samples == 64u * 48u * 2u);
+    const auto closest = p["closest_rays"].get<std::uint64_t>(), shadow = p["shadow_rays"].get<std::uint64_t>();
+    CHECK(p["rays"].get<std::uint64_t>() == closest + shadow);
+    CHECK(closest >= samples);  // every path traces its camera ray
+    CHECK(shadow > 0);
+    const int maxDepth = p["max_depth"].get<int>();
+    CHECK(maxDepth == 16);
+    const double length = p["mean_path_length"].get<double>();
+    CHECK(length == doctest::Approx(static_cast<double>(closest) / samples));
+    CHECK(length > 1.0);
+    CHECK(length <= maxDepth + 1.0);
+    CHECK(p["shadow_rays_per_sample"].get<double>() <= maxDepth);  // at most one per scattering vertex
+    CHECK(p["msamples_per_s"].get<double>() > 0.0);
+    CHECK(p["mrays_per_s"].get<double>() >= p["msamples_per_s"].get<double>());
+    CHECK(p["non_finite"].get<int>() == 0);
+    CHECK(p["relmse"].is_null());  // no reference given
+    CHECK(p["ray_counting"]["device_s_counting"].get<double>() > 0.0);
+    CHECK(p["ray_counting"]["device_s_not_counting"].get<double>() > 0.0);
+
+    // Dispatch throughput: one dispatch per sample below the tile size.
+    const auto& sizes = j["dispatch"]["sizes"];
+    REQUIRE(sizes.size() == 2);
+    CHECK(sizes[0]["size"].get<int>() == 64);
+    CHECK(sizes[1]["size"].get<int>() == 128);
+    int renders = 0;
+    for (const auto& row : sizes) {
+        CAPTURE(row.dump());
+        ++renders;
+        CHECK(row["dispatches_per_sample"].get<int>() == 1);
+        CHECK(row["dispatches"].get<int>() == row["spp"].get<int>() * row["dispatches_per_sample"].get<int>());
+        CHECK(row["submissions"].get<int>() >= 1);
+        CHECK(row["submissions"].get<int>() <= row["dispatches"].get<int>());
+        CHECK(row["dispatches_per_submission"].get<double>() * row["submissions"].get<int>() ==
+              doctest::Approx(row["dispatches"].get<int>()));
+        CHECK(row["device_ms_per_dispatch"].get<double>() > 0.0);
+        CHECK(row["host_ms_per_submit"].get<double>() > 0.0);
+        CHECK(row["dispatches_per_s"].get<double>() > 0.0);
+    }
+    const auto& batching = j["dispatch"]["batching"];
+    const int spp = batching["spp"].get<int>();
+    for (const auto& run : batching["runs"]) {
+        CAPTURE(run.dump());
+        ++renders;
+        const int n = run["recorded_per_submission"].get<int>();
+        CHECK(run["dispatches"].get<int>() == spp);
+        CHECK(run["submissions"].get<int>() == (spp + n - 1) / n);
+    }
+    CHECK(batching["runs"].size() == 3);
+
+    // Start-up: one pipeline per render the bench made.
+    const auto& su = j["startup"];
+    renders += 1 + 2 * p["ray_counting"]["pairs"].get<int>();
+    CHECK(su["pipelines_created"].get<int>() == renders);
+    CHECK(su["pipeline_ms"].get<double>() > 0.0);
+    CHECK(su["load_ms"].get<double>() > 0.0);
+    CHECK(su["first_dispatch_pixels"].get<int>() == 64 * 48);
+    CHECK(su["first_dispatch_device_ms_64"].get<double>() > 0.0);
+    CHECK(su["first_dispatch_device_ms"].get<double>() > 0.0);
+    CHECK(su["bvh_build_ms"].get<double>() == j["bvh"]["build_ms"].get<double>());
+}
+
+TEST_CASE("bench relMSE: zero against a reference of the same seed, positive against another seed") {
+    TempDir d;
+    const std::string size = " --width 32 --height 24 --spp 2";
+    for (int seed : {0, 1}) {
+        const Run r = run("reference " + kBox + size + " --seed " + std::to_string(seed) + " --quiet -o " +
+                          (d / ("ref" + std::to_string(seed) + ".exr")));
+        CAPTURE(r.output);
+        REQUIRE(r.status == 0);
+    }
+    for (int seed : {0, 1}) {
+        CAPTURE(seed);
+        const Run r = run("bench " + kBox + size + " --quick --reps 1 --seed 0 --reference " +
+                          (d / ("ref" + std::to_string(seed) + ".exr")) + " --json " + (d / "b.json"));
+        CAPTURE(r.output);
+        REQUIRE(r.status == 0);
+        CHECK(r.output.find("relMSE ") != std::string::npos);
+        const nlohmann::json p = readJson(d / "b.json")["path_tracing"];
+        REQUIRE(p["relmse"].is_number());
+        if (seed == 0) {
+            CHECK(p["relmse"].get<double>() == 0.0);  // the same render, bit for bit
+            CHECK(p["efficiency"].is_null());
+        } else {
+            CHECK(p["relmse"].get<double>() > 0.0);
+            CHECK(p["efficiency"].get<double>() > 0.0);
+        }
+    }
+}
+
+TEST_CASE("bench rejects bad flags and a mismatched reference with one line and exit 2") {
+    TempDir d;
+    REQUIRE(run("render " + kBox + " --spp 1 --width 16 --height 8 --quiet -o " + (d / "r.exr")).status == 0);
+    for (const std::string& args : std::vector<std::string>{
+             "bench", "bench " + kBox + " --spp 0", "bench " + kBox + " --width 0", "bench " + kBox + " --bogus",
+             "bench " + kBox + " --spp", "bench " + kBox + " --max-depth -1",
+             "bench " + kBox + " --quick --reference " + (d / "r.exr"),  // 1024x768 against 16x8
+             "bench " + kBox + " --quick --width 16 --height 16 --reference " + (d / "r.exr"),
+             "bench " + kBox + " --quick --width 16 --height 8 --reference " + (d / "none.exr"),
+             "bench " + kBox + " --quick --json " + (d / "b.txt")}) {
+        checkRejected(args);
+    }
+    CHECK_FALSE(fs::exists(d / "b.txt"));
 }

@@ -1,5 +1,6 @@
 #include "measure/bench.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -7,11 +8,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "image/image_io.h"
+#include "measure/bench_render.h"
 #include "render/gpu_scene.h"
 #include "render/tracer.h"
 #include "scene/scene.h"
 #include "util/error.h"
 #include "util/files.h"
+#include "vk/check.h"
 #include "vk/context.h"
 
 namespace strata {
@@ -43,44 +47,47 @@ gpu::TraceRay makeRay(glm::vec3 o, glm::vec3 d, float tmax) {
     return r;
 }
 
-}  // namespace
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
 
-int runBench(const BenchCommand& cmd) {
-    if (!cmd.json.empty() && lowerExtension(cmd.json) != ".json") fail(cmd.json, "bench report must be .json");
-    LoadOptions options;
-    options.requireCamera = false;   // auto-framed like the peer
-    options.requireEmitter = false;  // traversal needs no light
-    Scene scene = loadGltf(cmd.scene, options);
-    if (scene.triangles.empty()) fail(cmd.scene, "no triangles to trace");
+struct Framing {
+    Camera camera;
+    std::string description;
+    glm::vec3 lo{1e30f}, hi{-1e30f};
+};
 
-    glm::vec3 lo(1e30f), hi(-1e30f);
+// The scene's camera, or (none in the file) the peer's auto-framing.
+Framing frame(const Scene& scene, const BenchCommand& cmd) {
+    Framing f;
     for (const auto& t : scene.triangles)
-        for (const auto& v : t.v) lo = glm::min(lo, v), hi = glm::max(hi, v);
-    const float diag = glm::length(hi - lo);
-    const float eps = 1e-4f * diag;
-    Camera cam;
-    std::string camDesc;
+        for (const auto& v : t.v) f.lo = glm::min(f.lo, v), f.hi = glm::max(f.hi, v);
+    const float diag = glm::length(f.hi - f.lo);
     if (!scene.cameras.empty()) {
         if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
             fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist");
-        cam = scene.cameras[cmd.camera];
-        camDesc = "camera " + std::to_string(cmd.camera);
+        f.camera = scene.cameras[cmd.camera];
+        f.description = "camera " + std::to_string(cmd.camera);
     } else {
-        const glm::vec3 c = (lo + hi) * 0.5f;
+        const glm::vec3 c = (f.lo + f.hi) * 0.5f;
+        Camera& cam = f.camera;
         cam.position = c + glm::normalize(glm::vec3(0.6f, 0.45f, 1.0f)) * (diag * 1.1f);
         cam.forward = glm::normalize(c - cam.position);
         cam.up = glm::cross(glm::normalize(glm::cross(cam.forward, glm::vec3(0, 1, 0))), cam.forward);
         cam.yfov = 45.0f * std::numbers::pi_v<float> / 180.0f;
-        camDesc = "none in file: auto-framed as the peer does";
+        f.description = "none in file: auto-framed as the peer does";
     }
-    const glm::vec3 light((lo.x + hi.x) * 0.5f, hi.y, (lo.z + hi.z) * 0.5f);
+    return f;
+}
 
-    const auto t0 = std::chrono::steady_clock::now();
-    GpuScene gpu = packScene(scene);
-    const double packMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    vk::Context ctx({cmd.device, cmd.validation});
+// The peer's three ray sets, traced with the shader BVH (median of cmd.reps passes each).
+nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& gpu, const Framing& fr,
+                                        const BenchCommand& cmd) {
     DeviceTracer tracer(ctx, gpu, Traversal::Auto);
-
+    const glm::vec3 lo = fr.lo, hi = fr.hi;
+    const Camera& cam = fr.camera;
+    const float eps = 1e-4f * glm::length(hi - lo);
+    const glm::vec3 light((lo.x + hi.x) * 0.5f, hi.y, (lo.z + hi.z) * 0.5f);
     // Primary rays through pixel centres, row 0 at the top.
     const int W = cmd.width, H = cmd.height;
     const float tanHalf = std::tan(cam.yfov * 0.5f);
@@ -122,16 +129,169 @@ int runBench(const BenchCommand& cmd) {
 
     auto mrays = [](std::size_t n, double s) { return s > 0.0 ? static_cast<double>(n) / s * 1e-6 : 0.0; };
     nlohmann::ordered_json j;
+    j["image"] = {W, H};
+    j["reps"] = cmd.reps;
+    j["reads"] = tracer.texel() ? "texel" : "storage";
+    j["secondary_origin_offset"] = eps;
+    j["occlusion_point"] = {light.x, light.y, light.z};
+    j["rays"] = {
+        {"primary", {{"rays", primary.size()}, {"hits", primaryHitCount}, {"device_s", primarySeconds},
+                     {"mrays_per_s", mrays(primary.size(), primarySeconds)}}},
+        {"diffuse", {{"rays", diffuse.size()}, {"hits", diffuseHitCount}, {"device_s", diffuseSeconds},
+                     {"mrays_per_s", mrays(diffuse.size(), diffuseSeconds)}}},
+        {"occlusion", {{"rays", occlusion.size()}, {"occluded", occludedCount}, {"device_s", occlusionSeconds},
+                       {"mrays_per_s", mrays(occlusion.size(), occlusionSeconds)}}}};
+    return j;
+}
+
+
+std::string format(const char* fmt, auto... args) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf, fmt, args...);
+    return buf;
+}
+
+double num(const nlohmann::ordered_json& v) { return v.is_number() ? v.get<double>() : 0.0; }
+
+// The report for people: the JSON's figures, section by section.
+std::string benchText(const nlohmann::ordered_json& j) {
+    std::string o;
+    std::string features;
+    for (const auto& f : j["features"]) features += (features.empty() ? "" : ", ") + f.get<std::string>();
+    o += format("strata bench: %s (%zu triangles), %s (%s)\n", j["scene"].get<std::string>().c_str(),
+                j["triangles"].get<std::size_t>(), j["device"].get<std::string>().c_str(),
+                j["driver"].get<std::string>().c_str());
+    o += "features: " + (features.empty() ? std::string("none") : features) + "; camera: " +
+         j["camera"].get<std::string>() + "\n";
+    const auto& su = j["startup"];
+    o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms,\n"
+                "          pipeline %.1f ms (median %.1f of %d), first dispatch %.2f ms device / %.2f ms host "
+                "(%d px of the image);\n"
+                "          at 64^2 a fresh pipeline's first dispatch %.2f ms, later ones %.2f ms\n",
+                num(su["load_ms"]), num(su["bvh_build_ms"]), num(su["pack_ms"]), num(su["device_init_ms"]),
+                num(su["upload_ms"]), num(su["pipeline_ms"]), num(su["pipeline_ms_median"]),
+                su["pipelines_created"].get<int>(), num(su["first_dispatch_device_ms"]),
+                num(su["first_dispatch_host_ms"]), su["first_dispatch_pixels"].get<int>(),
+                num(su["first_dispatch_device_ms_64"]), num(su["steady_dispatch_device_ms_64"]));
+    const auto& b = j["bvh"];
+    o += format("BVH: %.1f ms (%.1f ms/Mtri), %d nodes, %d leaves, depth %d, SAH cost %.2f, %.2f MiB\n",
+                num(b["build_ms"]), num(b["build_ms_per_mtri"]), b["nodes"].get<int>(), b["leaves"].get<int>(),
+                b["max_depth"].get<int>(), num(b["sah_cost"]), num(b["bytes"]) / 1048576.0);
+    const auto& t = j["traversal"];
+    o += format("traversal (%dx%d, %s reads, median of %d):\n", t["image"][0].get<int>(), t["image"][1].get<int>(),
+                t["reads"].get<std::string>().c_str(), t["reps"].get<int>());
+    for (const char* set : {"primary", "diffuse", "occlusion"}) {
+        const auto& r = t["rays"][set];
+        const bool occl = r.contains("occluded");
+        const double n = std::max(1.0, num(r["rays"]));
+        o += format("  %-10s %9zu rays  %6.1f%% %-9s %8.3f Mrays/s\n", set, r["rays"].get<std::size_t>(),
+                    100.0 * num(occl ? r["occluded"] : r["hits"]) / n, occl ? "occluded" : "hit",
+                    num(r["mrays_per_s"]));
+    }
+    const auto& p = j["path_tracing"];
+    o += format("path tracing (%dx%d, %d spp, max depth %d, %s, seed %d):\n", p["image"][0].get<int>(),
+                p["image"][1].get<int>(), p["spp"].get<int>(), p["max_depth"].get<int>(),
+                p["sampler"].get<std::string>().c_str(), p["seed"].get<int>());
+    o += format("  %.3f Msamples/s, %.3f Mrays/s (%.3g closest + %.3g shadow rays), %.2f s device\n",
+                num(p["msamples_per_s"]), num(p["mrays_per_s"]), num(p["closest_rays"]), num(p["shadow_rays"]),
+                num(p["device_s"]));
+    o += format("  mean path length %.3f segments, %.3f shadow rays per sample\n", num(p["mean_path_length"]),
+                num(p["shadow_rays_per_sample"]));
+    if (p["relmse"].is_number())
+        o += format("  relMSE %.4g against %s (efficiency 1/(relMSE s) %.4g)\n", num(p["relmse"]),
+                    p["reference"].get<std::string>().c_str(), num(p["efficiency"]));
+    else
+        o += "  relMSE: no --reference given\n";
+    const auto& rc = p["ray_counting"];
+    o += format("  ray counters cost %+.1f%% (%dx%d, %d spp, median of %d alternated pairs)\n",
+                num(rc["overhead_percent"]), rc["image"][0].get<int>(), rc["image"][1].get<int>(),
+                rc["spp"].get<int>(), rc["pairs"].get<int>());
+    const auto& d = j["dispatch"];
+    o += format("dispatch throughput (one sample per dispatch, tiles of %d^2, at most %.0f samples per size):\n",
+                d["tile"].get<int>(), num(d["sample_budget_per_size"]));
+    o += "  size   spp  dispatches  per submit  device ms/dispatch  host ms/submit  dispatches/s  Msamples/s\n";
+    for (const auto& r : d["sizes"])
+        o += format("  %4d %5d %11d %11.1f %19.3f %15.3f %13.1f %11.3f\n", r["size"].get<int>(), r["spp"].get<int>(),
+                    r["dispatches"].get<int>(), num(r["dispatches_per_submission"]), num(r["device_ms_per_dispatch"]),
+                    num(r["host_ms_per_submit"]), num(r["dispatches_per_s"]), num(r["msamples_per_s"]));
+    const auto& bt = d["batching"];
+    o += format("  dispatches recorded per submission at %d^2, %d spp:\n", bt["size"].get<int>(), bt["spp"].get<int>());
+    for (const auto& r : bt["runs"])
+        o += format("    %3d per submit: %4d submissions, host %.3f ms/dispatch, device %.3f ms/dispatch, "
+                    "%.1f dispatches/s; host beyond device %.3f ms/submit\n",
+                    r["recorded_per_submission"].get<int>(), r["submissions"].get<int>(),
+                    num(r["host_ms_per_dispatch"]), num(r["device_ms_per_dispatch"]), num(r["dispatches_per_s"]),
+                    num(r["host_overhead_ms_per_submit"]));
+    o += format("    most vs one per submit: %.3fx dispatches/s\n", num(bt["speedup_most_vs_one"]));
+    return o;
+}
+
+}  // namespace
+
+int runBench(const BenchCommand& cmd) {
+    if (!cmd.json.empty() && lowerExtension(cmd.json) != ".json") fail(cmd.json, "bench report must be .json");
+    // The reference first: a mismatch is an error before any work.
+    RgbImage reference;
+    if (!cmd.reference.empty()) {
+        reference = readRgb(cmd.reference);
+        if (reference.width != cmd.width || reference.height != cmd.height)
+            fail(cmd.reference, "reference is " + std::to_string(reference.width) + "x" +
+                                    std::to_string(reference.height) + ", bench renders " +
+                                    std::to_string(cmd.width) + "x" + std::to_string(cmd.height) +
+                                    " (set --width and --height to match)");
+    }
+    LoadOptions options;
+    options.requireCamera = false;   // auto-framed like the peer
+    options.requireEmitter = false;  // traversal needs no light
+    auto t0 = std::chrono::steady_clock::now();
+    Scene scene = loadGltf(cmd.scene, options);
+    const double loadMs = msSince(t0);
+    if (scene.triangles.empty()) fail(cmd.scene, "no triangles to trace");
+    const Framing fr = frame(scene, cmd);
+
+    t0 = std::chrono::steady_clock::now();
+    GpuScene gpu = packScene(scene);
+    const double packMs = msSince(t0);
+    t0 = std::chrono::steady_clock::now();
+    vk::Context ctx({cmd.device, cmd.validation});
+    const double deviceMs = msSince(t0);
+
+    nlohmann::ordered_json traversal = traversalSection(ctx, gpu, fr, cmd);
+    PipelineTimes pipelines;
+    nlohmann::ordered_json path =
+        benchPathTracing(ctx, gpu, fr.camera, cmd, cmd.reference.empty() ? nullptr : &reference, pipelines);
+    nlohmann::ordered_json dispatch = benchDispatch(ctx, gpu, fr.camera, cmd, pipelines);
+    if (ctx.validation && vk::validationMessageCount() > 0)
+        throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
+                              " Vulkan validation message(s) during the bench");
+
+    std::vector<double> sorted = pipelines;
+    std::sort(sorted.begin(), sorted.end());
+    const auto& steady = dispatch["sizes"][0];
+    nlohmann::ordered_json j;
     j["scene"] = cmd.scene;
     j["device"] = ctx.info.name;
     j["device_type"] = ctx.info.type;
+    j["driver"] = ctx.info.driver;
     j["triangles"] = scene.triangles.size();
-    j["camera"] = camDesc;
-    j["image"] = {W, H};
-    j["reps"] = cmd.reps;
-    j["traversal"] = tracer.texel() ? "texel" : "storage";
-    j["secondary_origin_offset"] = eps;
-    j["occlusion_point"] = {light.x, light.y, light.z};
+    j["camera"] = fr.description;
+    j["features"] = gpu.features.names();
+    j["quick"] = cmd.quick;
+    j["startup"] = {{"load_ms", loadMs},
+                    {"pack_ms", packMs},   // BVH build included
+                    {"bvh_build_ms", gpu.bvh.buildMs},
+                    {"device_init_ms", deviceMs},
+                    {"upload_ms", path["upload_ms"]},
+                    {"pipeline_ms", pipelines.front()},
+                    {"pipeline_ms_median", sorted[sorted.size() / 2]},
+                    {"pipelines_created", pipelines.size()},
+                    // A fresh pipeline's first dispatch against the same dispatch later: 64^2, one sample.
+                    {"first_dispatch_device_ms_64", steady["warm_up_device_ms"]},
+                    {"steady_dispatch_device_ms_64", steady["device_ms_per_dispatch"]},
+                    // The process's first path-tracing dispatch (a tile of the bench image).
+                    {"first_dispatch_device_ms", path["warm_up_device_ms"]},
+                    {"first_dispatch_host_ms", path["warm_up_host_ms"]},
+                    {"first_dispatch_pixels", path["warm_up_pixels"]}};
     j["bvh"] = {{"build_ms", gpu.bvh.buildMs},
                 {"build_ms_per_mtri", gpu.bvh.buildMs / (scene.triangles.size() * 1e-6)},
                 {"pack_ms", packMs},
@@ -140,27 +300,11 @@ int runBench(const BenchCommand& cmd) {
                 {"max_depth", gpu.bvh.maxDepth},
                 {"sah_cost", gpu.bvh.sahCost},
                 {"bytes", gpu.bvh.bytes}};
-    j["rays"] = {
-        {"primary", {{"rays", primary.size()}, {"hits", primaryHitCount}, {"device_s", primarySeconds},
-                     {"mrays_per_s", mrays(primary.size(), primarySeconds)}}},
-        {"diffuse", {{"rays", diffuse.size()}, {"hits", diffuseHitCount}, {"device_s", diffuseSeconds},
-                     {"mrays_per_s", mrays(diffuse.size(), diffuseSeconds)}}},
-        {"occlusion", {{"rays", occlusion.size()}, {"occluded", occludedCount}, {"device_s", occlusionSeconds},
-                       {"mrays_per_s", mrays(occlusion.size(), occlusionSeconds)}}}};
+    j["traversal"] = traversal;
+    j["path_tracing"] = path;
+    j["dispatch"] = dispatch;
     if (!cmd.json.empty()) writeTextAtomically(cmd.json, j.dump(2) + "\n");
-
-    std::printf("strata bench: %s (%zu triangles), %dx%d, %s, %s traversal, median of %d\n", cmd.scene.c_str(),
-                scene.triangles.size(), W, H, ctx.info.name.c_str(), tracer.texel() ? "texel" : "storage", cmd.reps);
-    std::printf("  BVH build %.1f ms (%.1f ms/Mtri), %u nodes, %u leaves, depth %u, SAH cost %.2f\n", gpu.bvh.buildMs,
-                gpu.bvh.buildMs / (scene.triangles.size() * 1e-6), gpu.bvh.nodes, gpu.bvh.leaves, gpu.bvh.maxDepth,
-                gpu.bvh.sahCost);
-    std::printf("  primary    %9zu rays  %6.1f%% hit       %8.3f Mrays/s\n", primary.size(),
-                100.0 * primaryHitCount / std::max<std::size_t>(1, primary.size()), mrays(primary.size(), primarySeconds));
-    std::printf("  diffuse    %9zu rays  %6.1f%% hit       %8.3f Mrays/s\n", diffuse.size(),
-                100.0 * diffuseHitCount / std::max<std::size_t>(1, diffuse.size()), mrays(diffuse.size(), diffuseSeconds));
-    std::printf("  occlusion  %9zu rays  %6.1f%% occluded  %8.3f Mrays/s\n", occlusion.size(),
-                100.0 * occludedCount / std::max<std::size_t>(1, occlusion.size()),
-                mrays(occlusion.size(), occlusionSeconds));
+    std::fputs(benchText(j).c_str(), stdout);
     return 0;
 }
 

@@ -1,10 +1,20 @@
-// `strata bench`: traversal throughput of the shader BVH on the device, on
-// the ray sets of the Embree peer benchmark (shared/peers/embree-rays), so
-// the two can be run side by side: primary rays through pixel centres,
-// one cosine-distributed diffuse bounce from each primary hit (the peer's
-// PCG RXS-M-XS draws and frame), and occlusion rays from each primary hit to
-// the top centre of the scene bounds.
+// `strata bench`: the speed of strata on one scene, in four sections, with
+// warm-up excluded and device time from Vulkan timestamps:
+//
+// - traversal: the shader BVH on the ray sets of the Embree peer benchmark
+//   (shared/peers/embree-rays), so the two run side by side: primary rays
+//   through pixel centres, one cosine-distributed diffuse bounce from each
+//   primary hit (the peer's PCG RXS-M-XS draws and frame), and occlusion rays
+//   from each primary hit to the top centre of the scene bounds;
+// - path tracing: the renderer itself, Msamples/s, rays/s from the shader's
+//   ray counters, mean path length, relMSE against --reference (speed is
+//   never reported without its error when a reference exists);
+// - dispatch throughput: one-sample dispatches at 64^2 .. 2048^2, and the
+//   effect of recording 1, 8 or 64 of them per submission;
+// - start-up (load, BVH build, pipeline creation, first dispatch) and the
+//   BVH and the scene's enabled features.
 #pragma once
+#include <cstdint>
 #include <string>
 
 namespace strata {
@@ -15,6 +25,11 @@ struct BenchCommand {
     int reps = 5;                     // timed passes per ray set (median)
     int camera = 0;
     int device = -1;
+    std::uint32_t spp = 4;            // path-tracing section
+    std::uint32_t seed = 0;
+    std::uint32_t maxDepth = 16;
+    std::string reference;            // EXR of the same size: relMSE of the path-tracing image
+    bool quick = false;               // small dispatch section, for tests
     std::string json;
     bool validation = false;
 };

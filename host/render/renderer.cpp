@@ -51,7 +51,9 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                     const RenderSettings& s, const Checkpoints& checkpoints) {
     using namespace gpu;
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
+    auto t0 = Clock::now();
     DeviceScene dev = uploadScene(ctx, scene, s.traversal);
+    const double uploadMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
     const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
 
@@ -77,12 +79,13 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     });
-    std::vector<std::uint32_t> spec(5);
+    std::vector<std::uint32_t> spec(6);
     spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
     spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
     spec[SPEC_SAMPLER] = s.sampler;
     spec[SPEC_FEATURES] = scene.features.bits;
     spec[SPEC_MIS] = s.mis;
+    spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
     vk::Kernel kernel(ctx, {kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4},
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);
@@ -97,7 +100,24 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     RenderResult result;
     result.film = Film(s.width, s.height);
     result.texelTraversal = dev.texel;
+    result.uploadMs = uploadMs;
+    result.pipelineMs = kernel.pipelineMs();
     vk::OneShot submit(ctx);
+    vk::DeviceTimer timer(ctx);
+    if (s.warmUp) {  // first-use costs of the pipeline, measured apart; the clear below undoes it
+        DispatchParams p{};
+        p.tileW = std::min(64u, static_cast<std::uint32_t>(s.width));
+        p.tileH = std::min(64u, static_cast<std::uint32_t>(s.height));
+        const auto w0 = Clock::now();
+        VkCommandBuffer cmd = submit.begin();
+        timer.begin(cmd);
+        kernel.dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
+        timer.end(cmd);
+        submit.submitAndWait();
+        result.warmUpHostSeconds = std::chrono::duration<double>(Clock::now() - w0).count();
+        result.warmUpDeviceSeconds = timer.supported() ? timer.seconds() : result.warmUpHostSeconds;
+        result.warmUpPixels = p.tileW * p.tileH;
+    }
     {
         VkCommandBuffer cmd = submit.begin();
         vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -109,8 +129,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
     const std::uint32_t tile = std::max(8u, s.tileSize);
-    std::uint32_t batch = 1;                  // samples in the next submission
-    vk::DeviceTimer timer(ctx);
+    std::uint32_t batch = s.fixedBatch ? s.fixedBatch : 1u;  // samples in the next submission
     std::size_t nextCheckpoint = 0;
 
     // The device sums samples in float32 and the host folds the sums into
@@ -148,6 +167,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         const bool atCheckpoint = nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] == after;
         const bool fold = unfolded + batch == foldEvery || after == s.spp || atCheckpoint;
 
+        const auto t0 = Clock::now();
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
         for (std::uint32_t k = 0; k < batch; ++k) {
@@ -160,6 +180,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                     p.tileH = std::min<std::uint32_t>(tile, s.height - ty);
                     p.sampleIndex = result.spp + k;
                     kernel.dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
+                    ++result.dispatches;
                 }
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                               VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
@@ -169,9 +190,9 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         }
         timer.end(cmd);
         if (fold) recordFold(cmd);
-        const auto t0 = Clock::now();
         submit.submitAndWait();
         const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+        result.hostSubmitSeconds += secs;
         result.deviceSeconds += timer.supported() ? timer.seconds() : secs;
         result.spp = after;
         unfolded += batch;
@@ -189,7 +210,8 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
         double target = s.submitSeconds;
         if (s.timeLimit > 0.0) target = std::min(target, s.timeLimit - elapsed());
-        batch = static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
+        batch = s.fixedBatch ? s.fixedBatch
+                             : static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
         if (showProgress)
             printProgress(result.spp, s.spp, elapsed(),
                           static_cast<double>(pixels) * result.spp / elapsed() * 1e-6);
@@ -213,6 +235,8 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         RenderCounters c;
         std::memcpy(&c, countersBack.mapped(), sizeof c);
         result.nonFinite = c.nonFinite;
+        result.closestRays = (static_cast<std::uint64_t>(c.closestHi) << 32) | c.closestLo;
+        result.shadowRays = (static_cast<std::uint64_t>(c.shadowHi) << 32) | c.shadowLo;
     }
     return result;
 }

@@ -32,6 +32,11 @@ struct RenderSettings {
     double submitSeconds = 0.25;        // target wall time of one submission (sets how many
                                         // samples each carries; never changes the image)
     std::uint32_t tileSize = 512;       // dispatch covers at most tileSize^2 pixels
+    std::uint32_t fixedBatch = 0;       // samples per submission (cut at folds and checkpoints);
+                                        // 0: adapt to submitSeconds
+    bool warmUp = false;                // one dispatch (a tile of at most 64x64 pixels, sample 0)
+                                        // before the loop, timed apart and cleared from the image
+    bool countRays = true;              // SPEC_COUNT_RAYS: closest/shadow ray counters
 };
 
 struct RenderResult;
@@ -52,6 +57,16 @@ struct RenderResult {
                                         // equals `seconds` where the queue has no timestamps
     std::uint64_t nonFinite = 0;        // samples dropped as NaN/Inf
     std::uint32_t submissions = 0;
+    std::uint64_t dispatches = 0;       // path-tracing dispatches recorded in the loop
+    double hostSubmitSeconds = 0.0;     // host wall time of the loop's submissions, from the
+                                        // start of recording to the end of the wait
+    std::uint64_t closestRays = 0;      // counted on the device when settings.countRays
+    std::uint64_t shadowRays = 0;
+    double uploadMs = 0.0;              // scene upload (host wall time)
+    double pipelineMs = 0.0;            // vkCreateComputePipelines for pathtrace.comp
+    double warmUpDeviceSeconds = 0.0;   // the warm-up dispatch (settings.warmUp), timestamps
+    double warmUpHostSeconds = 0.0;     // its submission, recording to end of wait
+    std::uint32_t warmUpPixels = 0;
     bool texelTraversal = false;
     double msamplesPerSecond() const {
         return seconds > 0 ? static_cast<double>(film.pixels()) * spp / seconds * 1e-6 : 0.0;

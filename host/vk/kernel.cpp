@@ -1,5 +1,6 @@
 #include "vk/kernel.h"
 
+#include <chrono>
 #include <map>
 #include <utility>
 
@@ -78,7 +79,9 @@ Kernel::Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
     pipeInfo.stage.pName = "main";
     pipeInfo.stage.pSpecializationInfo = specConstants.empty() ? nullptr : &spec;
     pipeInfo.layout = layout_;
+    const auto t0 = std::chrono::steady_clock::now();
     VK_CHECK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &pipeInfo, nullptr, &pipeline_));
+    pipelineMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     std::vector<VkDescriptorPoolSize> sizes;
     for (auto [type, count] : typeCounts) sizes.push_back({type, count});

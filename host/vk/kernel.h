@@ -53,11 +53,15 @@ public:
     void dispatch(VkCommandBuffer cmd, const void* push, std::uint32_t groupsX,
                   std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1) const;
 
+    // Host milliseconds vkCreateComputePipelines took for this kernel.
+    double pipelineMs() const { return pipelineMs_; }
+
 private:
     VkDescriptorType typeOf(std::uint32_t binding) const;
     const Context& ctx_;
     std::vector<BindingDesc> bindings_;
     std::uint32_t pushBytes_ = 0;
+    double pipelineMs_ = 0.0;
     VkShaderModule module_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;

@@ -38,6 +38,7 @@ STRATA_BINDING(SPEC_HAS_EMITTERS, 1);     // 0: no emissive triangles, NEE compi
 STRATA_BINDING(SPEC_SAMPLER, 2);          // kSampler* (types.h)
 STRATA_BINDING(SPEC_FEATURES, 3);         // kFeature* bits (types.h): what the scene uses
 STRATA_BINDING(SPEC_MIS, 4);              // kMis* (types.h): how light and BSDF samples combine
+STRATA_BINDING(SPEC_COUNT_RAYS, 5);       // 1: count closest and shadow rays in RenderCounters
 
 #ifdef __cplusplus
 }  // namespace strata::gpu

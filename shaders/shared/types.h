@@ -286,10 +286,17 @@ struct SampleTestParams {
     vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
 };
 
-// Statistics written by the shader with atomics.
+// Statistics written by the shader with atomics. Ray counts are 64-bit
+// counters kept as two words (low word added atomically, a carry into the
+// high word when it wraps), summed per subgroup before the atomics, and only
+// counted when SPEC_COUNT_RAYS is 1.
 struct RenderCounters {
     uint nonFinite;     // samples dropped because a channel was NaN/Inf
     uint pad0;
+    uint closestLo;     // closest-hit rays traced (= path segments), low word
+    uint closestHi;     //   high word
+    uint shadowLo;      // any-hit (shadow) rays traced, low word
+    uint shadowHi;      //   high word
     uint pad1;
     uint pad2;
 };
@@ -305,7 +312,7 @@ static_assert(sizeof(TriTangents) == 48);
 static_assert(sizeof(TextureRef) == 48);
 static_assert(sizeof(FrameUniforms) == 160);
 static_assert(sizeof(DispatchParams) == 32);
-static_assert(sizeof(RenderCounters) == 16);
+static_assert(sizeof(RenderCounters) == 32);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
