@@ -28,9 +28,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.dont_write_bytecode = True  # keep the tree free of __pycache__
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "tests", "data"))  # make_lights
 
 from gltf_writer import ARRAY_BUFFER, FLOAT  # noqa: E402
 from make_texture_scenes import data_uri, png  # noqa: E402
+from make_lights import rgbe  # noqa: E402
 from make_scenes import (CORNELL_CAMERA, Quads, add, box_faces, camera,  # noqa: E402
                          cornell_materials, cornell_room, cross, dot, lambert, mesh,
                          normalize, sub, write, writer)
@@ -405,15 +407,6 @@ def sky_texel(u, v):
         glow = 1.0 + 0.8 * math.exp(-((du ** 2 + (v - sv) ** 2) / 0.02))
         return ((0.15 + 0.6 * t) * glow, (0.3 + 0.55 * t) * glow, (0.8 + 0.2 * t) * glow)
     return (0.25, 0.2, 0.14)
-
-
-def rgbe(r, g, b):
-    v = max(r, g, b)
-    if v < 1e-32:
-        return bytes(4)
-    m, e = math.frexp(v)
-    k = m * 256.0 / v
-    return bytes((int(r * k), int(g * k), int(b * k), e + 128))
 
 
 def write_sky(path):

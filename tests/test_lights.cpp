@@ -24,12 +24,6 @@ constexpr double kPi = std::numbers::pi;
 
 std::string lightsPath(const std::string& name) { return sourcePath("tests/data/lights/" + name); }
 
-RenderResult renderScene(const Scene& scene, const RenderSettings& s) {
-    const GpuScene gpu = packScene(scene);
-    RenderResult r = render(context(), gpu, scene.cameras.at(0), s);
-    CHECK(r.nonFinite == 0);
-    return r;
-}
 
 RenderSettings settings(int size, std::uint32_t spp, std::uint32_t depth, std::uint32_t seed) {
     RenderSettings s;
@@ -101,13 +95,6 @@ std::pair<double, double> sphereBounds(const Scene& scene) {
     return {hMin, rMax};
 }
 
-// A file of tests/data/lights/ lit by --env-color 1,1,1.
-Scene loadWithWhiteEnvironment(const std::string& name) {
-    EnvironmentOptions env;
-    env.hasColor = true;
-    env.color = glm::vec3(1.0f);
-    return loadSceneWithEnvironment(lightsPath(name), env);
-}
 
 }  // namespace
 
@@ -328,7 +315,7 @@ TEST_CASE("lights: directional light on a plane gives a/pi * E * cos on every pi
 // a convex cone), background when a 9 x 9 grid of rays over the pixel misses
 // the circumscribed sphere by more than the grid spacing.
 TEST_CASE("lights: constant environment furnace: a convex sphere of albedo a is a, the background exactly 1") {
-    Scene scene = loadWithWhiteEnvironment("sphere.gltf");
+    Scene scene = loadWithWhiteEnvironment(lightsPath("sphere.gltf"));
     REQUIRE(scene.environment.enabled);
     const auto [hMin, rMax] = sphereBounds(scene);
     constexpr int kSize = 32;
@@ -434,7 +421,7 @@ TEST_CASE("lights: an environment map over a tilted plane gives the map's cosine
 // must both use the pmf to sum to 1: leaving it out of lightPdfEnvironment
 // biases L by 2.3% (z = -15 measured), a failure of this test.
 TEST_CASE("lights: a constant environment and a directional light share the choice and MIS (pmf 1/2)") {
-    Scene scene = loadWithWhiteEnvironment("env-plane.gltf");
+    Scene scene = loadWithWhiteEnvironment(lightsPath("env-plane.gltf"));
     const glm::dvec3 n = glm::normalize(glm::dvec3(1.0, 1.5, -0.5));
     PunctualLight sun;
     sun.type = PunctualLight::Type::Directional;

@@ -8,7 +8,6 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/environment.h"
 #include "test_util.h"
 
 using namespace strata;
@@ -122,18 +121,6 @@ TEST_CASE("a smooth black dielectric reflects the lamp by the exact Fresnel fact
 
 namespace {
 
-Rendered renderInWhiteEnvironment(const std::string& file, const RenderSettings& s) {
-    EnvironmentOptions env;
-    env.hasColor = true;
-    env.color = glm::vec3(1.0f);
-    Rendered r;
-    r.scene = loadSceneWithEnvironment(sourcePath(file), env);
-    r.gpu = packScene(r.scene);
-    r.result = render(context(), r.gpu, r.scene.cameras.at(0), s);
-    CHECK(r.result.nonFinite == 0);
-    return r;
-}
-
 // Mean of channel 0 over all pixels, its standard error, and the largest
 // per-pixel |z| against `expected` (pixels with zero variance must equal it
 // to float precision).
@@ -175,8 +162,9 @@ TEST_CASE("furnace: a smooth glass sphere (ior 1.5) vanishes in a uniform enviro
     s.width = s.height = 32;
     s.spp = 1024;
     s.maxDepth = 1000;
-    const Rendered r = renderInWhiteEnvironment("tests/data/materials/glass-sphere.gltf", s);
-    const PixelStats p = pixelStats(r.result.film, 1.0);
+    const RenderResult r =
+        renderScene(loadWithWhiteEnvironment(sourcePath("tests/data/materials/glass-sphere.gltf")), s);
+    const PixelStats p = pixelStats(r.film, 1.0);
     MESSAGE("glass sphere: image mean " << p.mean << " +- " << p.stdError << ", largest pixel |z| "
                                         << p.maxZ << ", exact pixels off " << p.exactMismatches);
     // Russian roulette over paths of hundreds of bounces makes single pixels
@@ -205,8 +193,8 @@ TEST_CASE("furnace: a white GGX metal plate reflects its directional albedo E(mu
         s.width = s.height = 16;
         s.spp = 2048;
         s.maxDepth = 4;
-        const Rendered r = renderInWhiteEnvironment(c.file, s);
-        const PixelStats p = pixelStats(r.result.film, c.expected);
+        const RenderResult r = renderScene(loadWithWhiteEnvironment(sourcePath(c.file)), s);
+        const PixelStats p = pixelStats(r.film, c.expected);
         MESSAGE(std::string(c.file) << ": E = " << p.mean << " +- " << p.stdError << " (expected " << c.expected << ")");
         CHECK(std::abs(p.mean - c.expected) < 0.0005 + 4.0 * p.stdError);
         CHECK(p.mean < 1.0);

@@ -10,6 +10,7 @@
 
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
+#include "scene/environment.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 
@@ -28,14 +29,30 @@ struct Rendered {
     RenderResult result;
 };
 
+// Packs and renders a loaded scene from camera `camera`. Every test scene
+// renders without a single NaN/Inf sample.
+inline RenderResult renderScene(const Scene& scene, const RenderSettings& settings, int camera = 0) {
+    const GpuScene gpu = packScene(scene);
+    RenderResult r = render(context(), gpu, scene.cameras.at(camera), settings);
+    CHECK(r.nonFinite == 0);
+    return r;
+}
+
 inline Rendered renderFile(const std::string& relPath, const RenderSettings& settings, int camera = 0) {
     Rendered r;
     r.scene = loadGltf(sourcePath(relPath));
     r.gpu = packScene(r.scene);
     r.result = render(context(), r.gpu, r.scene.cameras.at(camera), settings);
-    // Every test scene renders without a single NaN/Inf sample.
     CHECK(r.result.nonFinite == 0);
     return r;
+}
+
+// A scene file lit by a uniform environment of radiance 1 (--env-color 1,1,1).
+inline Scene loadWithWhiteEnvironment(const std::string& path) {
+    EnvironmentOptions env;
+    env.hasColor = true;
+    env.color = glm::vec3(1.0f);
+    return loadSceneWithEnvironment(path, env);
 }
 
 // Mean over all pixels and channels of the image, and its estimated standard
