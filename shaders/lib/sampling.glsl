@@ -34,12 +34,6 @@ vec3 sampleCosineHemisphere(vec2 u) {
     return vec3(d, sqrt(max(0.0, 1.0 - dot(d, d))));
 }
 
-vec3 toWorld(vec3 local, vec3 n) {
-    vec3 t, b;
-    basis(n, t, b);
-    return local.x * t + local.y * b + local.z * n;
-}
-
 // Uniform point on a triangle as barycentrics (b1, b2) of v1 and v2
 // (the square-root map, Turk 1990).
 vec2 sampleTriangle(vec2 u) {
