@@ -28,7 +28,7 @@ using strata::Error;
 constexpr const char* kUsage =
     "usage: strata render SCENE.gltf|.glb [-o OUT.exr|OUT.png]... [--spp N] [--seed S]\n"
     "                     [--max-depth D] [--width W] [--height H] [--camera I] [--device I]\n"
-    "                     [--time SECONDS] [--traversal auto|texel|storage] [--quiet]\n"
+    "                     [--time SECONDS] [--traversal auto|texel|storage] [--bvh 2|4] [--quiet]\n"
     "                     [--sampler independent|regular|rotated|stratified|sobol|bluenoise]\n"
     "                     [--filter box|tent|gaussian|blackman-harris] [--filter-radius PIXELS]\n"
     "                     [--mis power|bsdf|light]\n"
@@ -42,7 +42,8 @@ constexpr const char* kUsage =
     "                       [--sampler NAME|all] [--env ... (as render)]\n"
     "       strata edges [--spp 64] [--sampler NAME|all] [--seed S] [-o TABLE.csv] [--plot PLOT.png]\n"
     "       strata bench SCENE [--width W] [--height H] [--spp N] [--reference REF.exr] [--seed S]\n"
-    "                    [--max-depth D] [--reps R] [--camera I] [--device I] [--quick] [--json FILE]\n"
+    "                    [--max-depth D] [--reps R] [--camera I] [--device I] [--quick] [--only traversal]\n"
+    "                    [--bvh 2|4] [--json FILE]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
@@ -160,6 +161,9 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
         } else if (a == "--filter-radius") {
             cmd.settings.filter.radius = static_cast<float>(parsePositive(a, value(), 16, "a radius in pixels"));
             radiusGiven = true;
+        } else if (a == "--bvh") {
+            cmd.settings.bvhWidth = static_cast<int>(parseUnsigned(a, value(), 2, 4));
+            if (cmd.settings.bvhWidth == 3) badFlag("--bvh expects 2 or 4, got '3'");
         } else if (a == "--traversal") {
             const std::string& v = value();
             if (v == "auto") cmd.settings.traversal = strata::Traversal::Auto;
@@ -298,6 +302,14 @@ int runBenchCommand(const std::vector<std::string>& args) {
         else if (a == "--max-depth") cmd.maxDepth = parseUnsigned(a, value(), 0, 1024);
         else if (a == "--reference") cmd.reference = value();
         else if (a == "--quick") cmd.quick = true;
+        else if (a == "--bvh") {
+            cmd.bvhWidth = static_cast<int>(parseUnsigned(a, value(), 2, 4));
+            if (cmd.bvhWidth == 3) badFlag("--bvh expects 2 or 4, got '3'");
+        }
+        else if (a == "--only") {
+            cmd.only = value();
+            if (cmd.only != "traversal") badFlag("--only takes 'traversal' (got '" + cmd.only + "')");
+        }
         else if (a == "--camera") cmd.camera = parseUnsigned(a, value(), 0, 1u << 20);
         else if (a == "--device") cmd.device = parseUnsigned(a, value(), 0, 1024);
         else if (a == "--json") cmd.json = value();

@@ -525,3 +525,111 @@ TEST_CASE("bvh: parallel build equals the one-thread build") {
 }
 
 }  // namespace strata
+
+#include "bvh/wide.h"
+
+namespace strata {
+namespace {
+
+// Walks the four-wide tree: every input triangle is referenced exactly once,
+// every child box holds its subtree, empty slots are empty, no wide node is
+// unreachable, and maxDepth is the deepest leaf reference.
+void checkWide(const Mesh& m, const Bvh& bvh, const WideBvh& w) {
+    const std::size_t n = m.size();
+    std::vector<int> seen(n, 0);
+    std::vector<int> reached(w.nodes.size(), 0);
+    std::uint32_t deepest = 0;
+    std::size_t badBox = 0, badEmpty = 0;
+    struct Item { std::uint32_t node, depth; glm::vec3 lo, hi; };
+    std::vector<Item> todo{{0, 0, glm::vec3(-INFINITY), glm::vec3(INFINITY)}};
+    auto inside = [](glm::vec3 p, glm::vec3 lo, glm::vec3 hi) {
+        return glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThanEqual(p, hi));
+    };
+    while (!todo.empty()) {
+        const Item it = todo.back();
+        todo.pop_back();
+        REQUIRE(it.node < w.nodes.size());
+        ++reached[it.node];
+        const gpu::BvhNode4& wn = w.nodes[it.node];
+        for (int k = 0; k < 4; ++k) {
+            const glm::vec3 lo(wn.minX[k], wn.minY[k], wn.minZ[k]), hi(wn.maxX[k], wn.maxY[k], wn.maxZ[k]);
+            const std::uint32_t c = wn.child[k];
+            if (c == gpu::kBvhChildEmpty) {
+                badEmpty += !(lo.x > hi.x && lo.y > hi.y && lo.z > hi.z);
+                continue;
+            }
+            if (!inside(lo, it.lo, it.hi) || !inside(hi, it.lo, it.hi)) ++badBox;
+            if (c & gpu::kBvhLeafBit) {
+                const std::uint32_t first = (c & ~gpu::kBvhLeafBit) >> gpu::kBvhLeafCountBits;
+                const std::uint32_t count = (c & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u;
+                deepest = std::max(deepest, it.depth + 1);
+                for (std::uint32_t i = first; i < first + count; ++i) {
+                    REQUIRE(i < n);
+                    const std::uint32_t t = bvh.triIndices[i];
+                    ++seen[t];
+                    for (const glm::vec3& v : {m.v0[t], m.v1[t], m.v2[t]}) badBox += !inside(v, lo, hi);
+                }
+            } else {
+                todo.push_back({c, it.depth + 1, lo, hi});
+            }
+        }
+    }
+    CHECK(std::count(seen.begin(), seen.end(), 1) == std::ptrdiff_t(n));
+    CHECK(std::count(reached.begin(), reached.end(), 1) == std::ptrdiff_t(w.nodes.size()));
+    CHECK(badBox == 0);
+    CHECK(badEmpty == 0);
+    CHECK(w.maxDepth == deepest);
+}
+
+}  // namespace
+
+TEST_CASE("wide bvh: collapsed tree covers every triangle once, boxes nest") {
+    for (Case& c : testCases()) {
+        CAPTURE(c.name);
+        Bvh bvh = buildBvh(c.mesh.v0, c.mesh.v1, c.mesh.v2, c.options);
+        WideBvh w = collapseBvh4(bvh.nodes);
+        INFO(c.name << ": " << bvh.nodes.size() << " BVH2 nodes, depth " << bvh.stats.maxDepth << "; "
+                    << w.nodes.size() << " wide nodes, depth " << w.maxDepth);
+        checkWide(c.mesh, bvh, w);
+        // Each wide node replaces at least one BVH2 interior node, and its
+        // children come from at most three of them.
+        CHECK(w.nodes.size() <= bvh.stats.nodes - bvh.stats.leaves);
+        CHECK(3 * w.nodes.size() >= bvh.stats.nodes - bvh.stats.leaves);
+        CHECK(w.maxDepth <= bvh.stats.maxDepth);
+    }
+}
+
+TEST_CASE("wide bvh: empty input, a leaf root, and a leaf above the reference's count") {
+    Bvh empty = buildBvh({}, {}, {});
+    WideBvh we = collapseBvh4(empty.nodes);
+    REQUIRE(we.nodes.size() == 1);
+    for (int k = 0; k < 4; ++k) CHECK(we.nodes[0].child[k] == gpu::kBvhChildEmpty);
+    CHECK(we.maxDepth == 0);
+
+    Mesh one;
+    one.add({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
+    Bvh b1 = buildBvh(one.v0, one.v1, one.v2);
+    WideBvh w1 = collapseBvh4(b1.nodes);
+    REQUIRE(w1.nodes.size() == 1);
+    CHECK(w1.nodes[0].child[0] == gpu::kBvhLeafBit);  // first 0, count 1
+    checkWide(one, b1, w1);
+
+    Mesh same;  // 100 copies: one BVH2 leaf, more than 2^kBvhLeafCountBits triangles
+    for (int i = 0; i < 100; ++i) same.add({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
+    Bvh bs = buildBvh(same.v0, same.v1, same.v2);
+    REQUIRE(bs.nodes.size() == 1);
+    WideBvh ws = collapseBvh4(bs.nodes);
+    CHECK(ws.nodes.size() == 2);  // the root and one node of four chunks (32 + 32 + 32 + 4)
+    CHECK(ws.maxDepth == 2);
+    checkWide(same, bs, ws);
+}
+
+TEST_CASE("wide bvh: stack registers follow the wide depth") {
+    CHECK(bvhRegsFor(0) == 16);
+    CHECK(bvhRegsFor(16) == 16);
+    CHECK(bvhRegsFor(17) == 24);
+    CHECK(bvhRegsFor(32) == 32);
+    CHECK(bvhRegsFor(33) == 0);
+}
+
+}  // namespace strata

@@ -36,4 +36,6 @@ TEST_CASE("shared structs have the std430 offsets the shaders assume") {
     // Texel views read nodes as 2 and triangles as 3 RGBA32 texels.
     CHECK(sizeof(BvhNode) == 2 * 16);
     CHECK(sizeof(TriVerts) == 3 * 16);
+    CHECK(sizeof(BvhNode4) == 7 * 16);
+    CHECK(offsetof(BvhNode4, child) == 6 * 16);
 }

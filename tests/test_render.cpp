@@ -90,6 +90,18 @@ TEST_CASE("the image does not depend on how samples are split into submissions")
     CHECK(vk::validationMessageCount() == 0);
 }
 
+TEST_CASE("the four-wide and the binary BVH render the same image") {
+    RenderSettings s = small(2, 4, 5);
+    Rendered four = renderFile("scenes/cornell-box.gltf", s);
+    s.bvhWidth = 2;
+    Rendered two = renderFile("scenes/cornell-box.gltf", s);
+    CHECK(four.result.bvhWidth == 4);
+    CHECK(two.result.bvhWidth == 2);
+    const auto ma = four.result.film.mean(), mb = two.result.film.mean();
+    CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("texel and storage traversal render the same image") {
     RenderSettings s = small(2, 4, 5);
     s.traversal = Traversal::Texel;

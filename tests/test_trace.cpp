@@ -48,11 +48,14 @@ std::vector<gpu::TraceRay> randomRays(std::size_t count, std::uint32_t seed) {
     return rays;
 }
 
-void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, Traversal mode) {
+void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, Traversal mode, int width = 4) {
+    INFO("BVH" << width << (mode == Traversal::Texel ? ", texel reads" : ", storage reads"));
     Bvh bvh;
     bvh.nodes = g.nodes;
-    const auto hits = traceOnDevice(context(), g, rays, mode, gpu::kTraceClosest);
-    const auto occluded = traceOnDevice(context(), g, rays, mode, gpu::kTraceAny);
+    DeviceTracer tracer(context(), g, mode, width);
+    REQUIRE(tracer.bvhWidth() == width);
+    const auto hits = tracer.trace(rays, gpu::kTraceClosest);
+    const auto occluded = tracer.trace(rays, gpu::kTraceAny);
     std::size_t mismatches = 0, hitCount = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         Ray r{rays[i].origin, rays[i].dir, rays[i].tmin, rays[i].tmax};
@@ -75,12 +78,14 @@ void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, T
 
 }  // namespace
 
-TEST_CASE("shader traversal matches the CPU BVH on random rays (texel and storage reads)") {
+TEST_CASE("shader traversal matches the CPU BVH on random rays (BVH4 and BVH2, texel and storage reads)") {
     Scene soup = randomSoup(20000, 3);
     GpuScene g = packScene(soup);
     const auto rays = randomRays(50000, 9);
-    compareWithCpu(g, rays, Traversal::Texel);
-    compareWithCpu(g, rays, Traversal::Storage);
+    for (int width : {4, 2}) {
+        compareWithCpu(g, rays, Traversal::Texel, width);
+        compareWithCpu(g, rays, Traversal::Storage, width);
+    }
     CHECK(vk::validationMessageCount() == 0);
 }
 
@@ -100,6 +105,7 @@ TEST_CASE("shader traversal matches the CPU BVH on the Cornell box") {
         r.tmax = 1e30f;
         rays.push_back(r);
     }
-    compareWithCpu(g, rays, Traversal::Texel);
+    compareWithCpu(g, rays, Traversal::Texel, 4);
+    compareWithCpu(g, rays, Traversal::Texel, 2);
     CHECK(vk::validationMessageCount() == 0);
 }

@@ -83,7 +83,7 @@ Framing frame(const Scene& scene, const BenchCommand& cmd) {
 // The peer's three ray sets, traced with the shader BVH (median of cmd.reps passes each).
 nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& gpu, const Framing& fr,
                                         const BenchCommand& cmd) {
-    DeviceTracer tracer(ctx, gpu, Traversal::Auto);
+    DeviceTracer tracer(ctx, gpu, Traversal::Auto, cmd.bvhWidth);
     const glm::vec3 lo = fr.lo, hi = fr.hi;
     const Camera& cam = fr.camera;
     const float eps = 1e-4f * glm::length(hi - lo);
@@ -132,6 +132,7 @@ nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& 
     j["image"] = {W, H};
     j["reps"] = cmd.reps;
     j["reads"] = tracer.texel() ? "texel" : "storage";
+    j["bvh_width"] = tracer.bvhWidth();
     j["secondary_origin_offset"] = eps;
     j["occlusion_point"] = {light.x, light.y, light.z};
     j["rays"] = {
@@ -164,7 +165,11 @@ std::string benchText(const nlohmann::ordered_json& j) {
     o += "features: " + (features.empty() ? std::string("none") : features) + "; camera: " +
          j["camera"].get<std::string>() + "\n";
     const auto& su = j["startup"];
-    o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms,\n"
+    if (!su.contains("pipeline_ms"))
+        o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms\n",
+                    num(su["load_ms"]), num(su["bvh_build_ms"]), num(su["pack_ms"]), num(su["device_init_ms"]));
+    else
+        o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms,\n"
                 "          pipeline %.1f ms (median %.1f of %d), first dispatch %.2f ms device / %.2f ms host "
                 "(%d px of the image);\n"
                 "          at 64^2 a fresh pipeline's first dispatch %.2f ms, later ones %.2f ms\n",
@@ -177,9 +182,12 @@ std::string benchText(const nlohmann::ordered_json& j) {
     o += format("BVH: %.1f ms (%.1f ms/Mtri), %d nodes, %d leaves, depth %d, SAH cost %.2f, %.2f MiB\n",
                 num(b["build_ms"]), num(b["build_ms_per_mtri"]), b["nodes"].get<int>(), b["leaves"].get<int>(),
                 b["max_depth"].get<int>(), num(b["sah_cost"]), num(b["bytes"]) / 1048576.0);
+    o += format("     four-wide: %d nodes, depth %d, %.2f MiB\n", b["wide_nodes"].get<int>(),
+                b["wide_depth"].get<int>(), num(b["wide_bytes"]) / 1048576.0);
     const auto& t = j["traversal"];
-    o += format("traversal (%dx%d, %s reads, median of %d):\n", t["image"][0].get<int>(), t["image"][1].get<int>(),
-                t["reads"].get<std::string>().c_str(), t["reps"].get<int>());
+    o += format("traversal (%dx%d, BVH%d, %s reads, median of %d):\n", t["image"][0].get<int>(),
+                t["image"][1].get<int>(), t["bvh_width"].get<int>(), t["reads"].get<std::string>().c_str(),
+                t["reps"].get<int>());
     for (const char* set : {"primary", "diffuse", "occlusion"}) {
         const auto& r = t["rays"][set];
         const bool occl = r.contains("occluded");
@@ -188,6 +196,7 @@ std::string benchText(const nlohmann::ordered_json& j) {
                     100.0 * num(occl ? r["occluded"] : r["hits"]) / n, occl ? "occluded" : "hit",
                     num(r["mrays_per_s"]));
     }
+    if (!j.contains("path_tracing")) return o;
     const auto& p = j["path_tracing"];
     o += format("path tracing (%dx%d, %d spp, max depth %d, %s, seed %d):\n", p["image"][0].get<int>(),
                 p["image"][1].get<int>(), p["spp"].get<int>(), p["max_depth"].get<int>(),
@@ -226,6 +235,20 @@ std::string benchText(const nlohmann::ordered_json& j) {
     return o;
 }
 
+nlohmann::ordered_json bvhJson(const GpuScene& gpu, const Scene& scene, double packMs) {
+    return {{"build_ms", gpu.bvh.buildMs},
+            {"build_ms_per_mtri", gpu.bvh.buildMs / (scene.triangles.size() * 1e-6)},
+            {"pack_ms", packMs},
+            {"nodes", gpu.bvh.nodes},
+            {"leaves", gpu.bvh.leaves},
+            {"max_depth", gpu.bvh.maxDepth},
+            {"sah_cost", gpu.bvh.sahCost},
+            {"bytes", gpu.bvh.bytes},
+            {"wide_nodes", gpu.wide.size()},
+            {"wide_depth", gpu.wideDepth},
+            {"wide_bytes", gpu.wide.size() * sizeof(gpu::BvhNode4)}};
+}
+
 }  // namespace
 
 int runBench(const BenchCommand& cmd) {
@@ -257,17 +280,11 @@ int runBench(const BenchCommand& cmd) {
     const double deviceMs = msSince(t0);
 
     nlohmann::ordered_json traversal = traversalSection(ctx, gpu, fr, cmd);
-    PipelineTimes pipelines;
-    nlohmann::ordered_json path =
-        benchPathTracing(ctx, gpu, fr.camera, cmd, cmd.reference.empty() ? nullptr : &reference, pipelines);
-    nlohmann::ordered_json dispatch = benchDispatch(ctx, gpu, fr.camera, cmd, pipelines);
-    if (ctx.validation && vk::validationMessageCount() > 0)
-        throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
-                              " Vulkan validation message(s) during the bench");
-
-    std::vector<double> sorted = pipelines;
-    std::sort(sorted.begin(), sorted.end());
-    const auto& steady = dispatch["sizes"][0];
+    auto checkValidation = [&] {
+        if (ctx.validation && vk::validationMessageCount() > 0)
+            throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
+                                  " Vulkan validation message(s) during the bench");
+    };
     nlohmann::ordered_json j;
     j["scene"] = cmd.scene;
     j["device"] = ctx.info.name;
@@ -276,6 +293,29 @@ int runBench(const BenchCommand& cmd) {
     j["triangles"] = scene.triangles.size();
     j["camera"] = fr.description;
     j["features"] = gpu.features.names();
+    auto finish = [&] {
+        j["bvh"] = bvhJson(gpu, scene, packMs);
+        j["traversal"] = traversal;
+        if (!cmd.json.empty()) writeTextAtomically(cmd.json, j.dump(2) + "\n");
+        std::fputs(benchText(j).c_str(), stdout);
+        return 0;
+    };
+    if (cmd.only == "traversal") {
+        checkValidation();
+        j["only"] = cmd.only;
+        j["startup"] = {{"load_ms", loadMs}, {"pack_ms", packMs}, {"bvh_build_ms", gpu.bvh.buildMs},
+                        {"device_init_ms", deviceMs}};
+        return finish();
+    }
+    PipelineTimes pipelines;
+    nlohmann::ordered_json path =
+        benchPathTracing(ctx, gpu, fr.camera, cmd, cmd.reference.empty() ? nullptr : &reference, pipelines);
+    nlohmann::ordered_json dispatch = benchDispatch(ctx, gpu, fr.camera, cmd, pipelines);
+    checkValidation();
+
+    std::vector<double> sorted = pipelines;
+    std::sort(sorted.begin(), sorted.end());
+    const auto& steady = dispatch["sizes"][0];
     j["quick"] = cmd.quick;
     j["startup"] = {{"load_ms", loadMs},
                     {"pack_ms", packMs},   // BVH build included
@@ -292,20 +332,9 @@ int runBench(const BenchCommand& cmd) {
                     {"first_dispatch_device_ms", path["warm_up_device_ms"]},
                     {"first_dispatch_host_ms", path["warm_up_host_ms"]},
                     {"first_dispatch_pixels", path["warm_up_pixels"]}};
-    j["bvh"] = {{"build_ms", gpu.bvh.buildMs},
-                {"build_ms_per_mtri", gpu.bvh.buildMs / (scene.triangles.size() * 1e-6)},
-                {"pack_ms", packMs},
-                {"nodes", gpu.bvh.nodes},
-                {"leaves", gpu.bvh.leaves},
-                {"max_depth", gpu.bvh.maxDepth},
-                {"sah_cost", gpu.bvh.sahCost},
-                {"bytes", gpu.bvh.bytes}};
-    j["traversal"] = traversal;
     j["path_tracing"] = path;
     j["dispatch"] = dispatch;
-    if (!cmd.json.empty()) writeTextAtomically(cmd.json, j.dump(2) + "\n");
-    std::fputs(benchText(j).c_str(), stdout);
-    return 0;
+    return finish();
 }
 
 }  // namespace strata

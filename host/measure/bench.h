@@ -30,6 +30,8 @@ struct BenchCommand {
     std::uint32_t maxDepth = 16;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
     bool quick = false;               // small dispatch section, for tests
+    int bvhWidth = 4;                 // --bvh: 4 (four-wide where it fits) or 2
+    std::string only;                 // "traversal": start-up, BVH and traversal sections only
     std::string json;
     bool validation = false;
 };

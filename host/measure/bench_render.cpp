@@ -24,6 +24,7 @@ RenderSettings settingsFor(const BenchCommand& cmd, int width, int height, std::
     s.spp = spp;
     s.seed = cmd.seed;
     s.maxDepth = cmd.maxDepth;
+    s.bvhWidth = cmd.bvhWidth;
     s.warmUp = true;
     return s;
 }

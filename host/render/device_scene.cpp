@@ -4,8 +4,9 @@
 
 namespace strata {
 
-bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Traversal mode) {
-    const std::uint64_t texels = std::max<std::uint64_t>(scene.nodes.size() * 2, scene.tris.size() * 3);
+bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Traversal mode, bool wide) {
+    const std::uint64_t nodeTexels = wide ? scene.wide.size() * 7 : scene.nodes.size() * 2;
+    const std::uint64_t texels = std::max<std::uint64_t>(nodeTexels, scene.tris.size() * 3);
     const bool fits = texels <= ctx.properties.limits.maxTexelBufferElements;
     switch (mode) {
         case Traversal::Texel:
@@ -20,13 +21,17 @@ bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Travers
     return fits && ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
-DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode) {
+DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth) {
+    const std::uint32_t regs = bvhRegsFor(scene.wideDepth);
+    const bool wide = bvhWidth == 4 && regs > 0 && !scene.wide.empty();
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     constexpr VkBufferUsageFlags texel = storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
     checkTexelLimit(ctx, scene);
     DeviceScene d;
-    d.texel = chooseTexelTraversal(ctx, scene, mode);
-    d.nodes = vk::uploadVector(ctx, scene.nodes, texel);
+    d.texel = chooseTexelTraversal(ctx, scene, mode, wide);
+    d.wide = wide;
+    d.bvhRegs = wide ? regs : 16u;
+    d.nodes = wide ? vk::uploadVector(ctx, scene.wide, texel) : vk::uploadVector(ctx, scene.nodes, texel);
     d.tris = vk::uploadVector(ctx, scene.tris, texel);
     d.shading = vk::uploadVector(ctx, scene.shading, storage);
     d.materials = vk::uploadVector(ctx, scene.materials, storage);
@@ -40,6 +45,13 @@ DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal
     d.texelsView = vk::TexelView(ctx, d.texels, VK_FORMAT_R32_UINT);
     uploadEnvironment(ctx, scene, d);
     return d;
+}
+
+void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {
+    spec.resize(std::max<std::size_t>(spec.size(), gpu::SPEC_BVH_REGS + 1), 0u);
+    spec[gpu::SPEC_TEXEL_FETCH] = scene.texel ? 1u : 0u;
+    spec[gpu::SPEC_BVH_WIDE] = scene.wide ? 1u : 0u;
+    spec[gpu::SPEC_BVH_REGS] = scene.bvhRegs;
 }
 
 void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& d) {

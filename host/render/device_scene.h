@@ -22,14 +22,22 @@ struct DeviceScene {
     vk::Buffer envTexels, envTables;  // 16-byte placeholders without an environment map
     vk::TexelView envTexelView;       // RGBA32F over envTexels
     bool texel = false;  // traversal reads nodes/triangles through the texel views
+    bool wide = false;   // `nodes` holds GpuScene::wide (SPEC_BVH_WIDE), else the BVH2
+    std::uint32_t bvhRegs = 16;  // SPEC_BVH_REGS with `wide`
 };
 
 // Texel reads on CPU devices (lavapipe), storage reads elsewhere, unless forced.
 // Throws strata::Error when texel reads are forced but the buffers exceed the
 // device's maxTexelBufferElements.
-bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Traversal mode);
+bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Traversal mode, bool wide);
 
-DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode);
+// bvhWidth 4: the four-wide BVH (SPEC_BVH_WIDE 1) unless the scene's wide tree
+// is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2.
+DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth = 4);
+
+// The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,
+// SPEC_BVH_WIDE, SPEC_BVH_REGS) into `spec`, grown as needed.
+void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec);
 
 // Throws strata::Error (one line naming the scene file) when the packed
 // texture words exceed the device's maxTexelBufferElements.

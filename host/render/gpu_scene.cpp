@@ -173,6 +173,9 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
     }
     Bvh bvh = buildBvh(v0, v1, v2, options);
     g.nodes = std::move(bvh.nodes);
+    WideBvh wide = collapseBvh4(g.nodes);
+    g.wide = std::move(wide.nodes);
+    g.wideDepth = wide.maxDepth;
     g.bvh = bvh.stats;
 
     for (const auto& m : scene.materials) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bvh/bvh.h"
+#include "bvh/wide.h"
 #include "scene/scene.h"
 
 namespace strata {
@@ -20,7 +21,9 @@ struct SceneFeatures {
 
 struct GpuScene {
     std::string source;                     // Scene::path, for messages
-    std::vector<gpu::BvhNode> nodes;
+    std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; SPEC_BVH_WIDE 0)
+    std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h; SPEC_BVH_WIDE 1)
+    std::uint32_t wideDepth = 0;            // WideBvh::maxDepth
     std::vector<gpu::TriVerts> tris;        // BVH order
     std::vector<gpu::TriShading> shading;   // BVH order
     std::vector<gpu::Material> materials;

@@ -52,7 +52,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     using namespace gpu;
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
     auto t0 = Clock::now();
-    DeviceScene dev = uploadScene(ctx, scene, s.traversal);
+    DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth);
     const double uploadMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
     const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
@@ -79,8 +79,8 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     });
-    std::vector<std::uint32_t> spec(6);
-    spec[SPEC_TEXEL_FETCH] = dev.texel ? 1u : 0u;
+    std::vector<std::uint32_t> spec(SPEC_BVH_REGS + 1);
+    setTraversalSpec(dev, spec);
     spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
     spec[SPEC_SAMPLER] = s.sampler;
     spec[SPEC_FEATURES] = scene.features.bits;
@@ -100,6 +100,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     RenderResult result;
     result.film = Film(s.width, s.height);
     result.texelTraversal = dev.texel;
+    result.bvhWidth = dev.wide ? 4 : 2;
     result.uploadMs = uploadMs;
     result.pipelineMs = kernel.pipelineMs();
     vk::OneShot submit(ctx);

@@ -23,6 +23,7 @@ struct RenderSettings {
     double timeLimit = 0.0;             // seconds; 0 = none. Stops after the submission in progress
     bool progress = false;              // progress line on stderr
     Traversal traversal = Traversal::Auto;
+    int bvhWidth = 4;                   // 4: four-wide BVH where it fits (render/device_scene.h), 2: BVH2
     std::uint32_t sampler = gpu::kSamplerSobol;  // render/sampler_kind.h; default: Sobol,
                                         // the best time-to-error measured (README, Sampling)
     PixelFilter filter;                 // pixel reconstruction filter (box, radius 0.5)
@@ -68,6 +69,7 @@ struct RenderResult {
     double warmUpHostSeconds = 0.0;     // its submission, recording to end of wait
     std::uint32_t warmUpPixels = 0;
     bool texelTraversal = false;
+    int bvhWidth = 2;                   // the BVH the shader traversed
     double msamplesPerSecond() const {
         return seconds > 0 ? static_cast<double>(film.pixels()) * spp / seconds * 1e-6 : 0.0;
     }

@@ -46,6 +46,7 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"shadow_rays", r.shadowRays},
                    {"non_finite_samples", r.nonFinite},
                    {"traversal", r.texelTraversal ? "texel" : "storage"},
+                   {"bvh_width", r.bvhWidth},
                    {"sampler", samplerByKind(s.sampler).name},
                    {"filter", filterName(s.filter.kind)},
                    {"filter_radius", s.filter.radius}};

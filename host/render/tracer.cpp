@@ -9,11 +9,11 @@
 
 namespace strata {
 
-DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal)
-    : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal)) {
+DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth)
+    : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal, bvhWidth)) {
     using namespace gpu;
-    std::vector<std::uint32_t> spec(SPEC_FEATURES + 1, 0u);
-    spec[SPEC_TEXEL_FETCH] = scene_.texel ? 1u : 0u;
+    std::vector<std::uint32_t> spec(SPEC_BVH_REGS + 1, 0u);
+    setTraversalSpec(scene_, spec);
     spec[SPEC_FEATURES] = scene.features.bits;  // alpha-tested holes are skipped as in pathtrace
     std::vector<vk::BindingDesc> bindings = sceneBindings();
     bindings.insert(bindings.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -68,8 +68,8 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
 
 std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
                                          const std::vector<gpu::TraceRay>& rays, Traversal traversal,
-                                         std::uint32_t mode) {
-    DeviceTracer tracer(ctx, scene, traversal);
+                                         std::uint32_t mode, int bvhWidth) {
+    DeviceTracer tracer(ctx, scene, traversal, bvhWidth);
     return tracer.trace(rays, mode);
 }
 

@@ -15,7 +15,8 @@ namespace strata {
 // many times.
 class DeviceTracer {
 public:
-    DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal);
+    // bvhWidth: as uploadScene (render/device_scene.h).
+    DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth = 4);
     ~DeviceTracer();
 
     // `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h). Runs
@@ -24,6 +25,7 @@ public:
     std::vector<gpu::TraceHit> trace(const std::vector<gpu::TraceRay>& rays, std::uint32_t mode, int reps = 1,
                                      double* medianSeconds = nullptr);
     bool texel() const { return scene_.texel; }
+    int bvhWidth() const { return scene_.wide ? 4 : 2; }
 
 private:
     const vk::Context& ctx_;
@@ -34,6 +36,6 @@ private:
 // One-shot convenience: upload, trace once, return the hits.
 std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
                                          const std::vector<gpu::TraceRay>& rays,
-                                         Traversal traversal, std::uint32_t mode);
+                                         Traversal traversal, std::uint32_t mode, int bvhWidth = 4);
 
 }  // namespace strata

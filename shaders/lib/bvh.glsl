@@ -4,7 +4,9 @@
 // (equal t: lowest BVH-order triangle index).
 //
 // The including shader defines, before including this file:
-//   BvhNode bvhFetchNode(uint index);
+//   const uint kBvhWide;                 // SPEC_BVH_WIDE: 1 traverses BvhNode4
+//   BvhNode bvhFetchNode(uint index);    // with kBvhWide == 0
+//   BvhNode4 bvhFetchNode4(uint index);  // with kBvhWide == 1
 //   TriVerts bvhFetchTri(uint index);   // BVH order
 //   const uint kFeatures;               // SPEC_FEATURES
 //   uint bvhRayHash(vec3 origin, vec3 dir);
@@ -32,6 +34,11 @@ const uint kBvhStackSize = 64u;
 // (1 + 8 * 2^-23): Ize 2013 ("Robust BVH Ray Traversal", JCGT 2(2)) with
 // 1/d and (b - o) * (1/d) carrying 2.5 + 0.5 + 0.5 ULP instead of 3 x 0.5.
 const float kBvhSlabScale = 1.00000095367431640625;
+
+// Four-wide traversal: at most 3 pushes per node over fewer than kBvhStackSize
+// BVH2 levels (host/bvh/wide.h); four entries live in registers.
+const uint kBvh4StackSize = 24u;
+const float kBvhFloatMax = 3.402823466e38;
 
 // Per-ray constants of the slab and triangle tests.
 struct BvhRay {
@@ -142,6 +149,38 @@ bool bvhSlab(BvhRay r, BvhNode node, float tmin, float tmax, out float tEntry) {
     return tnear <= tfar * kBvhSlabScale;
 }
 
+// The triangles [first, end) of a leaf against the closest hit so far: a hit
+// replaces it if nearer, or equally near with a lower BVH-order index.
+// Alpha-tested holes (kFeatureAlphaTest) are skipped.
+void bvhLeafClosest(BvhRay r, uint first, uint end, float tmin, float tmax, uint rayHash, inout float bestT,
+                    inout uint bestTri, inout float bestU, inout float bestV) {
+    const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
+    for (uint i = first; i < end; ++i) {
+        TriVerts tri = bvhFetchTri(i);
+        float t, u, v;
+        if (bvhIntersectTri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax, t, u, v) &&
+            (t < bestT || (t == bestT && i < bestTri)) && !(alphaTest && bvhIsHole(i, u, v, rayHash))) {
+            bestT = t;
+            bestTri = i;
+            bestU = u;
+            bestV = v;
+        }
+    }
+}
+
+// True if any triangle of [first, end) is hit within (tmin, tmax).
+bool bvhLeafAny(BvhRay r, uint first, uint end, float tmin, float tmax, uint rayHash) {
+    const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
+    for (uint i = first; i < end; ++i) {
+        TriVerts tri = bvhFetchTri(i);
+        float t, u, v;
+        if (bvhIntersectTri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax, t, u, v) &&
+            !(alphaTest && bvhIsHole(i, u, v, rayHash)))
+            return true;
+    }
+    return false;
+}
+
 // The empty BVH is a single node with count 0 and leftOrFirst 0 (an interior
 // node's right child is never node 0).
 bool bvhIsEmpty(BvhNode root) {
@@ -150,7 +189,7 @@ bool bvhIsEmpty(BvhNode root) {
 
 // Closest hit with tmin < t < tmax. On a miss hit.t = -1 and
 // hit.triangle = kNoHit.
-bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
+bool bvhTraceClosest2(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
     hit.t = -1.0;
     hit.triangle = kNoHit;
     hit.u = 0.0;
@@ -161,8 +200,7 @@ bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit
     float tEntry;
     if (bvhIsEmpty(node) || !bvhSlab(r, node, tmin, tmax, tEntry)) return false;
 
-    const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
-    uint rayHash = alphaTest ? bvhRayHash(origin, dir) : 0u;
+    uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
     float bestT = tmax;
     uint bestTri = kNoHit;
     float bestU = 0.0;
@@ -171,19 +209,8 @@ bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit
     uint sp = 0u;
     for (;;) {
         if (node.count > 0u) {
-            uint end = node.leftOrFirst + node.count;
-            for (uint i = node.leftOrFirst; i < end; ++i) {
-                TriVerts tri = bvhFetchTri(i);
-                float t, u, v;
-                if (bvhIntersectTri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax, t, u, v) &&
-                    (t < bestT || (t == bestT && i < bestTri)) &&
-                    !(alphaTest && bvhIsHole(i, u, v, rayHash))) {
-                    bestT = t;
-                    bestTri = i;
-                    bestU = u;
-                    bestV = v;
-                }
-            }
+            bvhLeafClosest(r, node.leftOrFirst, node.leftOrFirst + node.count, tmin, tmax, rayHash, bestT,
+                           bestTri, bestU, bestV);
         } else {
             uint left = index + 1u;
             uint right = node.leftOrFirst;
@@ -217,30 +244,20 @@ bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit
     return true;
 }
 
-// True if any triangle is hit with tmin < t < tmax (shadow rays); stops at
-// the first hit found.
-bool bvhTraceAny(vec3 origin, vec3 dir, float tmin, float tmax) {
+// bvhTraceAny on the BVH2.
+bool bvhTraceAny2(vec3 origin, vec3 dir, float tmin, float tmax) {
     BvhRay r = bvhMakeRay(origin, dir);
     uint index = 0u;
     BvhNode node = bvhFetchNode(0u);
     float tEntry;
     if (bvhIsEmpty(node) || !bvhSlab(r, node, tmin, tmax, tEntry)) return false;
 
-    const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
-    uint rayHash = alphaTest ? bvhRayHash(origin, dir) : 0u;
+    uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
     uint stack[kBvhStackSize];
     uint sp = 0u;
     for (;;) {
         if (node.count > 0u) {
-            uint end = node.leftOrFirst + node.count;
-            for (uint i = node.leftOrFirst; i < end; ++i) {
-                TriVerts tri = bvhFetchTri(i);
-                float t, u, v;
-                if (bvhIntersectTri(r, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, tmax, t, u, v) &&
-                    !(alphaTest && bvhIsHole(i, u, v, rayHash))) {
-                    return true;
-                }
-            }
+            if (bvhLeafAny(r, node.leftOrFirst, node.leftOrFirst + node.count, tmin, tmax, rayHash)) return true;
         } else {
             uint left = index + 1u;
             uint right = node.leftOrFirst;
@@ -267,6 +284,150 @@ bool bvhTraceAny(vec3 origin, vec3 dir, float tmin, float tmax) {
         node = bvhFetchNode(index);
     }
     return false;
+}
+
+// Slab tests of a wide node's four children against [tmin, tmax], as bvhSlab
+// does for one (the same arithmetic, so the same boxes are entered). Returns
+// the entry distances; `hit` says which children the ray enters. Empty
+// children (+inf / -inf boxes) are never entered.
+vec4 bvhSlab4(BvhRay r, BvhNode4 n, float tmin, float tmax, out bvec4 hit) {
+    vec4 x0 = (n.minX - r.origin.x) * r.invDir.x;
+    vec4 x1 = (n.maxX - r.origin.x) * r.invDir.x;
+    vec4 y0 = (n.minY - r.origin.y) * r.invDir.y;
+    vec4 y1 = (n.maxY - r.origin.y) * r.invDir.y;
+    vec4 z0 = (n.minZ - r.origin.z) * r.invDir.z;
+    vec4 z1 = (n.maxZ - r.origin.z) * r.invDir.z;
+    vec4 loX = r.neg.x ? x1 : x0, hiX = r.neg.x ? x0 : x1;
+    vec4 loY = r.neg.y ? y1 : y0, hiY = r.neg.y ? y0 : y1;
+    vec4 loZ = r.neg.z ? z1 : z0, hiZ = r.neg.z ? z0 : z1;
+    vec4 tnear = vec4(tmin);
+    vec4 tfar = vec4(tmax);
+    tnear = mix(tnear, loX, greaterThan(loX, tnear));
+    tnear = mix(tnear, loY, greaterThan(loY, tnear));
+    tnear = mix(tnear, loZ, greaterThan(loZ, tnear));
+    tfar = mix(tfar, hiX, lessThan(hiX, tfar));
+    tfar = mix(tfar, hiY, lessThan(hiY, tfar));
+    tfar = mix(tfar, hiZ, lessThan(hiZ, tfar));
+    hit = lessThanEqual(tnear, tfar * kBvhSlabScale);
+    return tnear;
+}
+
+// The four-wide traversal's stack holds one entry per wide node on the path
+// from the root, (node << 4) | mask of its children still to visit, so it
+// needs at most the wide tree's depth (host/bvh/wide.h) and lives in
+// kBvhRegs variables (SPEC_BVH_REGS: 16, 24 or 32, the host's choice from
+// that depth): a push or pop shifts them (selects; the unused ones are
+// compiled out). On lavapipe an
+// indexed private array is a per-lane scalar loop that runs on every push
+// and pop whether or not a lane takes that branch. Resuming a node
+// re-fetches it and re-tests the remaining children against the closest
+// hit so far, so children that moved out of reach are culled.
+#define BVH_PUSH(x) { \
+    if (kBvhRegs > 24u) { s31 = s30; s30 = s29; s29 = s28; s28 = s27; s27 = s26; s26 = s25; s25 = s24; s24 = s23; } \
+    if (kBvhRegs > 16u) { s23 = s22; s22 = s21; s21 = s20; s20 = s19; s19 = s18; s18 = s17; s17 = s16; s16 = s15; } \
+    s15 = s14; s14 = s13; s13 = s12; s12 = s11; s11 = s10; s10 = s9; s9 = s8; s8 = s7; \
+    s7 = s6; s6 = s5; s5 = s4; s4 = s3; s3 = s2; s2 = s1; s1 = s0; s0 = (x); ++count; }
+#define BVH_POP(dst) { dst = s0; \
+    s0 = s1; s1 = s2; s2 = s3; s3 = s4; s4 = s5; s5 = s6; s6 = s7; s7 = s8; \
+    s8 = s9; s9 = s10; s10 = s11; s11 = s12; s12 = s13; s13 = s14; s14 = s15; \
+    if (kBvhRegs > 16u) { s15 = s16; s16 = s17; s17 = s18; s18 = s19; s19 = s20; s20 = s21; s21 = s22; s22 = s23; } \
+    if (kBvhRegs > 24u) { s23 = s24; s24 = s25; s25 = s26; s26 = s27; s27 = s28; s28 = s29; s29 = s30; s30 = s31; } \
+    --count; }
+#define BVH_STACK_DECL uint s0 = 0u, s1 = 0u, s2 = 0u, s3 = 0u, s4 = 0u, s5 = 0u, s6 = 0u, s7 = 0u, s8 = 0u, s9 = 0u, s10 = 0u, s11 = 0u, s12 = 0u, s13 = 0u, s14 = 0u, s15 = 0u; \
+    uint s16 = 0u, s17 = 0u, s18 = 0u, s19 = 0u, s20 = 0u, s21 = 0u, s22 = 0u, s23 = 0u, s24 = 0u, s25 = 0u, s26 = 0u, s27 = 0u, s28 = 0u, s29 = 0u, s30 = 0u, s31 = 0u; uint count = 0u
+
+// Interior reference of a child: all four of its children to visit.
+uint bvhEnter(uint child) {
+    return (child & kBvhLeafBit) != 0u ? child : (child << 4) | 15u;
+}
+
+// Visits wide node (ref >> 4) restricted to the children in (ref & 15) that
+// the ray enters within [tmin, tmax]: the nearest becomes `next`, the rest
+// stay in the returned mask (0: none entered).
+uint bvhVisit4(BvhRay r, uint ref, float tmin, float tmax, out uint next, out uint nextSlot) {
+    BvhNode4 n = bvhFetchNode4(ref >> 4);
+    bvec4 h;
+    vec4 tn = bvhSlab4(r, n, tmin, tmax, h);
+    uvec4 bit = uvec4(1u, 2u, 4u, 8u);
+    bvec4 allowed = notEqual(bit & uvec4(ref & 15u), uvec4(0u));
+    h = bvec4(h.x && allowed.x, h.y && allowed.y, h.z && allowed.z, h.w && allowed.w);
+    vec4 key = mix(vec4(uintBitsToFloat(0x7f800000u)), min(tn, vec4(kBvhFloatMax)), h);
+    // Nearest entered child; ties to the lower slot.
+    uint slot = key.y < key.x ? 1u : 0u;
+    float best = min(key.x, key.y);
+    uint slot2 = key.w < key.z ? 3u : 2u;
+    float best2 = min(key.z, key.w);
+    slot = best2 < best ? slot2 : slot;
+    uint mask = (h.x ? 1u : 0u) | (h.y ? 2u : 0u) | (h.z ? 4u : 0u) | (h.w ? 8u : 0u);
+    next = n.child[slot];
+    nextSlot = slot;
+    return mask;
+}
+
+// Closest (anyHit false) or any hit on the four-wide BVH (SPEC_BVH_WIDE);
+// `anyHit` must be a literal (the call is inlined and folded). The closest
+// hit is the one bvhTraceClosest2 finds: the boxes, the slab test and the tie
+// rule are the same, and the result does not depend on the visiting order.
+bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
+    hit.t = -1.0;
+    hit.triangle = kNoHit;
+    hit.u = 0.0;
+    hit.v = 0.0;
+    BvhRay r = bvhMakeRay(origin, dir);
+    uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
+    float bestT = tmax;  // stays tmax for anyHit
+    uint bestTri = kNoHit;
+    float bestU = 0.0;
+    float bestV = 0.0;
+    BVH_STACK_DECL;
+    uint ref = 15u;  // the root, all children
+    for (;;) {
+        if ((ref & kBvhLeafBit) != 0u) {
+            uint first = (ref & ~kBvhLeafBit) >> kBvhLeafCountBits;
+            uint end = first + (ref & ((1u << kBvhLeafCountBits) - 1u)) + 1u;
+            if (anyHit) {
+                if (bvhLeafAny(r, first, end, tmin, tmax, rayHash)) {
+                    hit.t = 1.0;
+                    hit.triangle = 0u;
+                    return true;
+                }
+            } else {
+                bvhLeafClosest(r, first, end, tmin, tmax, rayHash, bestT, bestTri, bestU, bestV);
+            }
+        } else {
+            uint next, slot;
+            uint mask = bvhVisit4(r, ref, tmin, bestT, next, slot);
+            if (mask != 0u) {
+                uint rest = mask & ~(1u << slot);
+                if (rest != 0u) BVH_PUSH((ref & ~15u) | rest);
+                ref = bvhEnter(next);
+                continue;
+            }
+        }
+        if (count == 0u) break;
+        BVH_POP(ref);
+    }
+    if (bestTri == kNoHit) return false;
+    hit.t = bestT;
+    hit.triangle = bestTri;
+    hit.u = bestU;
+    hit.v = bestV;
+    return true;
+}
+
+bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
+    if (kBvhWide != 0u) return bvhTrace4(origin, dir, tmin, tmax, false, hit);
+    return bvhTraceClosest2(origin, dir, tmin, tmax, hit);
+}
+
+// True if any triangle is hit with tmin < t < tmax (shadow rays); stops at
+// the first hit found.
+bool bvhTraceAny(vec3 origin, vec3 dir, float tmin, float tmax) {
+    if (kBvhWide != 0u) {
+        TraceHit unused;
+        return bvhTrace4(origin, dir, tmin, tmax, true, unused);
+    }
+    return bvhTraceAny2(origin, dir, tmin, tmax);
 }
 
 #endif

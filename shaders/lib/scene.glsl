@@ -8,22 +8,33 @@
 #include "shared/bindings.h"
 
 layout(constant_id = SPEC_TEXEL_FETCH) const uint kTexelFetch = 0u;
+layout(constant_id = SPEC_BVH_WIDE) const uint kBvhWide = 0u;
+layout(constant_id = SPEC_BVH_REGS) const uint kBvhRegs = 16u;
 #include "lib/features.glsl"
 
-layout(std430, set = 0, binding = BINDING_NODES) readonly buffer NodeBuffer { BvhNode nodes[]; };
+layout(std430, set = 0, binding = BINDING_NODES) readonly buffer NodeBuffer { uvec4 nodeWords[]; };
 layout(std430, set = 0, binding = BINDING_TRIS) readonly buffer TriBuffer { TriVerts tris[]; };
 layout(set = 0, binding = BINDING_NODES_TEXEL) uniform usamplerBuffer nodesTexel;
 layout(set = 0, binding = BINDING_TRIS_TEXEL) uniform usamplerBuffer trisTexel;
 layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
 layout(std430, set = 0, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { Material materials[]; };
 
+uvec4 bvhNodeWord(uint index) {
+    return kTexelFetch != 0u ? texelFetch(nodesTexel, int(index)) : nodeWords[index];
+}
+
 BvhNode bvhFetchNode(uint index) {
-    if (kTexelFetch != 0u) {
-        uvec4 a = texelFetch(nodesTexel, int(2u * index));
-        uvec4 b = texelFetch(nodesTexel, int(2u * index + 1u));
-        return BvhNode(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
-    }
-    return nodes[index];
+    uvec4 a = bvhNodeWord(2u * index);
+    uvec4 b = bvhNodeWord(2u * index + 1u);
+    return BvhNode(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
+}
+
+BvhNode4 bvhFetchNode4(uint index) {
+    uint base = 7u * index;
+    return BvhNode4(uintBitsToFloat(bvhNodeWord(base)), uintBitsToFloat(bvhNodeWord(base + 1u)),
+                    uintBitsToFloat(bvhNodeWord(base + 2u)), uintBitsToFloat(bvhNodeWord(base + 3u)),
+                    uintBitsToFloat(bvhNodeWord(base + 4u)), uintBitsToFloat(bvhNodeWord(base + 5u)),
+                    bvhNodeWord(base + 6u));
 }
 
 TriVerts bvhFetchTri(uint index) {

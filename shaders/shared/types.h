@@ -27,6 +27,28 @@ struct BvhNode {
     uint count;
 };
 
+// Four-wide node, collapsed from the BVH2 (host/bvh/wide.h): the boxes of up
+// to four children as structure of arrays (child k's box is
+// [minX[k], maxX[k]] x [minY[k], maxY[k]] x [minZ[k], maxZ[k]]), then their
+// references: kBvhChildEmpty, an interior node's index, or for a leaf
+// kBvhLeafBit | first << kBvhLeafCountBits | (count - 1), count <= 2^kBvhLeafCountBits.
+// Seven RGBA32 words; node 0 is the root (also for an empty BVH or a leaf root).
+struct BvhNode4 {
+    vec4 minX;
+    vec4 maxX;
+    vec4 minY;
+    vec4 maxY;
+    vec4 minZ;
+    vec4 maxZ;
+    uvec4 child;
+};
+
+STRATA_CONST(uint, kBvhChildEmpty, 0xffffffffu);
+STRATA_CONST(uint, kBvhLeafBit, 0x80000000u);
+STRATA_CONST(uint, kBvhLeafCountBits, 5u);
+// First triangle of a leaf reference: below this (kBvhChildEmpty stays unique).
+STRATA_CONST(uint, kBvhMaxLeafFirst, (1u << (31u - kBvhLeafCountBits)) - 1u);
+
 // Triangle vertices in world space, in BVH order (w unused, kept 0).
 struct TriVerts {
     vec4 v0;
