@@ -280,7 +280,8 @@ public:
     SceneBuilder(const std::string& path, const tinygltf::Model& model, Scene& scene)
         : path_(path), model_(model), scene_(scene), meshes_(model.meshes.size()) {}
 
-    // Depth-first, parents before children, children in file order.
+    // Depth-first, parents before children, children in file order. The
+    // nodes are listed first, so the triangles are allocated once.
     void walk(int sceneIndex) {
         const tinygltf::Scene& s = model_.scenes[static_cast<std::size_t>(sceneIndex)];
         std::vector<char> onPath(model_.nodes.size(), 0);
@@ -289,14 +290,14 @@ public:
             glm::dmat4 world;
             std::size_t nextChild;
         };
-        std::vector<Frame> stack;
+        std::vector<Frame> stack, visits;
         auto enter = [&](int node, const glm::dmat4& parent) {
             if (onPath[static_cast<std::size_t>(node)]) {
                 fail(path_, nodeLabel(model_, node) +
                                 " is its own ancestor (cycle in the node hierarchy)");
             }
             const glm::dmat4 world = parent * localTransform(path_, model_, node);
-            visit(node, world);
+            visits.push_back({node, world, 0});
             onPath[static_cast<std::size_t>(node)] = 1;
             stack.push_back({node, world, 0});
         };
@@ -325,6 +326,14 @@ public:
                 enter(child, parent);
             }
         }
+        std::size_t triangles = 0;
+        for (const Frame& v : visits) {
+            const int mesh = model_.nodes[static_cast<std::size_t>(v.node)].mesh;
+            if (mesh < 0 || static_cast<std::size_t>(mesh) >= model_.meshes.size()) continue;  // visit reports it
+            for (const LocalPrimitive& prim : decodedMesh(mesh)) triangles += prim.indices.size() / 3;
+        }
+        scene_.triangles.reserve(triangles);
+        for (const Frame& v : visits) visit(v.node, v.world);
     }
 
     bool usesDefaultMaterial() const { return usesDefault_; }
@@ -407,6 +416,12 @@ private:
         return node >= 0 && static_cast<std::size_t>(node) < model_.nodes.size();
     }
 
+    std::vector<LocalPrimitive>& decodedMesh(int mesh) {
+        auto& decoded = meshes_[static_cast<std::size_t>(mesh)];
+        if (!decoded) decoded = gltf::decodeMesh(path_, model_, mesh);
+        return *decoded;
+    }
+
     void visit(int nodeIndex, const glm::dmat4& world) {
         const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
         if (node.camera >= 0 || node.camera < -1) addCamera(nodeIndex, world);
@@ -477,8 +492,7 @@ private:
                             " does not exist (" + std::to_string(model_.meshes.size()) +
                             " meshes)");
         }
-        auto& decoded = meshes_[static_cast<std::size_t>(node.mesh)];
-        if (!decoded) decoded = gltf::decodeMesh(path_, model_, node.mesh);
+        std::vector<LocalPrimitive>& decoded = decodedMesh(node.mesh);
 
         const glm::dmat3 linear(world);
         const double det = glm::determinant(linear);
@@ -492,8 +506,8 @@ private:
 
         std::vector<glm::dvec3> positions;
         std::vector<glm::dvec3> normals;
-        for (std::size_t p = 0; p < decoded->size(); ++p) {
-            LocalPrimitive& prim = (*decoded)[p];
+        for (std::size_t p = 0; p < decoded.size(); ++p) {
+            LocalPrimitive& prim = decoded[p];
             std::uint32_t material = 0;
             if (prim.material >= 0) {
                 material = static_cast<std::uint32_t>(prim.material);
