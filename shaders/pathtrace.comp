@@ -22,7 +22,6 @@ layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;             // kMis*
 layout(constant_id = SPEC_COUNT_RAYS) const uint kCountRays = 1u;       // count rays in RenderCounters
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
 layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
 layout(push_constant) uniform Push { DispatchParams params; };
@@ -82,7 +81,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
         vec3 ng = normalize(cross(e1, e2));
         bool front = dot(dir, ng) < 0.0;
-        TriShading sh = shading[hit.triangle];
+        TriShading sh = sceneShading(hit.triangle);
         Material mat = materials[sh.material];
 
         // Emission found by the previous vertex's BSDF sample (or directly).

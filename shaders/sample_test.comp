@@ -9,7 +9,6 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 #include "shared/bindings.h"
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(std430, set = 0, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { Emitter emitters[]; };
 layout(std430, set = 0, binding = BINDING_SAMPLES) writeonly buffer SampleBuffer { vec4 samples[]; };
 layout(push_constant) uniform Push { SampleTestParams params; };
 
@@ -86,7 +85,7 @@ void main() {
     } else if (params.routine == kSampleEmitterChoice) {
         float rest;
         // Identify the emitter by its pmf-independent payload: radiance.x holds its index.
-        out4.x = emitters[chooseLight(params.emitterCount, sample2D(smp).x, rest)].radiance.x;
+        out4.x = emitterAt(chooseLight(params.emitterCount, sample2D(smp).x, rest)).radiance.x;
     } else if (params.routine == kSampleLight) {
         LightSample ls = sampleLight(vec3(0.0), sample2D(smp));
         out4 = vec4(ls.wi, ls.pdf);

@@ -39,13 +39,16 @@ int runRender(const RenderCommand& cmd) {
     t0 = std::chrono::steady_clock::now();
     GpuScene gpu = packScene(scene);
     const double packMs = msSince(t0);
+    releaseGeometry(scene);  // packed into `gpu`
 
     vk::Context ctx({cmd.device, cmd.validation});
     if (!cmd.quiet)
         std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
                      ctx.info.type.c_str(), ctx.info.driver.c_str());
 
-    RenderResult result = render(ctx, gpu, scene.cameras[cmd.camera], cmd.settings);
+    const DeviceScene dev = uploadAndRelease(ctx, gpu, cmd.settings.traversal, cmd.settings.bvhWidth,
+                                             cmd.settings.limits);
+    RenderResult result = render(ctx, dev, gpu, scene.cameras[cmd.camera], cmd.settings);
 
     StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs};
     nlohmann::json stats = statsJson(in);

@@ -1,55 +1,206 @@
 #include "render/device_scene.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
 #include "util/error.h"
 
 namespace strata {
+namespace {
 
-bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Traversal mode, bool wide) {
-    const std::uint64_t nodeTexels = wide ? scene.wide.size() * 7 : scene.nodes.size() * 2;
-    const std::uint64_t texels = std::max<std::uint64_t>(nodeTexels, scene.tris.size() * 3);
-    const bool fits = texels <= ctx.properties.limits.maxTexelBufferElements;
-    switch (mode) {
-        case Traversal::Texel:
-            if (!fits)
-                throw Error("strata: error: --traversal texel: the scene needs " + std::to_string(texels) +
-                            " texels per view, the device allows " +
-                            std::to_string(ctx.properties.limits.maxTexelBufferElements));
-            return true;
-        case Traversal::Storage: return false;
-        case Traversal::Auto: break;
-    }
-    return fits && ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+constexpr VkDeviceSize kTexel = 16;  // bytes of one RGBA32UI texel
+
+// One array of the scene as the shaders read it: through a storage
+// descriptor, a texel view of `texelBytes` per texel (0: none), or either
+// (the BVH's two, `bvh`, and the other per-triangle arrays).
+struct ArrayUse {
+    const char* what;
+    std::uint64_t bytes;
+    bool storage;
+    std::uint64_t texelBytes;
+    bool bvh = false;
+};
+
+std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
+    const std::uint64_t nodes = wide ? s.wide.size() * sizeof(gpu::BvhNode4) : s.nodes.size() * sizeof(gpu::BvhNode);
+    return {{"BVH nodes", nodes, true, kTexel, true},
+            {"triangle vertices", s.tris.size() * sizeof(gpu::TriVerts), true, kTexel, true},
+            {"triangle shading data", s.shading.size() * sizeof(gpu::TriShading), true, kTexel},
+            {"texture coordinates", s.texcoords.size() * sizeof(gpu::TriTexcoords), true, kTexel},
+            {"tangents", s.tangents.size() * sizeof(gpu::TriTangents), true, kTexel},
+            {"emitters", s.emitters.size() * sizeof(gpu::Emitter), true, kTexel},
+            {"materials", s.materials.size() * sizeof(gpu::Material), true, 0},
+            {"texture references", s.textureRefs.size() * sizeof(gpu::TextureRef), true, 0},
+            {"environment sampling tables", s.envTables.size() * sizeof(float), true, 0},
+            {"texture texels", s.texels.size() * sizeof(std::uint32_t), false, sizeof(std::uint32_t)},
+            {"environment map texels", s.envTexels.size() * sizeof(glm::vec4), false, sizeof(glm::vec4)}};
 }
 
-DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth) {
+std::string sizeText(std::uint64_t bytes) {
+    if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
+    const bool gib = bytes >= (std::uint64_t(1) << 30);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, gib ? "%.2f GiB" : "%.1f MiB",
+                  static_cast<double>(bytes) / static_cast<double>(gib ? 1u << 30 : 1u << 20));
+    return buf;
+}
+
+bool fitsStorage(const ArrayUse& a, const SceneLimits& l) { return a.storage && a.bytes <= l.storageRange; }
+bool fitsTexel(const ArrayUse& a, const SceneLimits& l) {
+    return a.texelBytes > 0 && (a.bytes + a.texelBytes - 1) / a.texelBytes <= l.texelElements;
+}
+
+std::string need(const ArrayUse& a) { return std::string("the ") + a.what + " need " + sizeText(a.bytes); }
+std::string storageLimit(const SceneLimits& l) { return "maxStorageBufferRange (" + sizeText(l.storageRange) + ")"; }
+std::string texelLimit(const SceneLimits& l, const ArrayUse& a) {
+    return "maxTexelBufferElements (" + std::to_string(l.texelElements) + " texels of " +
+           std::to_string(a.texelBytes) + " bytes)";
+}
+
+VkDeviceSize paddedSize(std::size_t bytes) { return std::max<VkDeviceSize>(16, (bytes + 15) & ~VkDeviceSize(15)); }
+
+template <class T>
+void release(std::vector<T>& v) {
+    std::vector<T>().swap(v);
+}
+template <class T>
+void release(const std::vector<T>&) {}
+
+// G is GpuScene (each large array freed once uploaded) or const GpuScene (kept).
+template <class G>
+DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidth, const SceneLimits& overrides) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const SceneLimits limits = sceneLimits(ctx, overrides);
     const std::uint32_t regs = bvhRegsFor(scene.wideDepth);
     const bool wide = bvhWidth == 4 && regs > 0 && !scene.wide.empty();
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    constexpr VkBufferUsageFlags texel = storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-    checkTexelLimit(ctx, scene);
     DeviceScene d;
-    d.texel = chooseTexelTraversal(ctx, scene, mode, wide);
+    d.reads = chooseReads(limits, scene, mode, wide, ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU);
     d.wide = wide;
     d.bvhRegs = wide ? regs : 16u;
-    d.nodes = wide ? vk::uploadVector(ctx, scene.wide, texel) : vk::uploadVector(ctx, scene.nodes, texel);
-    d.tris = vk::uploadVector(ctx, scene.tris, texel);
-    d.shading = vk::uploadVector(ctx, scene.shading, storage);
+    d.triangles = scene.tris.size();
+    d.nodeCount = wide ? scene.wide.size() : scene.nodes.size();
+    for (const ArrayUse& a : arrayUses(scene, wide)) d.packedBytes += a.bytes;
+    if (wide) {
+        d.nodes = uploadArray(ctx, scene.wide, limits);
+    } else {
+        d.nodes = uploadArray(ctx, scene.nodes, limits);
+    }
+    release(scene.wide);
+    release(scene.nodes);
+    d.tris = uploadArray(ctx, scene.tris, limits);
+    release(scene.tris);
+    d.shading = uploadArray(ctx, scene.shading, limits);
+    release(scene.shading);
+    d.texcoords = uploadArray(ctx, scene.texcoords, limits);
+    release(scene.texcoords);
+    d.tangents = uploadArray(ctx, scene.tangents, limits);
+    release(scene.tangents);
+    d.emitters = uploadArray(ctx, scene.emitters, limits);
     d.materials = vk::uploadVector(ctx, scene.materials, storage);
-    d.emitters = vk::uploadVector(ctx, scene.emitters, storage);
-    d.nodesTexel = vk::TexelView(ctx, d.nodes);
-    d.trisTexel = vk::TexelView(ctx, d.tris);
-    d.texcoords = vk::uploadVector(ctx, scene.texcoords, storage);
-    d.tangents = vk::uploadVector(ctx, scene.tangents, storage);
     d.textureRefs = vk::uploadVector(ctx, scene.textureRefs, storage);
-    d.texels = vk::uploadVector(ctx, scene.texels, texel);
+    d.texels = vk::uploadVector(ctx, scene.texels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     d.texelsView = vk::TexelView(ctx, d.texels, VK_FORMAT_R32_UINT);
+    release(scene.texels);
     uploadEnvironment(ctx, scene, d);
+    release(scene.envTexels);
+    for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.emitters})
+        d.deviceBytes += a->buffer.allocationSize();
+    for (const vk::Buffer* b : {&d.materials, &d.textureRefs, &d.texels, &d.envTexels, &d.envTables})
+        d.deviceBytes += b->allocationSize();
+    d.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return d;
+}
+
+}  // namespace
+
+SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides) {
+    VkPhysicalDeviceMaintenance3Properties m3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &m3;
+    vkGetPhysicalDeviceProperties2(ctx.physical, &props);
+    const VkPhysicalDeviceLimits& l = props.properties.limits;
+    auto lower = [](std::uint64_t device, std::uint64_t override) {
+        return override > 0 ? std::min(device, override) : device;
+    };
+    return {lower(l.maxStorageBufferRange, overrides.storageRange),
+            lower(l.maxTexelBufferElements, overrides.texelElements),
+            lower(m3.maxMemoryAllocationSize, overrides.allocation)};
+}
+
+std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Traversal mode, bool wide,
+                          bool cpuDevice) {
+    const ArrayUse* beyondStorage = nullptr;  // first array read either way that only a texel view holds
+    const ArrayUse* beyondTexel = nullptr;    // ... that only a storage descriptor holds
+    const ArrayUse* bvhBeyondTexel = nullptr;
+    const std::vector<ArrayUse> uses = arrayUses(scene, wide);
+    for (const ArrayUse& a : uses) {
+        if (paddedSize(a.bytes) > limits.allocation)
+            fail(scene.source, need(a) + " in one buffer, more than the device's maxMemoryAllocationSize (" +
+                                   sizeText(limits.allocation) + ")");
+        const bool storage = fitsStorage(a, limits), texel = fitsTexel(a, limits);
+        if (!storage && !texel) {
+            std::string why = a.storage ? storageLimit(limits) : "";
+            if (a.texelBytes > 0) why += (why.empty() ? "" : " and ") + texelLimit(limits, a);
+            fail(scene.source, need(a) + ", more than the device's " + why);
+        }
+        if (!a.storage || a.texelBytes == 0) continue;
+        if (!storage && !beyondStorage) beyondStorage = &a;
+        if (!texel && !beyondTexel) beyondTexel = &a;
+        if (!texel && a.bvh && !bvhBeyondTexel) bvhBeyondTexel = &a;
+    }
+    if (mode == Traversal::Storage) {
+        if (beyondStorage)
+            fail(scene.source, "--traversal storage: " + need(*beyondStorage) + ", more than the device's " +
+                                   storageLimit(limits));
+        return gpu::kReadsStorage;
+    }
+    if (mode == Traversal::Texel && bvhBeyondTexel)
+        fail(scene.source, "--traversal texel: " + need(*bvhBeyondTexel) + ", more than the device's " +
+                               texelLimit(limits, *bvhBeyondTexel));
+    if (beyondStorage) {  // past the storage range: everything through texel views, if they hold it
+        if (beyondTexel)
+            fail(scene.source, need(*beyondStorage) + ", more than the device's " + storageLimit(limits) + ", and " +
+                                   need(*beyondTexel) + ", more than its " + texelLimit(limits, *beyondTexel));
+        return gpu::kReadsTexelAll;
+    }
+    if (mode == Traversal::Texel) return gpu::kReadsTexelBvh;
+    return cpuDevice && !bvhBeyondTexel ? gpu::kReadsTexelBvh : gpu::kReadsStorage;
+}
+
+const char* readsName(std::uint32_t reads) {
+    return reads == gpu::kReadsTexelAll ? "texel-all" : reads == gpu::kReadsTexelBvh ? "texel" : "storage";
+}
+
+DeviceArray uploadArray(const vk::Context& ctx, std::span<const std::byte> bytes, const SceneLimits& limits) {
+    DeviceArray a;
+    a.buffer = vk::uploadBuffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    const VkDeviceSize size = a.buffer.size();  // a multiple of 16, at least 16
+    a.storageRange = std::max<VkDeviceSize>(kTexel, std::min<VkDeviceSize>(size, limits.storageRange) & ~(kTexel - 1));
+    const VkDeviceSize texelRange = std::min<VkDeviceSize>(size, std::max<std::uint64_t>(1, limits.texelElements) * kTexel);
+    a.texel = vk::TexelView(ctx, a.buffer, VK_FORMAT_R32G32B32A32_UINT, texelRange);
+    return a;
+}
+
+void bindArray(vk::Kernel& kernel, std::uint32_t storageBinding, std::uint32_t texelBinding, const DeviceArray& a) {
+    kernel.bind(storageBinding, a.buffer, a.storageRange);
+    kernel.bind(texelBinding, a.texel);
+}
+
+DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth,
+                        const SceneLimits& overrides) {
+    return upload(ctx, scene, mode, bvhWidth, overrides);
+}
+
+DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth,
+                             const SceneLimits& overrides) {
+    return upload(ctx, scene, mode, bvhWidth, overrides);
 }
 
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {
     spec.resize(std::max<std::size_t>(spec.size(), gpu::SPEC_BVH_REGS + 1), 0u);
-    spec[gpu::SPEC_TEXEL_FETCH] = scene.texel ? 1u : 0u;
+    spec[gpu::SPEC_TEXEL_FETCH] = scene.reads;
     spec[gpu::SPEC_BVH_WIDE] = scene.wide ? 1u : 0u;
     spec[gpu::SPEC_BVH_REGS] = scene.bvhRegs;
 }
@@ -60,36 +211,27 @@ void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScen
     d.envTables = vk::uploadVector(ctx, scene.envTables, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
-void checkTexelLimit(const vk::Context& ctx, const GpuScene& scene) {
-    const std::uint64_t limit = ctx.properties.limits.maxTexelBufferElements;
-    if (scene.texels.size() > limit) {
-        throw Error(scene.source + ": error: the textures need " + std::to_string(scene.texels.size()) +
-                    " texel-buffer words, more than the device's maxTexelBufferElements " +
-                    std::to_string(limit));
-    }
-}
-
 std::vector<vk::BindingDesc> sceneBindings() {
     using namespace gpu;
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     constexpr VkDescriptorType texel = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    return {{BINDING_NODES, storage},     {BINDING_TRIS, storage},      {BINDING_NODES_TEXEL, texel},
-            {BINDING_TRIS_TEXEL, texel},  {BINDING_SHADING, storage},   {BINDING_MATERIALS, storage},
-            {BINDING_TEXCOORDS, storage}, {BINDING_TANGENTS, storage},  {BINDING_TEXREFS, storage},
+    return {{BINDING_NODES, storage},     {BINDING_NODES_TEXEL, texel},     {BINDING_TRIS, storage},
+            {BINDING_TRIS_TEXEL, texel},  {BINDING_SHADING, storage},       {BINDING_SHADING_TEXEL, texel},
+            {BINDING_TEXCOORDS, storage}, {BINDING_TEXCOORDS_TEXEL, texel}, {BINDING_TANGENTS, storage},
+            {BINDING_TANGENTS_TEXEL, texel}, {BINDING_MATERIALS, storage},  {BINDING_TEXREFS, storage},
             {BINDING_TEXELS, texel}};
 }
 
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
-    kernel.bind(gpu::BINDING_NODES, scene.nodes);
-    kernel.bind(gpu::BINDING_TRIS, scene.tris);
-    kernel.bind(gpu::BINDING_NODES_TEXEL, scene.nodesTexel);
-    kernel.bind(gpu::BINDING_TRIS_TEXEL, scene.trisTexel);
-    kernel.bind(gpu::BINDING_SHADING, scene.shading);
-    kernel.bind(gpu::BINDING_MATERIALS, scene.materials);
-    kernel.bind(gpu::BINDING_TEXCOORDS, scene.texcoords);
-    kernel.bind(gpu::BINDING_TANGENTS, scene.tangents);
-    kernel.bind(gpu::BINDING_TEXREFS, scene.textureRefs);
-    kernel.bind(gpu::BINDING_TEXELS, scene.texelsView);
+    using namespace gpu;
+    bindArray(kernel, BINDING_NODES, BINDING_NODES_TEXEL, scene.nodes);
+    bindArray(kernel, BINDING_TRIS, BINDING_TRIS_TEXEL, scene.tris);
+    bindArray(kernel, BINDING_SHADING, BINDING_SHADING_TEXEL, scene.shading);
+    bindArray(kernel, BINDING_TEXCOORDS, BINDING_TEXCOORDS_TEXEL, scene.texcoords);
+    bindArray(kernel, BINDING_TANGENTS, BINDING_TANGENTS_TEXEL, scene.tangents);
+    kernel.bind(BINDING_MATERIALS, scene.materials);
+    kernel.bind(BINDING_TEXREFS, scene.textureRefs);
+    kernel.bind(BINDING_TEXELS, scene.texelsView);
 }
 
 }  // namespace strata

@@ -1,7 +1,15 @@
-// A GpuScene uploaded to the device: one storage buffer per array, and
-// RGBA32UI texel views over the node and triangle buffers for devices where
-// texel fetches beat storage-buffer loads (lavapipe; see DESIGN.md).
+// A GpuScene uploaded to the device: one buffer per array. The BVH nodes, the
+// per-triangle arrays and the emitters are bound twice, as storage buffers and
+// through RGBA32UI texel views of the same VkBuffer; SPEC_TEXEL_FETCH (kReads*,
+// shaders/shared/types.h) says which of the two the shaders read. Texel reads
+// are faster on lavapipe (DESIGN.md) and reach maxTexelBufferElements texels
+// (2 GiB there) where a storage descriptor reaches maxStorageBufferRange (128
+// MiB there), so scenes beyond the storage range read everything through them.
 #pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
 #include "../../shaders/shared/bindings.h"
 #include "render/gpu_scene.h"
 #include "vk/buffer.h"
@@ -12,36 +20,84 @@ namespace strata {
 
 enum class Traversal { Auto, Texel, Storage };
 
+// The limits a scene is planned and bound against. sceneLimits() gives the
+// device's; a nonzero override lowers one (tests reach the large-scene path
+// on small scenes that way).
+struct SceneLimits {
+    std::uint64_t storageRange = 0;   // bytes of one storage descriptor (maxStorageBufferRange)
+    std::uint64_t texelElements = 0;  // texels of one texel view (maxTexelBufferElements)
+    std::uint64_t allocation = 0;     // bytes of one buffer (maxMemoryAllocationSize)
+};
+
+SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {});
+
+// SPEC_TEXEL_FETCH for `scene` (kReads*). Auto: the BVH through texel views on
+// CPU devices (lavapipe), and every array through them wherever one exceeds
+// limits.storageRange; Texel and Storage force the BVH's reads. Throws
+// strata::Error (one line naming the scene file) when an array exceeds
+// limits.allocation, when an array fits neither a storage descriptor nor a
+// texel view, or when the forced reads cannot address the scene.
+std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Traversal mode, bool wide,
+                          bool cpuDevice);
+
+// "storage", "texel" (the BVH) or "texel-all" for a kReads* value.
+const char* readsName(std::uint32_t reads);
+
+// One array on the device, bound as a storage buffer over its first
+// `storageRange` bytes and through `texel`, each within the limits it was
+// uploaded with (the shader reads through one of them).
+struct DeviceArray {
+    vk::Buffer buffer;
+    VkDeviceSize storageRange = 0;
+    vk::TexelView texel;  // RGBA32UI
+};
+
+DeviceArray uploadArray(const vk::Context& ctx, std::span<const std::byte> bytes, const SceneLimits& limits);
+
+template <class T>
+DeviceArray uploadArray(const vk::Context& ctx, const std::vector<T>& v, const SceneLimits& limits) {
+    return uploadArray(ctx, std::as_bytes(std::span<const T>(v)), limits);
+}
+
+// Binds the array's storage range at `storageBinding` and its view at `texelBinding`.
+void bindArray(vk::Kernel& kernel, std::uint32_t storageBinding, std::uint32_t texelBinding, const DeviceArray& a);
+
 struct DeviceScene {
-    vk::Buffer nodes, tris, shading, materials, emitters;
-    vk::TexelView nodesTexel, trisTexel;
+    DeviceArray nodes, tris, shading, texcoords, tangents, emitters;
+    vk::Buffer materials, textureRefs;
     // Texturing inputs; a 16-byte zero buffer each when the scene has none
     // (every binding the shaders declare stays valid for the validation layers).
-    vk::Buffer texcoords, tangents, textureRefs, texels;
+    vk::Buffer texels;
     vk::TexelView texelsView;  // R32UI over `texels`
     vk::Buffer envTexels, envTables;  // 16-byte placeholders without an environment map
     vk::TexelView envTexelView;       // RGBA32F over envTexels
-    bool texel = false;  // traversal reads nodes/triangles through the texel views
+    std::uint32_t reads = gpu::kReadsStorage;  // SPEC_TEXEL_FETCH
     bool wide = false;   // `nodes` holds GpuScene::wide (SPEC_BVH_WIDE), else the BVH2
     std::uint32_t bvhRegs = 16;  // SPEC_BVH_REGS with `wide`
+    std::uint64_t triangles = 0;  // counts of what was uploaded (the GpuScene's
+    std::uint64_t nodeCount = 0;  // arrays may be released since)
+    std::uint64_t packedBytes = 0;  // bytes of the arrays uploaded, as packed
+    std::uint64_t deviceBytes = 0;  // device memory of their buffers
+    double uploadMs = 0.0;          // host wall time of the upload
+    bool texel() const { return reads != gpu::kReadsStorage; }
 };
 
-// Texel reads on CPU devices (lavapipe), storage reads elsewhere, unless forced.
-// Throws strata::Error when texel reads are forced but the buffers exceed the
-// device's maxTexelBufferElements.
-bool chooseTexelTraversal(const vk::Context& ctx, const GpuScene& scene, Traversal mode, bool wide);
-
 // bvhWidth 4: the four-wide BVH (SPEC_BVH_WIDE 1) unless the scene's wide tree
-// is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2.
-DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth = 4);
+// is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2. `overrides` as sceneLimits.
+DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth = 4,
+                        const SceneLimits& overrides = {});
+
+// The same, and frees each of the scene's large arrays (BVH, triangles,
+// shading, texture coordinates, tangents, texture and environment texels) as
+// soon as it is on the device, so host memory does not hold the scene twice.
+// What the renderer still reads of `scene` (materials, emitters, lights,
+// features, counts) stays.
+DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth = 4,
+                             const SceneLimits& overrides = {});
 
 // The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,
 // SPEC_BVH_WIDE, SPEC_BVH_REGS) into `spec`, grown as needed.
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec);
-
-// Throws strata::Error (one line naming the scene file) when the packed
-// texture words exceed the device's maxTexelBufferElements.
-void checkTexelLimit(const vk::Context& ctx, const GpuScene& scene);
 
 // The traversal's inputs: nodes, triangles, their texel views, and what the
 // alpha test reads (shading, materials, texture coordinates, texture refs and

@@ -24,15 +24,6 @@ std::vector<std::string> SceneFeatures::names() const {
     return out;
 }
 
-std::uint64_t GpuScene::bytes() const {
-    return nodes.size() * sizeof(gpu::BvhNode) + tris.size() * sizeof(gpu::TriVerts) +
-           shading.size() * sizeof(gpu::TriShading) + materials.size() * sizeof(gpu::Material) +
-           emitters.size() * sizeof(gpu::Emitter) + texcoords.size() * sizeof(gpu::TriTexcoords) +
-           tangents.size() * sizeof(gpu::TriTangents) +
-           textureRefs.size() * sizeof(gpu::TextureRef) + texels.size() * sizeof(std::uint32_t) +
-           envTexels.size() * sizeof(glm::vec4) + envTables.size() * sizeof(float);
-}
-
 namespace {
 
 double sceneRadius(const Scene& scene) {
@@ -165,13 +156,17 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
     GpuScene g;
     g.source = scene.path;
     const std::size_t n = scene.triangles.size();
-    std::vector<glm::vec3> v0(n), v1(n), v2(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        v0[i] = scene.triangles[i].v[0];
-        v1[i] = scene.triangles[i].v[1];
-        v2[i] = scene.triangles[i].v[2];
+    g.triangleCount = n;
+    Bvh bvh;
+    {  // the builder's vertex copies are freed before the packed arrays are allocated
+        std::vector<glm::vec3> v0(n), v1(n), v2(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            v0[i] = scene.triangles[i].v[0];
+            v1[i] = scene.triangles[i].v[1];
+            v2[i] = scene.triangles[i].v[2];
+        }
+        bvh = buildBvh(v0, v1, v2, options);
     }
-    Bvh bvh = buildBvh(v0, v1, v2, options);
     g.nodes = std::move(bvh.nodes);
     WideBvh wide = collapseBvh4(g.nodes);
     g.wide = std::move(wide.nodes);

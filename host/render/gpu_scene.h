@@ -24,6 +24,7 @@ struct GpuScene {
     std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; SPEC_BVH_WIDE 0)
     std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h; SPEC_BVH_WIDE 1)
     std::uint32_t wideDepth = 0;            // WideBvh::maxDepth
+    std::uint64_t triangleCount = 0;        // triangles packed (stays when uploadAndRelease frees tris)
     std::vector<gpu::TriVerts> tris;        // BVH order
     std::vector<gpu::TriShading> shading;   // BVH order
     std::vector<gpu::Material> materials;
@@ -45,7 +46,6 @@ struct GpuScene {
     std::vector<float> envTables;           // sampling tables (render/env_tables.h)
     SceneFeatures features;
     BvhStats bvh;
-    std::uint64_t bytes() const;
 };
 
 // Builds the BVH and packs everything. Emitters are the triangles for which

@@ -21,7 +21,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-gpu::FrameUniforms frameUniforms(const GpuScene& scene, const Camera& cam, const RenderSettings& s) {
+gpu::FrameUniforms frameUniforms(const DeviceScene& dev, const GpuScene& scene, const Camera& cam,
+                                 const RenderSettings& s) {
     gpu::FrameUniforms f{};
     const float tanHalf = std::tan(cam.yfov * 0.5f);
     const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
@@ -32,7 +33,7 @@ gpu::FrameUniforms frameUniforms(const GpuScene& scene, const Camera& cam, const
     f.camRight = glm::vec4(right * tanHalf * aspect, 0.0f);
     f.camUp = glm::vec4(up * tanHalf, 0.0f);
     f.image = glm::uvec4(s.width, s.height, s.maxDepth, s.seed);
-    f.counts = glm::uvec4(scene.emitters.size(), scene.tris.size(), scene.nodes.size(), s.spp);
+    f.counts = glm::uvec4(scene.emitters.size(), dev.triangles, dev.nodeCount, s.spp);
     f.scene = glm::vec4(static_cast<float>(scene.totalPower), 0.0f, 0.0f, 0.0f);
     setLightUniforms(f, scene);
     return f;
@@ -49,16 +50,20 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                     const RenderSettings& s, const Checkpoints& checkpoints) {
+    checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
+    const DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth, s.limits);
+    return render(ctx, dev, scene, camera, s, checkpoints);
+}
+
+RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuScene& scene, const Camera& camera,
+                    const RenderSettings& s, const Checkpoints& checkpoints) {
     using namespace gpu;
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
-    auto t0 = Clock::now();
-    DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth);
-    const double uploadMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
     const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
 
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
-    const FrameUniforms fu = frameUniforms(scene, camera, s);
+    const FrameUniforms fu = frameUniforms(dev, scene, camera, s);
     std::memcpy(frame.mapped(), &fu, sizeof fu);
     constexpr VkBufferUsageFlags xfer = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     vk::Buffer accum(ctx, accumBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | xfer, vk::MemoryUse::Device);
@@ -73,6 +78,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
     bindings.insert(bindings.end(), {
         {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
         {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -90,7 +96,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);
     bindTraversal(kernel, dev);
-    kernel.bind(BINDING_EMITTERS, dev.emitters);
+    bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
     kernel.bind(BINDING_ACCUM, accum);
     kernel.bind(BINDING_COUNTERS, counters);
     kernel.bind(BINDING_FILTER, filterTable);
@@ -99,9 +105,11 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
 
     RenderResult result;
     result.film = Film(s.width, s.height);
-    result.texelTraversal = dev.texel;
+    result.reads = dev.reads;
     result.bvhWidth = dev.wide ? 4 : 2;
-    result.uploadMs = uploadMs;
+    result.uploadMs = dev.uploadMs;
+    result.sceneBytes = dev.packedBytes;
+    result.sceneDeviceBytes = dev.deviceBytes;
     result.pipelineMs = kernel.pipelineMs();
     vk::OneShot submit(ctx);
     vk::DeviceTimer timer(ctx);
@@ -239,6 +247,7 @@ RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera&
         result.closestRays = (static_cast<std::uint64_t>(c.closestHi) << 32) | c.closestLo;
         result.shadowRays = (static_cast<std::uint64_t>(c.shadowHi) << 32) | c.shadowLo;
     }
+    result.peakDeviceBytes = vk::peakDeviceMemoryBytes();
     return result;
 }
 

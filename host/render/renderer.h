@@ -38,6 +38,8 @@ struct RenderSettings {
     bool warmUp = false;                // one dispatch (a tile of at most 64x64 pixels, sample 0)
                                         // before the loop, timed apart and cleared from the image
     bool countRays = true;              // SPEC_COUNT_RAYS: closest/shadow ray counters
+    SceneLimits limits;                 // lower device limits to plan the scene against (0: the
+                                        // device's; render/device_scene.h)
 };
 
 struct RenderResult;
@@ -68,14 +70,25 @@ struct RenderResult {
     double warmUpDeviceSeconds = 0.0;   // the warm-up dispatch (settings.warmUp), timestamps
     double warmUpHostSeconds = 0.0;     // its submission, recording to end of wait
     std::uint32_t warmUpPixels = 0;
-    bool texelTraversal = false;
+    std::uint32_t reads = gpu::kReadsStorage;  // SPEC_TEXEL_FETCH: how the scene's arrays were read
     int bvhWidth = 2;                   // the BVH the shader traversed
+    std::uint64_t sceneBytes = 0;       // the scene's arrays as packed (DeviceScene::packedBytes)
+    std::uint64_t sceneDeviceBytes = 0; // device memory holding them
+    std::uint64_t peakDeviceBytes = 0;  // most device memory the process held at once, by the
+                                        // render's end (scene, image, staging: vk::Buffer)
     double msamplesPerSecond() const {
         return seconds > 0 ? static_cast<double>(film.pixels()) * spp / seconds * 1e-6 : 0.0;
     }
 };
 
+// Uploads `scene` (render/device_scene.h) and renders it.
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
+                    const RenderSettings& settings, const Checkpoints& checkpoints = {});
+
+// Renders a scene already on the device; `scene` is the GpuScene it was
+// uploaded from, of which only what uploadAndRelease keeps is read (lights,
+// features, emitter count).
+RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuScene& scene, const Camera& camera,
                     const RenderSettings& settings, const Checkpoints& checkpoints = {});
 
 }  // namespace strata

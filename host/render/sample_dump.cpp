@@ -21,7 +21,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     using namespace gpu;
     const GpuScene none;
     const GpuScene& scene = lights ? *lights : none;
-    vk::Buffer em = vk::uploadVector(ctx, lights ? lights->emitters : emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const DeviceArray em = uploadArray(ctx, lights ? lights->emitters : emitters, sceneLimits(ctx));
     FrameUniforms fu{};
     setLightUniforms(fu, scene);
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
@@ -39,6 +39,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
                       {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                       {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
                        {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
@@ -47,7 +48,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     kernel.bind(BINDING_FRAME, frame);
     kernel.bind(BINDING_ENV_TEXELS, env.envTexelView);
     kernel.bind(BINDING_ENV_CDF, env.envTables);
-    kernel.bind(BINDING_EMITTERS, em);
+    bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, em);
     kernel.bind(BINDING_SAMPLES, out);
     kernel.bind(BINDING_FILTER, table);
     vk::OneShot submit(ctx);

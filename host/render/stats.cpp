@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "render/sampler_kind.h"
+#include "util/memory.h"
+#include "vk/buffer.h"
 
 namespace strata {
 
@@ -15,7 +17,7 @@ nlohmann::json statsJson(const StatsInput& in) {
     std::size_t emissiveTriangles = 0;
     for (const auto& e : in.gpu->emitters) emissiveTriangles += e.kind == gpu::kLightTriangle;
     j["scene"] = {{"file", in.scene->path},
-                  {"triangles", in.scene->triangles.size()},
+                  {"triangles", in.gpu->triangleCount},
                   {"materials", in.scene->materials.size()},
                   {"emissive_triangles", emissiveTriangles},
                   {"dropped_zero_area_emitters", in.scene->droppedEmitters},
@@ -23,7 +25,6 @@ nlohmann::json statsJson(const StatsInput& in) {
                   {"environment", in.scene->environment.enabled ? in.scene->environment.source : ""},
                   {"cameras", in.scene->cameras.size()},
                   {"features", in.gpu->features.names()},
-                  {"gpu_bytes", in.gpu->bytes()},
                   {"load_ms", in.loadMs}};
     const BvhStats& b = in.gpu->bvh;
     j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
@@ -45,11 +46,12 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"closest_rays", r.closestRays},
                    {"shadow_rays", r.shadowRays},
                    {"non_finite_samples", r.nonFinite},
-                   {"traversal", r.texelTraversal ? "texel" : "storage"},
+                   {"traversal", readsName(r.reads)},
                    {"bvh_width", r.bvhWidth},
                    {"sampler", samplerByKind(s.sampler).name},
                    {"filter", filterName(s.filter.kind)},
                    {"filter_radius", s.filter.radius}};
+    j["memory"] = memoryJson(r.sceneBytes, r.sceneDeviceBytes);
     j["validation"] = {{"enabled", in.ctx->validation},
                        {"messages", vk::validationMessageCount()}};
     return j;
@@ -87,7 +89,26 @@ std::string statsText(const nlohmann::json& j) {
                   r["traversal"].get<std::string>().c_str(), r["sampler"].get<std::string>().c_str());
     o << line;
     o << "samples    " << r["non_finite_samples"] << " non-finite dropped\n";
+    o << "memory     " << memoryText(j["memory"]) << "\n";
     return o.str();
+}
+
+nlohmann::json memoryJson(std::uint64_t scenePackedBytes, std::uint64_t sceneDeviceBytes) {
+    return {{"scene_packed_bytes", scenePackedBytes},
+            {"scene_device_bytes", sceneDeviceBytes},
+            {"device_peak_bytes", vk::peakDeviceMemoryBytes()},
+            {"host_peak_rss_bytes", peakRssBytes()}};
+}
+
+std::string memoryText(const nlohmann::json& m) {
+    const double mib = 1.0 / (1024.0 * 1024.0);
+    const double packed = m["scene_packed_bytes"].get<double>(), device = m["scene_device_bytes"].get<double>();
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "scene %.1f MiB packed, %.1f MiB on the device (%.2fx); device peak %.1f MiB; host peak RSS %.1f MiB",
+                  packed * mib, device * mib, packed > 0.0 ? device / packed : 0.0,
+                  m["device_peak_bytes"].get<double>() * mib, m["host_peak_rss_bytes"].get<double>() * mib);
+    return line;
 }
 
 }  // namespace strata

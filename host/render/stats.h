@@ -24,4 +24,10 @@ struct StatsInput {
 nlohmann::json statsJson(const StatsInput& in);
 std::string statsText(const nlohmann::json& stats);
 
+// Memory: the scene's arrays as packed and the device memory holding them,
+// the process's peak device memory (vk::peakDeviceMemoryBytes) and peak host
+// resident set size, in bytes; memoryText is its one-line summary.
+nlohmann::json memoryJson(std::uint64_t scenePackedBytes, std::uint64_t sceneDeviceBytes);
+std::string memoryText(const nlohmann::json& memory);
+
 }  // namespace strata

@@ -24,7 +24,8 @@ public:
     // of one pass (Vulkan timestamps around the dispatches).
     std::vector<gpu::TraceHit> trace(const std::vector<gpu::TraceRay>& rays, std::uint32_t mode, int reps = 1,
                                      double* medianSeconds = nullptr);
-    bool texel() const { return scene_.texel; }
+    bool texel() const { return scene_.texel(); }
+    const DeviceScene& deviceScene() const { return scene_; }
     int bvhWidth() const { return scene_.wide ? 4 : 2; }
 
 private:

@@ -153,6 +153,17 @@ struct Scene {
     std::size_t droppedEmitters = 0;
 };
 
+// Frees what packing copies (triangles, texture coordinates, tangents,
+// images, environment texels) once the scene is packed (render/gpu_scene.h);
+// materials, cameras, lights and the other small members stay.
+inline void releaseGeometry(Scene& scene) {
+    std::vector<Triangle>().swap(scene.triangles);
+    std::vector<TriangleUv>().swap(scene.texcoords);
+    std::vector<TriangleTangents>().swap(scene.tangents);
+    std::vector<TextureImage>().swap(scene.images);
+    std::vector<float>().swap(scene.environment.rgb);
+}
+
 // Area in world units squared.
 inline float triangleArea(const Triangle& t) {
     return 0.5f * glm::length(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));

@@ -1,5 +1,7 @@
 #include "vk/buffer.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <utility>
@@ -7,6 +9,22 @@
 #include "vk/check.h"
 
 namespace strata::vk {
+namespace {
+
+std::atomic<std::uint64_t> gDeviceBytes{0};
+std::atomic<std::uint64_t> gPeakDeviceBytes{0};
+
+void countAllocation(std::uint64_t bytes) {
+    const std::uint64_t now = gDeviceBytes += bytes;
+    std::uint64_t peak = gPeakDeviceBytes.load();
+    while (now > peak && !gPeakDeviceBytes.compare_exchange_weak(peak, now)) {
+    }
+}
+
+}  // namespace
+
+std::uint64_t deviceMemoryBytes() { return gDeviceBytes.load(); }
+std::uint64_t peakDeviceMemoryBytes() { return gPeakDeviceBytes.load(); }
 
 Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use)
     : device_(ctx.device), size_(size) {
@@ -44,10 +62,15 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, 
         reset();
         throwVkError(r, "vkAllocateMemory", __FILE__, __LINE__);
     }
+    allocated_ = req.size;
+    countAllocation(allocated_);
     VK_CHECK(vkBindBufferMemory(device_, buffer_, memory_, 0));
     const VkMemoryPropertyFlags flags = ctx.memory.memoryTypes[type].propertyFlags;
     coherent_ = (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
-    if (use != MemoryUse::Device) VK_CHECK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+    constexpr VkMemoryPropertyFlags hostCoherent =
+        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    if (use != MemoryUse::Device || (flags & hostCoherent) == hostCoherent)
+        VK_CHECK(vkMapMemory(device_, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
 Buffer::~Buffer() { reset(); }
@@ -61,6 +84,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
         std::swap(buffer_, o.buffer_);
         std::swap(memory_, o.memory_);
         std::swap(size_, o.size_);
+        std::swap(allocated_, o.allocated_);
         std::swap(mapped_, o.mapped_);
         std::swap(coherent_, o.coherent_);
     }
@@ -72,6 +96,8 @@ void Buffer::reset() {
     if (mapped_) vkUnmapMemory(device_, memory_);
     if (buffer_) vkDestroyBuffer(device_, buffer_, nullptr);
     if (memory_) vkFreeMemory(device_, memory_, nullptr);
+    gDeviceBytes -= allocated_;
+    allocated_ = 0;
     buffer_ = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;
     mapped_ = nullptr;
@@ -131,18 +157,30 @@ void OneShot::submitAndWait(double timeoutSeconds) {
 }
 
 Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage) {
-    VkDeviceSize size = std::max<VkDeviceSize>(16, (bytes.size() + 15) & ~VkDeviceSize(15));
-    Buffer staging(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
-    std::memset(staging.mapped(), 0, size);
-    if (!bytes.empty()) std::memcpy(staging.mapped(), bytes.data(), bytes.size());
+    const VkDeviceSize size = std::max<VkDeviceSize>(16, (bytes.size() + 15) & ~VkDeviceSize(15));
     Buffer buffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
+    auto fill = [&](void* dst, VkDeviceSize offset, VkDeviceSize n) {
+        const VkDeviceSize data = offset < bytes.size() ? std::min<VkDeviceSize>(n, bytes.size() - offset) : 0;
+        if (data > 0) std::memcpy(dst, bytes.data() + offset, data);
+        if (data < n) std::memset(static_cast<std::byte*>(dst) + data, 0, n - data);
+    };
+    if (buffer.mapped()) {  // host-visible, coherent device memory: no copy on the device
+        fill(buffer.mapped(), 0, size);
+        return buffer;
+    }
+    const VkDeviceSize chunk = std::min(size, kStagingBytes);
+    Buffer staging(ctx, chunk, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
     OneShot once(ctx);
-    VkCommandBuffer cmd = once.begin();
-    VkBufferCopy region{0, 0, size};
-    vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    once.submitAndWait();
+    for (VkDeviceSize offset = 0; offset < size; offset += chunk) {
+        const VkDeviceSize n = std::min(chunk, size - offset);
+        fill(staging.mapped(), offset, n);
+        VkCommandBuffer cmd = once.begin();
+        VkBufferCopy region{0, offset, n};
+        vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+        once.submitAndWait();
+    }
     return buffer;
 }
 

@@ -30,6 +30,10 @@ public:
 
     VkBuffer handle() const { return buffer_; }
     VkDeviceSize size() const { return size_; }
+    VkDeviceSize allocationSize() const { return allocated_; }  // bytes of its VkDeviceMemory
+    // Host pointer to the memory: always for Upload and Readback; for Device
+    // where device-local memory is also host-visible and coherent (lavapipe,
+    // integrated GPUs, resizable BAR), else null.
     void* mapped() const { return mapped_; }
     // Makes device writes visible to the host for non-coherent memory.
     void invalidate() const;
@@ -40,6 +44,7 @@ private:
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
     VkDeviceSize size_ = 0;
+    VkDeviceSize allocated_ = 0;
     void* mapped_ = nullptr;
     bool coherent_ = true;
 };
@@ -62,8 +67,16 @@ private:
     VkFence fence_ = VK_NULL_HANDLE;
 };
 
-// A device-local buffer filled with `bytes` through a staging buffer. Size is
-// rounded up to 16 bytes and never zero (texel views need >= 1 element).
+// Device memory (every VkDeviceMemory of a Buffer, all memory types) held by
+// the process now, and the most it held at once.
+std::uint64_t deviceMemoryBytes();
+std::uint64_t peakDeviceMemoryBytes();
+
+// A device-local buffer filled with `bytes`: written in place where that
+// memory is host-visible, else copied through a staging buffer of at most
+// kStagingBytes, reused chunk by chunk. Size is rounded up to 16 bytes and
+// never zero (texel views need >= 1 element); the padding is zero.
+inline constexpr VkDeviceSize kStagingBytes = VkDeviceSize(64) << 20;
 Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
 
 template <class T>

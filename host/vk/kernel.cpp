@@ -8,12 +8,13 @@
 
 namespace strata::vk {
 
-TexelView::TexelView(const Context& ctx, const Buffer& buffer, VkFormat format) : device_(ctx.device) {
+TexelView::TexelView(const Context& ctx, const Buffer& buffer, VkFormat format, VkDeviceSize range)
+    : device_(ctx.device) {
     VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
     info.buffer = buffer.handle();
     info.format = format;
     info.offset = 0;
-    info.range = VK_WHOLE_SIZE;
+    info.range = range;
     VK_CHECK(vkCreateBufferView(device_, &info, nullptr, &view_));
 }
 
@@ -112,8 +113,8 @@ VkDescriptorType Kernel::typeOf(std::uint32_t binding) const {
     throw DeviceError("kernel has no binding " + std::to_string(binding));
 }
 
-void Kernel::bind(std::uint32_t binding, const Buffer& buffer) {
-    VkDescriptorBufferInfo info{buffer.handle(), 0, VK_WHOLE_SIZE};
+void Kernel::bind(std::uint32_t binding, const Buffer& buffer, VkDeviceSize range) {
+    VkDescriptorBufferInfo info{buffer.handle(), 0, range};
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set_;
     write.dstBinding = binding;

@@ -18,11 +18,13 @@ struct BindingDesc {
     VkDescriptorType type;  // STORAGE_BUFFER, UNIFORM_BUFFER or UNIFORM_TEXEL_BUFFER
 };
 
-// A VkBufferView over a whole buffer (RGBA32UI texels), move-only.
+// A VkBufferView over the first `range` bytes of a buffer (VK_WHOLE_SIZE: all
+// of it; RGBA32UI texels by default), move-only.
 class TexelView {
 public:
     TexelView() = default;
-    TexelView(const Context& ctx, const Buffer& buffer, VkFormat format = VK_FORMAT_R32G32B32A32_UINT);
+    TexelView(const Context& ctx, const Buffer& buffer, VkFormat format = VK_FORMAT_R32G32B32A32_UINT,
+              VkDeviceSize range = VK_WHOLE_SIZE);
     ~TexelView();
     TexelView(TexelView&& o) noexcept;
     TexelView& operator=(TexelView&& o) noexcept;
@@ -46,7 +48,8 @@ public:
     Kernel(const Kernel&) = delete;
     Kernel& operator=(const Kernel&) = delete;
 
-    void bind(std::uint32_t binding, const Buffer& buffer);
+    // Binds the first `range` bytes of `buffer` (VK_WHOLE_SIZE: all of it).
+    void bind(std::uint32_t binding, const Buffer& buffer, VkDeviceSize range = VK_WHOLE_SIZE);
     void bind(std::uint32_t binding, const TexelView& view);
 
     // Binds pipeline + set, pushes `push` (pushConstantBytes) and dispatches.

@@ -3,14 +3,15 @@
 // host-built alias table (Walker 1977 / Vose 1991; weights in
 // render/gpu_scene.cpp), then a point or direction on the chosen one.
 // Code for punctual lights and the environment is compiled out through the
-// kFeature* bits when the scene has none. Needs `emitters[]` and `frame`
-// (FrameUniforms) declared by the includer.
+// kFeature* bits when the scene has none. Needs `frame` (FrameUniforms)
+// declared by the includer; reads emitters through lib/emitters.glsl.
 #ifndef STRATA_LIB_LIGHTS_GLSL
 #define STRATA_LIB_LIGHTS_GLSL
 
 #include "lib/sampling.glsl"
 #include "lib/features.glsl"
 #include "lib/environment.glsl"
+#include "lib/emitters.glsl"
 
 const float kLightFar = 3.0e38;  // distance of directional and environment lights
 
@@ -36,13 +37,14 @@ uint chooseLight(uint emitterCount, float ux, out float rest) {
     float scaled = ux * float(emitterCount);
     uint slot = min(uint(scaled), emitterCount - 1u);
     float f = clamp(scaled - float(slot), 0.0, 1.0);
-    float aliasProb = emitters[slot].aliasProb;
+    Emitter e = emitterAt(slot);
+    float aliasProb = e.aliasProb;
     if (f < aliasProb) {
         rest = f / aliasProb;
         return slot;
     }
     rest = (f - aliasProb) / (1.0 - aliasProb);
-    return emitters[slot].alias;
+    return e.alias;
 }
 
 // Solid-angle density of reaching a point on an emitter (area `area`, chosen
@@ -55,12 +57,13 @@ float emitterPdfSolidAngle(float pmf, float area, float dist, float cosLight) {
 // For MIS when a BSDF-sampled ray hits emitter triangle `light` at distance
 // `dist` with |cosine| `cosLight` to its normal.
 float lightPdfTriangle(uint light, float dist, float cosLight) {
-    return emitterPdfSolidAngle(emitters[light].pmf, emitters[light].area, dist, cosLight);
+    Emitter e = emitterAt(light);
+    return emitterPdfSolidAngle(e.pmf, e.area, dist, cosLight);
 }
 
 // For MIS when a BSDF-sampled ray escapes along `dir`.
 float lightPdfEnvironment(vec3 dir) {
-    return emitters[frame.envInfo.x].pmf * environmentPdf(dir);
+    return emitterAt(frame.envInfo.x).pmf * environmentPdf(dir);
 }
 
 LightSample noLight(vec3 p) {
@@ -88,7 +91,7 @@ LightSample sampleTriangleLight(Emitter e, vec3 p, vec2 u) {
 #ifdef STRATA_LIB_MATERIAL_GLSL
         // An emissive texture varies over the triangle (lib/material.glsl;
         // kernels without materials, such as sample_test.comp, skip this).
-        if (hasFeature(kFeatureTextures)) ls.Li = emissionAt(shading[e.triangle].material, e.triangle, b);
+        if (hasFeature(kFeatureTextures)) ls.Li = emissionAt(sceneShading(e.triangle).material, e.triangle, b);
 #endif
         ls.target = spawnOriginOnEmitter(pos, e.v0, e.e1, e.e2, cosSigned > 0.0 ? normal : -normal);
     }
@@ -125,7 +128,7 @@ LightSample samplePunctualLight(Emitter e, vec3 p) {
 // One light sample for shading point p from one 2D pair u.
 LightSample sampleLight(vec3 p, vec2 u) {
     float rest;
-    Emitter e = emitters[chooseLight(frame.counts.x, u.x, rest)];
+    Emitter e = emitterAt(chooseLight(frame.counts.x, u.x, rest));
     vec2 u2 = vec2(min(rest, 0.99999994), u.y);
     if (hasFeature(kFeatureEnvironment) && e.kind == kLightEnvironment) {
         LightSample ls = noLight(p);

@@ -3,15 +3,13 @@
 // metallic; transmission R), the tangent-space normal map, and the alpha
 // test the BVH traversal uses to skip holes. Code for textures, normal maps
 // and alpha is compiled out by the kFeature* bits of SPEC_FEATURES when the
-// scene has none. Needs shading[], materials[] (lib/scene.glsl declares them).
+// scene has none. Needs materials[], sceneShading, sceneTexcoords and
+// sceneTangents (lib/scene.glsl declares them).
 #ifndef STRATA_LIB_MATERIAL_GLSL
 #define STRATA_LIB_MATERIAL_GLSL
 
 #include "lib/rng.glsl"
 #include "lib/textures.glsl"
-
-layout(std430, set = 0, binding = BINDING_TEXCOORDS) readonly buffer TexcoordBuffer { TriTexcoords texcoords[]; };
-layout(std430, set = 0, binding = BINDING_TANGENTS) readonly buffer TangentBuffer { TriTangents tangents[]; };
 
 struct SurfacePoint {
     vec3 baseColor;      // linear
@@ -28,7 +26,7 @@ struct SurfacePoint {
 
 // (TEXCOORD_0.xy, TEXCOORD_1.xy) at barycentrics (u, v) of vertices 1 and 2.
 vec4 texcoordsAt(uint triangle, vec2 bary) {
-    TriTexcoords tc = texcoords[triangle];
+    TriTexcoords tc = sceneTexcoords(triangle);
     return (1.0 - bary.x - bary.y) * tc.uv0 + bary.x * tc.uv1 + bary.y * tc.uv2;
 }
 
@@ -51,7 +49,7 @@ vec3 normalMapped(Material mat, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3
     TriVerts tv = bvhFetchTri(triangle);
     float side = dot(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz), n) >= 0.0 ? 1.0 : -1.0;
     vec3 N = side * nsInterpolated;
-    TriTangents tg = tangents[triangle];
+    TriTangents tg = sceneTangents(triangle);
     vec4 t4 = (1.0 - bary.x - bary.y) * tg.t0 + bary.x * tg.t1 + bary.y * tg.t2;
     vec3 T = t4.xyz - N * dot(N, t4.xyz);
     vec3 B;
@@ -122,7 +120,7 @@ uint alphaRayHash(vec3 origin, vec3 dir) {
 // MASK: alpha < alphaCutoff; BLEND: with probability 1 - alpha. alpha =
 // baseColorFactor.a times the baseColor texture's alpha.
 bool alphaHole(uint triangle, vec2 bary, uint rayHash) {
-    uint materialIndex = shading[triangle].material;
+    uint materialIndex = sceneShading(triangle).material;
     uint flags = materials[materialIndex].flags;
     if ((flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return false;
     Material mat = materials[materialIndex];

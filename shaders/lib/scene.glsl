@@ -1,13 +1,14 @@
 // Scene buffers of descriptor set 0, the fetch functions and alpha test the
-// BVH traversal uses. SPEC_TEXEL_FETCH picks texel-view reads (fast on lavapipe, where a
-// divergent storage-buffer load becomes a scalar loop) or storage reads.
+// BVH traversal uses. SPEC_TEXEL_FETCH (lib/reads.glsl) picks texel-view reads
+// (fast on lavapipe, where a divergent storage-buffer load becomes a scalar
+// loop; and the only way past maxStorageBufferRange) or storage reads.
 #ifndef STRATA_LIB_SCENE_GLSL
 #define STRATA_LIB_SCENE_GLSL
 
 #include "shared/types.h"
 #include "shared/bindings.h"
+#include "lib/reads.glsl"
 
-layout(constant_id = SPEC_TEXEL_FETCH) const uint kTexelFetch = 0u;
 layout(constant_id = SPEC_BVH_WIDE) const uint kBvhWide = 0u;
 layout(constant_id = SPEC_BVH_REGS) const uint kBvhRegs = 16u;
 #include "lib/features.glsl"
@@ -17,10 +18,15 @@ layout(std430, set = 0, binding = BINDING_TRIS) readonly buffer TriBuffer { TriV
 layout(set = 0, binding = BINDING_NODES_TEXEL) uniform usamplerBuffer nodesTexel;
 layout(set = 0, binding = BINDING_TRIS_TEXEL) uniform usamplerBuffer trisTexel;
 layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
+layout(set = 0, binding = BINDING_SHADING_TEXEL) uniform usamplerBuffer shadingTexel;
 layout(std430, set = 0, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { Material materials[]; };
+layout(std430, set = 0, binding = BINDING_TEXCOORDS) readonly buffer TexcoordBuffer { TriTexcoords texcoords[]; };
+layout(set = 0, binding = BINDING_TEXCOORDS_TEXEL) uniform usamplerBuffer texcoordsTexel;
+layout(std430, set = 0, binding = BINDING_TANGENTS) readonly buffer TangentBuffer { TriTangents tangents[]; };
+layout(set = 0, binding = BINDING_TANGENTS_TEXEL) uniform usamplerBuffer tangentsTexel;
 
 uvec4 bvhNodeWord(uint index) {
-    return kTexelFetch != 0u ? texelFetch(nodesTexel, int(index)) : nodeWords[index];
+    return kTexelBvh ? texelFetch(nodesTexel, int(index)) : nodeWords[index];
 }
 
 BvhNode bvhFetchNode(uint index) {
@@ -38,13 +44,36 @@ BvhNode4 bvhFetchNode4(uint index) {
 }
 
 TriVerts bvhFetchTri(uint index) {
-    if (kTexelFetch != 0u) {
-        int base = int(3u * index);
-        return TriVerts(uintBitsToFloat(texelFetch(trisTexel, base)),
-                        uintBitsToFloat(texelFetch(trisTexel, base + 1)),
-                        uintBitsToFloat(texelFetch(trisTexel, base + 2)));
+    if (kTexelBvh) {
+        uvec4 a, b, c;
+        texels3(trisTexel, index, a, b, c);
+        return TriVerts(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(c));
     }
     return tris[index];
+}
+
+// Per-triangle arrays in BVH order, through texel views with kTexelAll.
+TriShading sceneShading(uint triangle) {
+    if (kTexelAll) {
+        uvec4 a, b, c;
+        texels3(shadingTexel, triangle, a, b, c);
+        return TriShading(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w, uintBitsToFloat(c.xyz), c.w);
+    }
+    return shading[triangle];
+}
+
+TriTexcoords sceneTexcoords(uint triangle) {
+    if (!kTexelAll) return texcoords[triangle];
+    uvec4 a, b, c;
+    texels3(texcoordsTexel, triangle, a, b, c);
+    return TriTexcoords(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(c));
+}
+
+TriTangents sceneTangents(uint triangle) {
+    if (!kTexelAll) return tangents[triangle];
+    uvec4 a, b, c;
+    texels3(tangentsTexel, triangle, a, b, c);
+    return TriTangents(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(c));
 }
 
 #include "lib/sampling.glsl"

@@ -30,10 +30,14 @@ STRATA_BINDING(BINDING_TEXREFS, 16);      // storage TextureRef[]
 STRATA_BINDING(BINDING_TEXELS, 17);       // texel view over the packed texture texels
 STRATA_BINDING(BINDING_ENV_TEXELS, 18);   // texel view over the environment map (RGBA32F)
 STRATA_BINDING(BINDING_ENV_CDF, 19);      // storage float[]: environment map sampling tables
-STRATA_BINDING(BINDING_COUNT, 20);
+STRATA_BINDING(BINDING_SHADING_TEXEL, 20);    // usamplerBuffer over BINDING_SHADING (RGBA32UI)
+STRATA_BINDING(BINDING_TEXCOORDS_TEXEL, 21);  // usamplerBuffer over BINDING_TEXCOORDS (RGBA32UI)
+STRATA_BINDING(BINDING_TANGENTS_TEXEL, 22);   // usamplerBuffer over BINDING_TANGENTS (RGBA32UI)
+STRATA_BINDING(BINDING_EMITTERS_TEXEL, 23);   // usamplerBuffer over BINDING_EMITTERS (RGBA32UI)
+STRATA_BINDING(BINDING_COUNT, 24);
 
 // Specialization constant ids.
-STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // 1: read nodes/triangles through texel views
+STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views
 STRATA_BINDING(SPEC_HAS_EMITTERS, 1);     // 0: no emissive triangles, NEE compiled out
 STRATA_BINDING(SPEC_SAMPLER, 2);          // kSampler* (types.h)
 STRATA_BINDING(SPEC_FEATURES, 3);         // kFeature* bits (types.h): what the scene uses

@@ -69,6 +69,15 @@ struct TriShading {
 
 STRATA_CONST(uint, kNoLight, 0xffffffffu);
 
+// How the shaders read the scene's arrays (SPEC_TEXEL_FETCH). Every array
+// that has a texel view is bound both ways; the storage descriptor or the
+// view the shader does not read covers only what the device allows.
+STRATA_CONST(uint, kReadsStorage, 0u);   // storage buffers
+STRATA_CONST(uint, kReadsTexelBvh, 1u);  // BVH nodes and triangle vertices through RGBA32UI texel
+                                         // views (faster on lavapipe, DESIGN.md), the rest storage
+STRATA_CONST(uint, kReadsTexelAll, 2u);  // also shading, texture coordinates, tangents and
+                                         // emitters: scenes whose arrays exceed maxStorageBufferRange
+
 // Samplers (SPEC_SAMPLER; host/render/sampler_kind.h names them).
 STRATA_CONST(uint, kSamplerIndependent, 0u);
 STRATA_CONST(uint, kSamplerRegular, 1u);

@@ -1,0 +1,138 @@
+// Scenes larger than a storage descriptor reaches (lavapipe: 128 MiB): every
+// per-triangle array and the emitters are read through texel views, each
+// descriptor stays within the device's limits, and a scene beyond what the
+// device can address at all is a one-line error. Lowered limits
+// (RenderSettings::limits) take small scenes down the large-scene path.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "cli_util.h"
+#include "render/command.h"
+#include "render/device_scene.h"
+#include "test_util.h"
+#include "util/error.h"
+
+using namespace strata;
+using namespace strata::test;
+
+namespace {
+
+// The largest array only a storage descriptor reads (materials, texture
+// references, environment tables). A storage range of that many bytes sends
+// the larger per-triangle arrays through their texel views.
+std::uint64_t storageOnlyBytes(const GpuScene& g) {
+    return std::max({g.materials.size() * sizeof(gpu::Material), g.textureRefs.size() * sizeof(gpu::TextureRef),
+                     g.envTables.size() * sizeof(float)});
+}
+
+// Renders `scene` as the device allows and again with the storage range
+// lowered below its shading array: the two images are the same bits.
+void checkLargePathMatches(const Scene& scene) {
+    const GpuScene g = packScene(scene);
+    RenderSettings s;
+    s.width = 24;
+    s.height = 16;
+    s.spp = 2;
+    s.maxDepth = 4;
+    s.seed = 3;
+    const RenderResult normal = render(context(), g, scene.cameras.at(0), s);
+    s.limits.storageRange = storageOnlyBytes(g);
+    REQUIRE(g.shading.size() * sizeof(gpu::TriShading) > s.limits.storageRange);
+    const RenderResult large = render(context(), g, scene.cameras.at(0), s);
+    CHECK(normal.reads != gpu::kReadsTexelAll);
+    CHECK(large.reads == gpu::kReadsTexelAll);
+    CHECK(large.nonFinite == 0);
+    CHECK(large.closestRays == normal.closestRays);
+    CHECK(large.shadowRays == normal.shadowRays);
+    const auto a = normal.film.mean(), b = large.film.mean();
+    REQUIRE(a.size() == b.size());
+    CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+    CHECK(large.sceneBytes == normal.sceneBytes);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+}  // namespace
+
+TEST_CASE("scale: past the storage range every array is read through texel views, with the same image") {
+    SUBCASE("textures, normal maps, transmission, emissive triangles") {
+        checkLargePathMatches(loadGltf(sourcePath("scenes/materials-board.gltf")));
+    }
+    SUBCASE("alpha test") { checkLargePathMatches(loadGltf(sourcePath("tests/data/textures/alpha-mask.gltf"))); }
+    SUBCASE("environment map and a directional light") {
+        EnvironmentOptions env;
+        env.file = sourcePath("scenes/env/sky.hdr");
+        Scene scene = loadSceneWithEnvironment(sourcePath("scenes/materials-board-env.gltf"), env);
+        PunctualLight sun;
+        sun.type = PunctualLight::Type::Directional;
+        sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.2f));
+        scene.lights.push_back(sun);
+        checkLargePathMatches(scene);
+    }
+}
+
+TEST_CASE("scale: reads follow the device's limits; a scene beyond them is a one-line error") {
+    GpuScene g;
+    g.source = "big.glb";
+    g.nodes.resize(100);     // 3200 bytes (BVH2)
+    g.tris.resize(1000);     // 48000 bytes
+    g.shading.resize(1000);  // 48000 bytes
+    g.materials.resize(1);
+    SceneLimits l{1u << 20, 1u << 20, 1u << 30};
+    CHECK(chooseReads(l, g, Traversal::Auto, false, true) == gpu::kReadsTexelBvh);  // lavapipe
+    CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsStorage);  // a GPU
+    CHECK(chooseReads(l, g, Traversal::Storage, false, true) == gpu::kReadsStorage);
+
+    l.storageRange = 16384;  // the triangles and their shading only fit texel views
+    CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsTexelAll);
+    CHECK(chooseReads(l, g, Traversal::Texel, false, false) == gpu::kReadsTexelAll);
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Storage, false, true),
+                         "big.glb: error: --traversal storage: the triangle vertices need 48000 bytes, more than "
+                         "the device's maxStorageBufferRange (16384 bytes)",
+                         Error);
+
+    l.texelElements = 2000;  // 3000 texels of 16 bytes needed
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Auto, false, true),
+                         "big.glb: error: the triangle vertices need 48000 bytes, more than the device's "
+                         "maxStorageBufferRange (16384 bytes) and maxTexelBufferElements (2000 texels of 16 bytes)",
+                         Error);
+
+    l = {1u << 20, 1u << 20, 32768};
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Auto, false, true),
+                         "big.glb: error: the triangle vertices need 48000 bytes in one buffer, more than the "
+                         "device's maxMemoryAllocationSize (32768 bytes)",
+                         Error);
+
+    l = {16384, 1u << 20, 1u << 30};
+    g.materials.resize(300);  // 24000 bytes, read only as storage
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Auto, false, true),
+                         "big.glb: error: the materials need 24000 bytes, more than the device's "
+                         "maxStorageBufferRange (16384 bytes)",
+                         Error);
+}
+
+TEST_CASE("scale: strata render of a scene the device cannot hold fails with one line and writes nothing") {
+    TempDir dir;
+    RenderCommand cmd;
+    cmd.scene = sourcePath("scenes/cornell-box.gltf");
+    cmd.outputs = {dir / "box.exr", dir / "box.png"};
+    cmd.quiet = true;
+    cmd.validation = vk::validationRequestedByEnvironment();
+    cmd.settings.width = 8;
+    cmd.settings.height = 8;
+    cmd.settings.spp = 1;
+    cmd.settings.limits.allocation = 1024;  // the 32 triangles' vertices are 1536 bytes
+    std::string message;
+    try {
+        runRender(cmd);
+    } catch (const Error& e) {
+        message = e.what();
+    }
+    CAPTURE(message);
+    CHECK(message.rfind(cmd.scene + ": error: the ", 0) == 0);
+    CHECK(message.find("more than the device's maxMemoryAllocationSize (1024 bytes)") != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(dir.empty());
+    CHECK(vk::validationMessageCount() == 0);
+}
