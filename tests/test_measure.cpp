@@ -99,8 +99,10 @@ TEST_CASE("bench reports every section with consistent numbers") {
     for (const char* section : {"start-up:", "BVH:", "traversal (", "path tracing (", "dispatch throughput ("})
         CHECK(r.output.find(section) != std::string::npos);
     const nlohmann::json j = readJson(d / "b.json");
-    for (const char* key : {"features", "startup", "bvh", "traversal", "path_tracing", "dispatch"})
+    for (const char* key : {"features", "startup", "bvh", "traversal", "path_tracing", "dispatch", "memory"})
         CHECK(j.contains(key));
+    CHECK(j["memory"]["scene_device_bytes"].get<double>() >= j["memory"]["scene_packed_bytes"].get<double>());
+    CHECK(j["memory"]["host_peak_rss_bytes"].get<double>() > 0.0);
 
     // Traversal: the peer's three ray sets.
     const auto& rays = j["traversal"]["rays"];

@@ -7,6 +7,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_util.h"
 #include "render/command.h"
@@ -135,4 +138,29 @@ TEST_CASE("scale: strata render of a scene the device cannot hold fails with one
     CHECK(message.find('\n') == std::string::npos);
     CHECK(dir.empty());
     CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("scale: strata render --stats reports the scene's memory, packed and on the device") {
+    TempDir dir;
+    const std::string scene = sourcePath("scenes/materials-board.gltf");
+    const Run r = run("render " + scene + " -o " + (dir / "m.png") + " --width 16 --height 9 --spp 1 --quiet --stats" +
+                      " --stats-json " + (dir / "s.json"));
+    CAPTURE(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(r.output.find("memory     scene ") != std::string::npos);
+    std::ifstream f(dir / "s.json");
+    const nlohmann::json m = nlohmann::json::parse(f)["memory"];
+    const GpuScene g = packScene(loadGltf(scene));
+    // The four-wide BVH, the per-triangle arrays, emitters, materials and textures, as packed.
+    const std::uint64_t packed =
+        g.wide.size() * sizeof(gpu::BvhNode4) + g.tris.size() * sizeof(gpu::TriVerts) +
+        g.shading.size() * sizeof(gpu::TriShading) + g.texcoords.size() * sizeof(gpu::TriTexcoords) +
+        g.tangents.size() * sizeof(gpu::TriTangents) + g.emitters.size() * sizeof(gpu::Emitter) +
+        g.materials.size() * sizeof(gpu::Material) + g.textureRefs.size() * sizeof(gpu::TextureRef) +
+        g.texels.size() * sizeof(std::uint32_t);
+    CHECK(m["scene_packed_bytes"].get<std::uint64_t>() == packed);
+    CHECK(m["scene_device_bytes"].get<std::uint64_t>() >= packed);
+    CHECK(m["scene_device_bytes"].get<double>() <= 1.5 * static_cast<double>(packed));
+    CHECK(m["device_peak_bytes"].get<std::uint64_t>() >= m["scene_device_bytes"].get<std::uint64_t>());
+    CHECK(m["host_peak_rss_bytes"].get<std::uint64_t>() > packed);
 }

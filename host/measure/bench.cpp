@@ -11,6 +11,7 @@
 #include "image/image_io.h"
 #include "measure/bench_render.h"
 #include "render/gpu_scene.h"
+#include "render/stats.h"
 #include "render/tracer.h"
 #include "scene/scene.h"
 #include "util/error.h"
@@ -80,9 +81,16 @@ Framing frame(const Scene& scene, const BenchCommand& cmd) {
     return f;
 }
 
-// The peer's three ray sets, traced with the shader BVH (median of cmd.reps passes each).
+// The tracer's upload of the scene.
+struct Upload {
+    std::uint64_t packedBytes = 0, deviceBytes = 0;
+    double ms = 0.0;
+};
+
+// The peer's three ray sets, traced with the shader BVH (median of cmd.reps
+// passes each).
 nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& gpu, const Framing& fr,
-                                        const BenchCommand& cmd) {
+                                        const BenchCommand& cmd, Upload& upload) {
     DeviceTracer tracer(ctx, gpu, Traversal::Auto, cmd.bvhWidth);
     const glm::vec3 lo = fr.lo, hi = fr.hi;
     const Camera& cam = fr.camera;
@@ -131,7 +139,7 @@ nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& 
     nlohmann::ordered_json j;
     j["image"] = {W, H};
     j["reps"] = cmd.reps;
-    j["reads"] = tracer.texel() ? "texel" : "storage";
+    j["reads"] = readsName(tracer.deviceScene().reads);
     j["bvh_width"] = tracer.bvhWidth();
     j["secondary_origin_offset"] = eps;
     j["occlusion_point"] = {light.x, light.y, light.z};
@@ -142,6 +150,8 @@ nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& 
                      {"mrays_per_s", mrays(diffuse.size(), diffuseSeconds)}}},
         {"occlusion", {{"rays", occlusion.size()}, {"occluded", occludedCount}, {"device_s", occlusionSeconds},
                        {"mrays_per_s", mrays(occlusion.size(), occlusionSeconds)}}}};
+    const DeviceScene& d = tracer.deviceScene();
+    upload = {d.packedBytes, d.deviceBytes, d.uploadMs};
     return j;
 }
 
@@ -166,8 +176,9 @@ std::string benchText(const nlohmann::ordered_json& j) {
          j["camera"].get<std::string>() + "\n";
     const auto& su = j["startup"];
     if (!su.contains("pipeline_ms"))
-        o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms\n",
-                    num(su["load_ms"]), num(su["bvh_build_ms"]), num(su["pack_ms"]), num(su["device_init_ms"]));
+        o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms\n",
+                    num(su["load_ms"]), num(su["bvh_build_ms"]), num(su["pack_ms"]), num(su["device_init_ms"]),
+                    num(su["upload_ms"]));
     else
         o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms,\n"
                 "          pipeline %.1f ms (median %.1f of %d), first dispatch %.2f ms device / %.2f ms host "
@@ -184,6 +195,7 @@ std::string benchText(const nlohmann::ordered_json& j) {
                 b["max_depth"].get<int>(), num(b["sah_cost"]), num(b["bytes"]) / 1048576.0);
     o += format("     four-wide: %d nodes, depth %d, %.2f MiB\n", b["wide_nodes"].get<int>(),
                 b["wide_depth"].get<int>(), num(b["wide_bytes"]) / 1048576.0);
+    o += "memory: " + memoryText(j["memory"]) + "\n";
     const auto& t = j["traversal"];
     o += format("traversal (%dx%d, BVH%d, %s reads, median of %d):\n", t["image"][0].get<int>(),
                 t["image"][1].get<int>(), t["bvh_width"].get<int>(), t["reads"].get<std::string>().c_str(),
@@ -279,7 +291,8 @@ int runBench(const BenchCommand& cmd) {
     vk::Context ctx({cmd.device, cmd.validation});
     const double deviceMs = msSince(t0);
 
-    nlohmann::ordered_json traversal = traversalSection(ctx, gpu, fr, cmd);
+    Upload upload;
+    nlohmann::ordered_json traversal = traversalSection(ctx, gpu, fr, cmd, upload);
     auto checkValidation = [&] {
         if (ctx.validation && vk::validationMessageCount() > 0)
             throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
@@ -296,6 +309,7 @@ int runBench(const BenchCommand& cmd) {
     auto finish = [&] {
         j["bvh"] = bvhJson(gpu, scene, packMs);
         j["traversal"] = traversal;
+        j["memory"] = memoryJson(upload.packedBytes, upload.deviceBytes);
         if (!cmd.json.empty()) writeTextAtomically(cmd.json, j.dump(2) + "\n");
         std::fputs(benchText(j).c_str(), stdout);
         return 0;
@@ -304,7 +318,7 @@ int runBench(const BenchCommand& cmd) {
         checkValidation();
         j["only"] = cmd.only;
         j["startup"] = {{"load_ms", loadMs}, {"pack_ms", packMs}, {"bvh_build_ms", gpu.bvh.buildMs},
-                        {"device_init_ms", deviceMs}};
+                        {"device_init_ms", deviceMs}, {"upload_ms", upload.ms}};
         return finish();
     }
     PipelineTimes pipelines;

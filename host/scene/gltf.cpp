@@ -51,6 +51,8 @@ std::vector<unsigned char> readFile(const std::string& path) {
                                                          &std::fclose);
     if (!file) fail(path, std::string("cannot open file: ") + std::strerror(errno));
     std::vector<unsigned char> bytes;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec) bytes.reserve(size);  // one allocation (not a doubling vector) for a regular file
     unsigned char chunk[1 << 16];
     std::size_t got = 0;
     while ((got = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) {
