@@ -41,7 +41,9 @@ int runRender(const RenderCommand& cmd) {
     const double packMs = msSince(t0);
     releaseGeometry(scene);  // packed into `gpu`
 
+    t0 = std::chrono::steady_clock::now();
     vk::Context ctx({cmd.device, cmd.validation});
+    const double deviceMs = msSince(t0);
     if (!cmd.quiet)
         std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
                      ctx.info.type.c_str(), ctx.info.driver.c_str());
@@ -50,7 +52,7 @@ int runRender(const RenderCommand& cmd) {
                                              cmd.settings.limits);
     RenderResult result = render(ctx, dev, gpu, scene.cameras[cmd.camera], cmd.settings);
 
-    StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs};
+    StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs, deviceMs};
     nlohmann::json stats = statsJson(in);
     if (ctx.validation && vk::validationMessageCount() > 0)
         throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +

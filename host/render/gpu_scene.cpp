@@ -7,6 +7,7 @@
 
 #include "render/env_tables.h"
 #include "render/gpu_textures.h"
+#include "util/memory.h"
 
 namespace strata {
 
@@ -159,7 +160,8 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
     g.triangleCount = n;
     Bvh bvh;
     {  // the builder's vertex copies are freed before the packed arrays are allocated
-        std::vector<glm::vec3> v0(n), v1(n), v2(n);
+        std::vector<glm::vec3> v0 = hugeVector<glm::vec3>(n), v1 = hugeVector<glm::vec3>(n),
+                               v2 = hugeVector<glm::vec3>(n);
         for (std::size_t i = 0; i < n; ++i) {
             v0[i] = scene.triangles[i].v[0];
             v1[i] = scene.triangles[i].v[1];
@@ -198,11 +200,11 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
     g.textureRefs = std::move(packed.refs);
     g.texels = std::move(packed.texels);
     g.features.bits |= textureFeatures(scene, used);
-    if (g.features.bits & gpu::kFeatureTextures) g.texcoords.resize(n);
-    if (g.features.bits & gpu::kFeatureNormalMap) g.tangents.resize(n);
+    if (g.features.bits & gpu::kFeatureTextures) g.texcoords = hugeVector<gpu::TriTexcoords>(n);
+    if (g.features.bits & gpu::kFeatureNormalMap) g.tangents = hugeVector<gpu::TriTangents>(n);
 
-    g.tris.resize(n);
-    g.shading.resize(n);
+    g.tris = hugeVector<gpu::TriVerts>(n);
+    g.shading = hugeVector<gpu::TriShading>(n);
     std::vector<double> weights;
     for (std::size_t i = 0; i < n; ++i) {
         const Triangle& t = scene.triangles[bvh.triIndices[i]];

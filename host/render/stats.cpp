@@ -24,14 +24,14 @@ nlohmann::json statsJson(const StatsInput& in) {
                   {"punctual_lights", in.scene->lights.size()},
                   {"environment", in.scene->environment.enabled ? in.scene->environment.source : ""},
                   {"cameras", in.scene->cameras.size()},
-                  {"features", in.gpu->features.names()},
-                  {"load_ms", in.loadMs}};
+                  {"features", in.gpu->features.names()}};
     const BvhStats& b = in.gpu->bvh;
     j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
-                {"sah_cost", b.sahCost}, {"build_ms", b.buildMs}, {"bytes", b.bytes},
-                {"pack_ms", in.packMs}};
+                {"sah_cost", b.sahCost}, {"build_ms", b.buildMs}, {"bytes", b.bytes}};
     const RenderSettings& s = *in.settings;
     const RenderResult& r = *in.result;
+    j["startup"] = {{"load_ms", in.loadMs},        {"bvh_build_ms", b.buildMs}, {"pack_ms", in.packMs},
+                    {"device_init_ms", in.deviceMs}, {"upload_ms", r.uploadMs}, {"pipeline_ms", r.pipelineMs}};
     j["render"] = {{"width", s.width},
                    {"height", s.height},
                    {"spp_requested", s.spp},
@@ -70,7 +70,7 @@ std::string statsText(const nlohmann::json& j) {
       << s["materials"] << " materials, " << s["emissive_triangles"] << " emissive triangles, "
       << s["punctual_lights"] << " punctual lights"
       << (s["environment"].get<std::string>().empty() ? "" : ", environment " + s["environment"].get<std::string>())
-      << " (load " << s["load_ms"].get<double>() << " ms)\n";
+      << "\n";
     o << "features   " << (features.empty() ? "none" : features) << "\n";
     const auto& b = j["bvh"];
     char line[256];
@@ -79,6 +79,13 @@ std::string statsText(const nlohmann::json& j) {
                   b["nodes"].get<unsigned>(), b["leaves"].get<unsigned>(), b["max_depth"].get<unsigned>(),
                   b["sah_cost"].get<double>(), b["build_ms"].get<double>(),
                   b["bytes"].get<double>() / (1024.0 * 1024.0));
+    o << line;
+    const auto& su = j["startup"];
+    std::snprintf(line, sizeof line,
+                  "start-up   load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms, "
+                  "pipeline %.1f ms\n",
+                  su["load_ms"].get<double>(), su["bvh_build_ms"].get<double>(), su["pack_ms"].get<double>(),
+                  su["device_init_ms"].get<double>(), su["upload_ms"].get<double>(), su["pipeline_ms"].get<double>());
     o << line;
     const auto& r = j["render"];
     std::snprintf(line, sizeof line,

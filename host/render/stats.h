@@ -19,6 +19,7 @@ struct StatsInput {
     const RenderResult* result = nullptr;
     double loadMs = 0.0;
     double packMs = 0.0;   // BVH build + packing
+    double deviceMs = 0.0; // Vulkan instance and device creation
 };
 
 nlohmann::json statsJson(const StatsInput& in);

@@ -19,6 +19,7 @@
 #include "scene/scene.h"
 #include "scene/tangents.h"
 #include "util/error.h"
+#include "util/memory.h"
 
 namespace strata {
 
@@ -334,7 +335,7 @@ public:
             if (mesh < 0 || static_cast<std::size_t>(mesh) >= model_.meshes.size()) continue;  // visit reports it
             for (const LocalPrimitive& prim : decodedMesh(mesh)) triangles += prim.indices.size() / 3;
         }
-        scene_.triangles.reserve(triangles);
+        reserveHuge(scene_.triangles, triangles);
         for (const Frame& v : visits) visit(v.node, v.world);
     }
 

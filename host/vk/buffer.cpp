@@ -6,6 +6,7 @@
 #include <cstring>
 #include <utility>
 
+#include "util/memory.h"
 #include "vk/check.h"
 
 namespace strata::vk {
@@ -165,6 +166,7 @@ Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBuff
         if (data < n) std::memset(static_cast<std::byte*>(dst) + data, 0, n - data);
     };
     if (buffer.mapped()) {  // host-visible, coherent device memory: no copy on the device
+        adviseHugePages(buffer.mapped(), size);  // host memory on lavapipe, touched here first
         fill(buffer.mapped(), 0, size);
         return buffer;
     }
