@@ -8,26 +8,10 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include <sys/mman.h>
-
 #include "../../shaders/shared/types.h"
+#include "util/memory.h"  // adviseHugePages
 
 namespace strata {
-
-// Asks the kernel for 2 MiB pages in [p, p + bytes): a large array then takes
-// one page fault per 2 MiB instead of one per 4 KiB when first written, which
-// otherwise costs more than filling it.
-inline void adviseHugePages(const void* p, std::size_t bytes) {
-#ifdef MADV_HUGEPAGE
-    constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
-    const std::uintptr_t b = (std::uintptr_t(p) + kHuge - 1) & ~(kHuge - 1);
-    const std::uintptr_t e = (std::uintptr_t(p) + bytes) & ~(kHuge - 1);
-    if (e > b) madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
-#else
-    (void)p;
-    (void)bytes;
-#endif
-}
 
 // Uninitialised storage for `count` elements of a trivial type, huge pages
 // advised.
