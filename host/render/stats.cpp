@@ -89,11 +89,12 @@ std::string statsText(const nlohmann::json& j) {
     o << line;
     const auto& r = j["render"];
     std::snprintf(line, sizeof line,
-                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s (device %.3f s), %.3f Msamples/s, %s traversal, %s sampler\n",
+                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s (device %.3f s), %.3f Msamples/s, %s traversal of the BVH%d, %s sampler\n",
                   r["width"].get<int>(), r["height"].get<int>(), r["spp"].get<unsigned>(),
                   r["spp_requested"].get<unsigned>(), r["max_depth"].get<unsigned>(),
                   r["seconds"].get<double>(), r["device_seconds"].get<double>(), r["msamples_per_second"].get<double>(),
-                  r["traversal"].get<std::string>().c_str(), r["sampler"].get<std::string>().c_str());
+                  r["traversal"].get<std::string>().c_str(), r["bvh_width"].get<int>(),
+                  r["sampler"].get<std::string>().c_str());
     o << line;
     o << "samples    " << r["non_finite_samples"] << " non-finite dropped\n";
     o << "memory     " << memoryText(j["memory"]) << "\n";
