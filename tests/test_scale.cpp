@@ -75,7 +75,7 @@ TEST_CASE("scale: past the storage range every array is read through texel views
     }
 }
 
-TEST_CASE("scale: reads follow the device's limits; a scene beyond them is a one-line error") {
+TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a one-line error") {
     GpuScene g;
     g.source = "big.glb";
     g.nodes.resize(100);     // 3200 bytes (BVH2)
