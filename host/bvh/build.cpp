@@ -342,15 +342,20 @@ std::uint32_t Builder::partitionRange(std::uint32_t begin, std::uint32_t end, in
     auto isLeft = [&](const PrimRef& p) {
         return binOf(centroid2(p)[a], cmin, split.scale, bins_) <= split.bin;
     };
+    // Local accumulators: lc and rc may alias memory the swaps write, which
+    // would keep them out of registers.
+    Box l = lc, r = rc;
     std::uint32_t i = begin, j = end;
     for (;;) {
-        while (i < j && isLeft(prims_[i])) lc.grow(centroid2(prims_[i++]));
-        while (i < j && !isLeft(prims_[j - 1])) rc.grow(centroid2(prims_[--j]));
+        while (i < j && isLeft(prims_[i])) l.grow(centroid2(prims_[i++]));
+        while (i < j && !isLeft(prims_[j - 1])) r.grow(centroid2(prims_[--j]));
         if (i >= j) break;
         std::swap(prims_[i], prims_[j - 1]);
-        lc.grow(centroid2(prims_[i++]));
-        rc.grow(centroid2(prims_[--j]));
+        l.grow(centroid2(prims_[i++]));
+        r.grow(centroid2(prims_[--j]));
     }
+    lc = l;
+    rc = r;
     return i;
 }
 
