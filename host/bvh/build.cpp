@@ -117,6 +117,16 @@ struct SahSplit {
     Box left, right;
 };
 
+// Takes the candidate if it is the first or strictly cheaper than the best so
+// far; branch-free, as the outcome is unpredictable.
+inline void takeIfCheaper(SahSplit& best, float cost, int axis, int bin) {
+    const bool take = (cost < best.cost) | !best.found;
+    best.cost = take ? cost : best.cost;
+    best.axis = take ? axis : best.axis;
+    best.bin = take ? bin : best.bin;
+    best.found = true;
+}
+
 // Bins of the three axes and which of them are occupied. The sweep visits
 // occupied bins only: a split next to an empty bin divides the triangles as
 // the split at the previous occupied bin does, at the same cost, so the
@@ -162,6 +172,8 @@ constexpr std::uint32_t kTaskMinPrims = 1u << 12;
 // count, so neither does the output.
 constexpr std::uint32_t kParallelMinPrims = 1u << 15;
 constexpr std::uint32_t kChunkPrims = 1u << 13;
+// Nodes with at most this many triangles find their split without bins.
+constexpr std::uint32_t kFewPrims = 4;
 
 // A built subtree: either `nodes`, a depth-first subtree with indices local to
 // it, or (left set) one interior node nodes[0] over two child subtrees.
@@ -188,6 +200,7 @@ private:
     bool split(const Task& task, Task& left, Task& right, BinSet& bins, bool parallel);
     void buildSerial(const Task& task, NodeList& nodes, std::uint32_t& maxDepth, BinSet& bins);
     SahSplit findSah(const Task& task, BinSet& bins, bool parallel);
+    SahSplit findSahFew(const Task& task, V4 cmin, V4 scale, const bool valid[3]) const;
     void binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale, BinSet& bins) const;
     std::uint32_t partitionSah(const Task& task, const SahSplit& split, Box& lc, Box& rc,
                                bool parallel);
@@ -265,6 +278,7 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
     if (!valid[0] && !valid[1] && !valid[2]) return best;
 
     const V4 cmin = task.cbox.lo;
+    if (task.end - task.begin <= kFewPrims) return findSahFew(task, cmin, scale, valid);
     if (parallel) {
         // Bin fixed chunks into their own sets, then merge them in order
         // (min, max and counts: the merged bins do not depend on the order).
@@ -314,12 +328,7 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
             acc.grow(ab[idx[j]].box);
             n += ab[idx[j]].count;
             float cost = acc.halfArea() * float(n) + rightArea[j] * float(rightCount[j]);
-            if (cost < best.cost || !best.found) {
-                best.found = true;
-                best.axis = a;
-                best.bin = idx[j];
-                best.cost = cost;
-            }
+            takeIfCheaper(best, cost, a, idx[j]);
         }
     }
     if (best.found) {
@@ -332,6 +341,55 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
         }
     }
     bins.clear();
+    return best;
+}
+
+// findSah for at most kFewPrims triangles: per axis, the triangles sorted by
+// bin (stably) stand in for the bins. Candidates are the boundaries between
+// occupied bins, visited in the same order and costed from the same boxes
+// (unions are exact) and counts, so the split equals the binned sweep's.
+SahSplit Builder::findSahFew(const Task& task, V4 cmin, V4 scale, const bool valid[3]) const {
+    const std::uint32_t n = task.end - task.begin;
+    const float topf = float(bins_ - 1);
+    const V4 top = {topf, topf, topf, topf};
+    Box box[kFewPrims];
+    V4i key[kFewPrims];
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const PrimRef& p = prims_[task.begin + i];
+        box[i] = Box{p.lo, p.hi};
+        key[i] = binOf(centroid2(p), cmin, scale, top);
+    }
+    SahSplit best;
+    float rightArea[kFewPrims];
+    for (int a = 0; a < 3; ++a) {
+        if (!valid[a]) continue;
+        std::uint8_t order[kFewPrims];
+        for (std::uint32_t i = 0; i < n; ++i) {
+            std::uint32_t j = i;
+            for (; j > 0 && key[order[j - 1]][a] > key[i][a]; --j) order[j] = order[j - 1];
+            order[j] = std::uint8_t(i);
+        }
+        // Boundary after sorted position j: key[order[j]] < key[order[j + 1]].
+        Box acc;
+        for (std::uint32_t j = n - 1; j > 0; --j) {
+            acc.grow(box[order[j]]);
+            if (key[order[j - 1]][a] != key[order[j]][a]) rightArea[j - 1] = acc.halfArea();
+        }
+        acc = Box();
+        for (std::uint32_t j = 0; j + 1 < n; ++j) {
+            acc.grow(box[order[j]]);
+            if (key[order[j]][a] == key[order[j + 1]][a]) continue;
+            const float cost =
+                acc.halfArea() * float(j + 1) + rightArea[j] * float(n - 1 - j);
+            takeIfCheaper(best, cost, a, key[order[j]][a]);
+        }
+    }
+    if (best.found) {
+        best.scale = scale[best.axis];
+        for (std::uint32_t i = 0; i < n; ++i) {
+            (key[i][best.axis] <= best.bin ? best.left : best.right).grow(box[i]);
+        }
+    }
     return best;
 }
 
