@@ -397,8 +397,11 @@ SahSplit Builder::findSahFew(const Task& task, V4 cmin, V4 scale, const bool val
 // right side and grows lc/rc by the doubled centroids of both sides.
 std::uint32_t Builder::partitionRange(std::uint32_t begin, std::uint32_t end, int a, float cmin,
                                       const SahSplit& split, Box& lc, Box& rc) {
+    // binOf(c) <= split.bin, as binOf rounds: int(clamp(f)) <= bin exactly
+    // when !(f >= bin + 1) (bin < bins - 1; a NaN f maps to bin 0).
+    const float limit = float(split.bin + 1);
     auto isLeft = [&](const PrimRef& p) {
-        return binOf(centroid2(p)[a], cmin, split.scale, bins_) <= split.bin;
+        return !((centroid2(p)[a] - cmin) * split.scale >= limit);
     };
     // Local accumulators: lc and rc may alias memory the swaps write, which
     // would keep them out of registers.
