@@ -572,18 +572,27 @@ std::uint32_t measure(Subtree& t) {
     return d;
 }
 
+// A node's term of the SAH cost (times the root's half area).
+double sahTerm(const gpu::BvhNode& node, float traversalCost) {
+    return halfAreaD(node.bmin, node.bmax) *
+           (node.count > 0 ? double(node.count) : double(traversalCost));
+}
+
 // Places the subtree at node index `base` of the depth-first order: interior
-// nodes of the parallel top are written, built subtrees listed for copying.
+// nodes of the parallel top are written (their SAH terms added to sahSum),
+// built subtrees listed for copying.
 void layout(Subtree& t, std::uint32_t base, std::vector<gpu::BvhNode>& out,
-            std::vector<std::pair<const Subtree*, std::uint32_t>>& copies) {
+            std::vector<std::pair<const Subtree*, std::uint32_t>>& copies, float traversalCost,
+            double& sahSum) {
     if (!t.left) {
         copies.emplace_back(&t, base);
         return;
     }
     out[base] = t.top;
     out[base].leftOrFirst = base + 1 + t.left->size;
-    layout(*t.left, base + 1, out, copies);
-    layout(*t.right, base + 1 + t.left->size, out, copies);
+    sahSum += sahTerm(out[base], traversalCost);
+    layout(*t.left, base + 1, out, copies, traversalCost, sahSum);
+    layout(*t.right, base + 1 + t.left->size, out, copies, traversalCost, sahSum);
 }
 
 }  // namespace
@@ -652,11 +661,16 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
         adviseHugePages(bvh.nodes.data(), std::size_t(tree.size) * sizeof(gpu::BvhNode));
         bvh.nodes.resize(tree.size);
         std::vector<std::pair<const Subtree*, std::uint32_t>> copies;
-        layout(tree, 0, bvh.nodes, copies);
+        double sum = 0.0;  // SAH terms of the nodes layout() writes
+        layout(tree, 0, bvh.nodes, copies, options.traversalCost, sum);
         bvh.triIndices.reserve(n);
         adviseHugePages(bvh.triIndices.data(), std::size_t(n) * sizeof(std::uint32_t));
         bvh.triIndices.resize(n);
+        // SAH cost summed per copied subtree, then over them in node order
+        // after the parallel top's nodes: independent of the thread count.
         const std::uint32_t jobs = std::uint32_t(copies.size());
+        std::vector<double> jobSum(jobs);
+        std::vector<std::uint32_t> jobLeaves(jobs);
         pool.parallelFor(jobs + chunks, [&](std::uint32_t j) {
             if (j >= jobs) {
                 const std::uint32_t b = (j - jobs) * kChunkPrims;
@@ -667,18 +681,21 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
             }
             const auto [sub, base] = copies[j];
             gpu::BvhNode* dst = bvh.nodes.data() + base;
+            double part = 0.0;
+            std::uint32_t leaves = 0;
             for (std::uint32_t k = 0; k < sub->nodes.size; ++k) {
                 gpu::BvhNode node = sub->nodes.data[k];
                 if (node.count == 0) node.leftOrFirst += base;
                 *dst++ = node;
+                part += sahTerm(node, options.traversalCost);
+                leaves += node.count > 0 ? 1u : 0u;
             }
+            jobSum[j] = part;
+            jobLeaves[j] = leaves;
         });
-        // SAH cost in node order, so it does not depend on the thread count.
-        double sum = 0.0;
-        for (const gpu::BvhNode& node : bvh.nodes) {
-            const double area = halfAreaD(node.bmin, node.bmax);
-            sum += area * (node.count > 0 ? double(node.count) : double(options.traversalCost));
-            bvh.stats.leaves += node.count > 0 ? 1u : 0u;
+        for (std::uint32_t j = 0; j < jobs; ++j) {
+            sum += jobSum[j];
+            bvh.stats.leaves += jobLeaves[j];
         }
         const double rootArea = halfAreaD(toVec3(root.box.lo), toVec3(root.box.hi));
         bvh.stats.sahCost = rootArea > 0.0 ? sum / rootArea : 0.0;
