@@ -103,9 +103,22 @@ struct Task {
     std::uint32_t depth = 0;
 };
 
+// A bin's box, with its triangle count in lane 3 of `box.hi` as integer bits:
+// a positive count reads as a denormal float above the 0 in lane 3 of every
+// PrimRef's hi, so the max keeps it. Empty: an empty box, count 0.
 struct Bin {
-    Box box;
-    std::uint32_t count = 0;
+    Box box = {{kInf, kInf, kInf, kInf}, {-kInf, -kInf, -kInf, 0.0f}};
+    std::uint32_t count() const { return std::bit_cast<std::uint32_t>(box.hi[3]); }
+    void add(const PrimRef& p) {
+        constexpr V4i kOne = {0, 0, 0, 1};
+        box.lo = vmin(box.lo, p.lo);
+        box.hi = V4(V4i(vmax(box.hi, p.hi)) + kOne);
+    }
+    void merge(const Bin& b) {
+        const std::uint32_t n = count() + b.count();
+        box.grow(b.box);
+        box.hi[3] = std::bit_cast<float>(n);
+    }
 };
 
 struct SahSplit {
@@ -238,18 +251,9 @@ void Builder::binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale
     for (std::uint32_t i = begin; i < end; ++i) {
         const PrimRef& p = prims_[i];
         const V4i k = binOf(centroid2(p), cmin, scale, top);
-        Bin& x = b0[k[0]];
-        Bin& y = b1[k[1]];
-        Bin& z = b2[k[2]];
-        x.count++;
-        x.box.lo = vmin(x.box.lo, p.lo);
-        x.box.hi = vmax(x.box.hi, p.hi);
-        y.count++;
-        y.box.lo = vmin(y.box.lo, p.lo);
-        y.box.hi = vmax(y.box.hi, p.hi);
-        z.count++;
-        z.box.lo = vmin(z.box.lo, p.lo);
-        z.box.hi = vmax(z.box.hi, p.hi);
+        b0[k[0]].add(p);
+        b1[k[1]].add(p);
+        b2[k[2]].add(p);
         if (wide) {
             bins.mark(0, k[0]);
             bins.mark(1, k[1]);
@@ -292,10 +296,8 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
             for (int a = 0; a < 3; ++a) {
                 for (int k = 0; k < bins_; ++k) {
                     const Bin& s = p.axis(a)[k];
-                    if (s.count == 0) continue;
-                    Bin& d = bins.axis(a)[k];
-                    d.count += s.count;
-                    d.box.grow(s.box);
+                    if (s.count() == 0) continue;
+                    bins.axis(a)[k].merge(s);
                     bins.mark(a, k);
                 }
             }
@@ -318,7 +320,7 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
         std::uint32_t n = 0;
         for (int j = m - 1; j > 0; --j) {
             acc.grow(ab[idx[j]].box);
-            n += ab[idx[j]].count;
+            n += ab[idx[j]].count();
             rightArea[j - 1] = acc.halfArea();
             rightCount[j - 1] = n;
         }
@@ -326,7 +328,7 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
         n = 0;
         for (int j = 0; j < m - 1; ++j) {
             acc.grow(ab[idx[j]].box);
-            n += ab[idx[j]].count;
+            n += ab[idx[j]].count();
             float cost = acc.halfArea() * float(n) + rightArea[j] * float(rightCount[j]);
             takeIfCheaper(best, cost, a, idx[j]);
         }
