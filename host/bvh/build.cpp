@@ -245,28 +245,43 @@ void Builder::binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale
     Bin* b0 = bins.axis(0);
     Bin* b1 = bins.axis(1);
     Bin* b2 = bins.axis(2);
-    // Occupancy kept in registers (bins <= 64) or marked per triangle.
-    const bool wide = bins_ > 64;
-    std::uint64_t u0 = 0, u1 = 0, u2 = 0;
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const PrimRef& p = prims_[i];
-        const V4i k = binOf(centroid2(p), cmin, scale, top);
-        b0[k[0]].add(p);
-        b1[k[1]].add(p);
-        b2[k[2]].add(p);
-        if (wide) {
+    auto binAll = [&](auto&& mark) {
+        for (std::uint32_t i = begin; i < end; ++i) {
+            const PrimRef& p = prims_[i];
+            const V4i k = binOf(centroid2(p), cmin, scale, top);
+            b0[k[0]].add(p);
+            b1[k[1]].add(p);
+            b2[k[2]].add(p);
+            mark(k);
+        }
+    };
+    if (end - begin >= 4u * std::uint32_t(bins_)) {
+        // Many triangles per bin: occupancy read from the counts afterwards.
+        binAll([](V4i) {});
+        for (int a = 0; a < 3; ++a) {
+            const Bin* b = bins.axis(a);
+            for (int k = 0; k < bins_; ++k) {
+                if (b[k].count() != 0) bins.mark(a, k);
+            }
+        }
+    } else if (bins_ > 64) {
+        binAll([&](V4i k) {
             bins.mark(0, k[0]);
             bins.mark(1, k[1]);
             bins.mark(2, k[2]);
-        } else {
+        });
+    } else {
+        // Occupancy kept in registers.
+        std::uint64_t u0 = 0, u1 = 0, u2 = 0;
+        binAll([&](V4i k) {
             u0 |= std::uint64_t(1) << k[0];
             u1 |= std::uint64_t(1) << k[1];
             u2 |= std::uint64_t(1) << k[2];
-        }
+        });
+        bins.used[0][0] |= u0;
+        bins.used[1][0] |= u1;
+        bins.used[2][0] |= u2;
     }
-    bins.used[0][0] |= u0;
-    bins.used[1][0] |= u1;
-    bins.used[2][0] |= u2;
 }
 
 SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
