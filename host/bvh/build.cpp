@@ -200,9 +200,10 @@ struct Subtree {
 
 class Builder {
 public:
-    Builder(PrimRef* prims, NodeArena& arena, int bins, std::uint32_t maxLeaf, float traversalCost,
-            TaskPool* pool)
-        : prims_(prims), arena_(arena), bins_(bins), maxLeaf_(maxLeaf), traversalCost_(traversalCost), pool_(pool) {}
+    Builder(PrimRef* prims, std::uint32_t* triIndices, NodeArena& arena, int bins,
+            std::uint32_t maxLeaf, float traversalCost, TaskPool* pool)
+        : prims_(prims), triIndices_(triIndices), arena_(arena), bins_(bins), maxLeaf_(maxLeaf),
+          traversalCost_(traversalCost), pool_(pool) {}
 
     // Builds the subtree of `task` into `out`, handing large children to the
     // pool as tasks of their own.
@@ -221,7 +222,13 @@ private:
                                  const SahSplit& split, Box& lc, Box& rc);
     std::uint32_t partitionMedian(const Task& task, Task& left, Task& right);
 
+    // Writes triIndices_ for prims [begin, end), whose order is final.
+    void writeTriIndices(std::uint32_t begin, std::uint32_t end) const {
+        for (std::uint32_t i = begin; i < end; ++i) triIndices_[i] = prims_[i].id();
+    }
+
     PrimRef* prims_;  // buildBvh's array, partitioned in place
+    std::uint32_t* triIndices_;  // Bvh::triIndices, written as subtrees finish
     NodeArena& arena_;
     int bins_;
     std::uint32_t maxLeaf_;
@@ -560,6 +567,7 @@ void Builder::buildTask(const Task& task, Subtree& out) {
     if (n < kTaskMinPrims) {
         out.nodes.data = arena_.take(2 * std::size_t(n) - 1);
         buildSerial(task, out.nodes, out.maxDepth, bins);
+        writeTriIndices(task.begin, task.end);
         return;
     }
     Task left, right;
@@ -567,6 +575,7 @@ void Builder::buildTask(const Task& task, Subtree& out) {
         out.nodes.data = arena_.take(1);
         out.nodes.push_back(makeNode(task.box, task.begin, n));
         out.maxDepth = task.depth;
+        writeTriIndices(task.begin, task.end);
         return;
     }
     out.top = makeNode(task.box, 0, 0);
@@ -663,8 +672,12 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
             root.cbox.grow(part.cbox);
         }
 
+        bvh.triIndices.reserve(n);
+        adviseHugePages(bvh.triIndices.data(), std::size_t(n) * sizeof(std::uint32_t));
+        bvh.triIndices.resize(n);
         NodeArena arena(2 * std::size_t(n));
-        Builder builder(prims.get(), arena, std::clamp(options.bins, kMinBins, kMaxBins),
+        Builder builder(prims.get(), bvh.triIndices.data(), arena,
+                        std::clamp(options.bins, kMinBins, kMaxBins),
                         std::uint32_t(std::max(options.maxLeafSize, 1)), options.traversalCost,
                         &pool);
         Subtree tree;
@@ -680,22 +693,12 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
         std::vector<std::pair<const Subtree*, std::uint32_t>> copies;
         double sum = 0.0;  // SAH terms of the nodes layout() writes
         layout(tree, 0, bvh.nodes, copies, options.traversalCost, sum);
-        bvh.triIndices.reserve(n);
-        adviseHugePages(bvh.triIndices.data(), std::size_t(n) * sizeof(std::uint32_t));
-        bvh.triIndices.resize(n);
         // SAH cost summed per copied subtree, then over them in node order
         // after the parallel top's nodes: independent of the thread count.
         const std::uint32_t jobs = std::uint32_t(copies.size());
         std::vector<double> jobSum(jobs);
         std::vector<std::uint32_t> jobLeaves(jobs);
-        pool.parallelFor(jobs + chunks, [&](std::uint32_t j) {
-            if (j >= jobs) {
-                const std::uint32_t b = (j - jobs) * kChunkPrims;
-                for (std::uint32_t i = b, e = std::min(n, b + kChunkPrims); i < e; ++i) {
-                    bvh.triIndices[i] = prims[i].id();
-                }
-                return;
-            }
+        pool.parallelFor(jobs, [&](std::uint32_t j) {
             const auto [sub, base] = copies[j];
             gpu::BvhNode* dst = bvh.nodes.data() + base;
             double part = 0.0;
