@@ -89,9 +89,7 @@ inline V4i binOf(V4 c2, V4 cmin, V4 scale, V4 top) {
 }
 
 inline std::uint32_t ceilLog2(std::uint32_t n) {
-    std::uint32_t l = 0;
-    while ((std::uint64_t(1) << l) < n) ++l;
-    return l;
+    return n <= 1 ? 0u : std::uint32_t(std::bit_width(n - 1));
 }
 
 // A node to build: prims [begin, end), their bounds and centroid bounds.
