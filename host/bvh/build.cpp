@@ -101,9 +101,10 @@ struct Task {
     std::uint32_t depth = 0;
 };
 
-// A bin's box, with its triangle count in lane 3 of `box.hi` as integer bits:
-// a positive count reads as a denormal float above the 0 in lane 3 of every
-// PrimRef's hi, so the max keeps it. Empty: an empty box, count 0.
+// A bin's box, with its triangle count in lane 3 of `box.hi` as integer bits
+// (a non-negative float's bits, denormal or +0): the max against the +0 in
+// lane 3 of every PrimRef's hi keeps it, as +0 is never greater, also with
+// denormals flushed. Empty: an empty box, count 0.
 struct Bin {
     Box box = {{kInf, kInf, kInf, kInf}, {-kInf, -kInf, -kInf, 0.0f}};
     std::uint32_t count() const { return std::bit_cast<std::uint32_t>(box.hi[3]); }
