@@ -89,9 +89,7 @@ inline V4i binOf(V4 c2, V4 cmin, V4 scale, V4 top) {
 }
 
 inline std::uint32_t ceilLog2(std::uint32_t n) {
-    std::uint32_t l = 0;
-    while ((std::uint64_t(1) << l) < n) ++l;
-    return l;
+    return n <= 1 ? 0u : std::uint32_t(std::bit_width(n - 1));
 }
 
 // A node to build: prims [begin, end), their bounds and centroid bounds.
@@ -103,9 +101,23 @@ struct Task {
     std::uint32_t depth = 0;
 };
 
+// A bin's box, with its triangle count in lane 3 of `box.hi` as integer bits
+// (a non-negative float's bits, denormal or +0): the max against the +0 in
+// lane 3 of every PrimRef's hi keeps it, as +0 is never greater, also with
+// denormals flushed. Empty: an empty box, count 0.
 struct Bin {
-    Box box;
-    std::uint32_t count = 0;
+    Box box = {{kInf, kInf, kInf, kInf}, {-kInf, -kInf, -kInf, 0.0f}};
+    std::uint32_t count() const { return std::bit_cast<std::uint32_t>(box.hi[3]); }
+    void add(const PrimRef& p) {
+        constexpr V4i kOne = {0, 0, 0, 1};
+        box.lo = vmin(box.lo, p.lo);
+        box.hi = V4(V4i(vmax(box.hi, p.hi)) + kOne);
+    }
+    void merge(const Bin& b) {
+        const std::uint32_t n = count() + b.count();
+        box.grow(b.box);
+        box.hi[3] = std::bit_cast<float>(n);
+    }
 };
 
 struct SahSplit {
@@ -116,6 +128,16 @@ struct SahSplit {
     float scale = 0.0f; // bins per doubled-centroid unit on `axis`
     Box left, right;
 };
+
+// Takes the candidate if it is the first or strictly cheaper than the best so
+// far; branch-free, as the outcome is unpredictable.
+inline void takeIfCheaper(SahSplit& best, float cost, int axis, int bin) {
+    const bool take = (cost < best.cost) | !best.found;
+    best.cost = take ? cost : best.cost;
+    best.axis = take ? axis : best.axis;
+    best.bin = take ? bin : best.bin;
+    best.found = true;
+}
 
 // Bins of the three axes and which of them are occupied. The sweep visits
 // occupied bins only: a split next to an empty bin divides the triangles as
@@ -162,6 +184,8 @@ constexpr std::uint32_t kTaskMinPrims = 1u << 12;
 // count, so neither does the output.
 constexpr std::uint32_t kParallelMinPrims = 1u << 15;
 constexpr std::uint32_t kChunkPrims = 1u << 13;
+// Nodes with at most this many triangles find their split without bins.
+constexpr std::uint32_t kFewPrims = 4;
 
 // A built subtree: either `nodes`, a depth-first subtree with indices local to
 // it, or (left set) one interior node nodes[0] over two child subtrees.
@@ -175,9 +199,10 @@ struct Subtree {
 
 class Builder {
 public:
-    Builder(PrimRef* prims, NodeArena& arena, int bins, std::uint32_t maxLeaf, float traversalCost,
-            TaskPool* pool)
-        : prims_(prims), arena_(arena), bins_(bins), maxLeaf_(maxLeaf), traversalCost_(traversalCost), pool_(pool) {}
+    Builder(PrimRef* prims, std::uint32_t* triIndices, NodeArena& arena, int bins,
+            std::uint32_t maxLeaf, float traversalCost, TaskPool* pool)
+        : prims_(prims), triIndices_(triIndices), arena_(arena), bins_(bins), maxLeaf_(maxLeaf),
+          traversalCost_(traversalCost), pool_(pool) {}
 
     // Builds the subtree of `task` into `out`, handing large children to the
     // pool as tasks of their own.
@@ -188,6 +213,7 @@ private:
     bool split(const Task& task, Task& left, Task& right, BinSet& bins, bool parallel);
     void buildSerial(const Task& task, NodeList& nodes, std::uint32_t& maxDepth, BinSet& bins);
     SahSplit findSah(const Task& task, BinSet& bins, bool parallel);
+    SahSplit findSahFew(const Task& task, V4 cmin, V4 scale, const bool valid[3]) const;
     void binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale, BinSet& bins) const;
     std::uint32_t partitionSah(const Task& task, const SahSplit& split, Box& lc, Box& rc,
                                bool parallel);
@@ -195,7 +221,13 @@ private:
                                  const SahSplit& split, Box& lc, Box& rc);
     std::uint32_t partitionMedian(const Task& task, Task& left, Task& right);
 
+    // Writes triIndices_ for prims [begin, end), whose order is final.
+    void writeTriIndices(std::uint32_t begin, std::uint32_t end) const {
+        for (std::uint32_t i = begin; i < end; ++i) triIndices_[i] = prims_[i].id();
+    }
+
     PrimRef* prims_;  // buildBvh's array, partitioned in place
+    std::uint32_t* triIndices_;  // Bvh::triIndices, written as subtrees finish
     NodeArena& arena_;
     int bins_;
     std::uint32_t maxLeaf_;
@@ -219,37 +251,43 @@ void Builder::binRange(std::uint32_t begin, std::uint32_t end, V4 cmin, V4 scale
     Bin* b0 = bins.axis(0);
     Bin* b1 = bins.axis(1);
     Bin* b2 = bins.axis(2);
-    // Occupancy kept in registers (bins <= 64) or marked per triangle.
-    const bool wide = bins_ > 64;
-    std::uint64_t u0 = 0, u1 = 0, u2 = 0;
-    for (std::uint32_t i = begin; i < end; ++i) {
-        const PrimRef& p = prims_[i];
-        const V4i k = binOf(centroid2(p), cmin, scale, top);
-        Bin& x = b0[k[0]];
-        Bin& y = b1[k[1]];
-        Bin& z = b2[k[2]];
-        x.count++;
-        x.box.lo = vmin(x.box.lo, p.lo);
-        x.box.hi = vmax(x.box.hi, p.hi);
-        y.count++;
-        y.box.lo = vmin(y.box.lo, p.lo);
-        y.box.hi = vmax(y.box.hi, p.hi);
-        z.count++;
-        z.box.lo = vmin(z.box.lo, p.lo);
-        z.box.hi = vmax(z.box.hi, p.hi);
-        if (wide) {
+    auto binAll = [&](auto&& mark) {
+        for (std::uint32_t i = begin; i < end; ++i) {
+            const PrimRef& p = prims_[i];
+            const V4i k = binOf(centroid2(p), cmin, scale, top);
+            b0[k[0]].add(p);
+            b1[k[1]].add(p);
+            b2[k[2]].add(p);
+            mark(k);
+        }
+    };
+    if (end - begin >= 4u * std::uint32_t(bins_)) {
+        // Many triangles per bin: occupancy read from the counts afterwards.
+        binAll([](V4i) {});
+        for (int a = 0; a < 3; ++a) {
+            const Bin* b = bins.axis(a);
+            for (int k = 0; k < bins_; ++k) {
+                if (b[k].count() != 0) bins.mark(a, k);
+            }
+        }
+    } else if (bins_ > 64) {
+        binAll([&](V4i k) {
             bins.mark(0, k[0]);
             bins.mark(1, k[1]);
             bins.mark(2, k[2]);
-        } else {
+        });
+    } else {
+        // Occupancy kept in registers.
+        std::uint64_t u0 = 0, u1 = 0, u2 = 0;
+        binAll([&](V4i k) {
             u0 |= std::uint64_t(1) << k[0];
             u1 |= std::uint64_t(1) << k[1];
             u2 |= std::uint64_t(1) << k[2];
-        }
+        });
+        bins.used[0][0] |= u0;
+        bins.used[1][0] |= u1;
+        bins.used[2][0] |= u2;
     }
-    bins.used[0][0] |= u0;
-    bins.used[1][0] |= u1;
-    bins.used[2][0] |= u2;
 }
 
 SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
@@ -265,6 +303,7 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
     if (!valid[0] && !valid[1] && !valid[2]) return best;
 
     const V4 cmin = task.cbox.lo;
+    if (task.end - task.begin <= kFewPrims) return findSahFew(task, cmin, scale, valid);
     if (parallel) {
         // Bin fixed chunks into their own sets, then merge them in order
         // (min, max and counts: the merged bins do not depend on the order).
@@ -278,10 +317,8 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
             for (int a = 0; a < 3; ++a) {
                 for (int k = 0; k < bins_; ++k) {
                     const Bin& s = p.axis(a)[k];
-                    if (s.count == 0) continue;
-                    Bin& d = bins.axis(a)[k];
-                    d.count += s.count;
-                    d.box.grow(s.box);
+                    if (s.count() == 0) continue;
+                    bins.axis(a)[k].merge(s);
                     bins.mark(a, k);
                 }
             }
@@ -304,7 +341,7 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
         std::uint32_t n = 0;
         for (int j = m - 1; j > 0; --j) {
             acc.grow(ab[idx[j]].box);
-            n += ab[idx[j]].count;
+            n += ab[idx[j]].count();
             rightArea[j - 1] = acc.halfArea();
             rightCount[j - 1] = n;
         }
@@ -312,14 +349,9 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
         n = 0;
         for (int j = 0; j < m - 1; ++j) {
             acc.grow(ab[idx[j]].box);
-            n += ab[idx[j]].count;
+            n += ab[idx[j]].count();
             float cost = acc.halfArea() * float(n) + rightArea[j] * float(rightCount[j]);
-            if (cost < best.cost || !best.found) {
-                best.found = true;
-                best.axis = a;
-                best.bin = idx[j];
-                best.cost = cost;
-            }
+            takeIfCheaper(best, cost, a, idx[j]);
         }
     }
     if (best.found) {
@@ -335,22 +367,79 @@ SahSplit Builder::findSah(const Task& task, BinSet& bins, bool parallel) {
     return best;
 }
 
+// findSah for at most kFewPrims triangles: per axis, the triangles sorted by
+// bin (stably) stand in for the bins. Candidates are the boundaries between
+// occupied bins, visited in the same order and costed from the same boxes
+// (unions are exact) and counts, so the split equals the binned sweep's.
+SahSplit Builder::findSahFew(const Task& task, V4 cmin, V4 scale, const bool valid[3]) const {
+    const std::uint32_t n = task.end - task.begin;
+    const float topf = float(bins_ - 1);
+    const V4 top = {topf, topf, topf, topf};
+    Box box[kFewPrims];
+    V4i key[kFewPrims];
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const PrimRef& p = prims_[task.begin + i];
+        box[i] = Box{p.lo, p.hi};
+        key[i] = binOf(centroid2(p), cmin, scale, top);
+    }
+    SahSplit best;
+    float rightArea[kFewPrims];
+    for (int a = 0; a < 3; ++a) {
+        if (!valid[a]) continue;
+        std::uint8_t order[kFewPrims];
+        for (std::uint32_t i = 0; i < n; ++i) {
+            std::uint32_t j = i;
+            for (; j > 0 && key[order[j - 1]][a] > key[i][a]; --j) order[j] = order[j - 1];
+            order[j] = std::uint8_t(i);
+        }
+        // Boundary after sorted position j: key[order[j]] < key[order[j + 1]].
+        Box acc;
+        for (std::uint32_t j = n - 1; j > 0; --j) {
+            acc.grow(box[order[j]]);
+            if (key[order[j - 1]][a] != key[order[j]][a]) rightArea[j - 1] = acc.halfArea();
+        }
+        acc = Box();
+        for (std::uint32_t j = 0; j + 1 < n; ++j) {
+            acc.grow(box[order[j]]);
+            if (key[order[j]][a] == key[order[j + 1]][a]) continue;
+            const float cost =
+                acc.halfArea() * float(j + 1) + rightArea[j] * float(n - 1 - j);
+            takeIfCheaper(best, cost, a, key[order[j]][a]);
+        }
+    }
+    if (best.found) {
+        best.scale = scale[best.axis];
+        for (std::uint32_t i = 0; i < n; ++i) {
+            (key[i][best.axis] <= best.bin ? best.left : best.right).grow(box[i]);
+        }
+    }
+    return best;
+}
+
 // Hoare partition of [begin, end) by bin; returns the first index of the
 // right side and grows lc/rc by the doubled centroids of both sides.
 std::uint32_t Builder::partitionRange(std::uint32_t begin, std::uint32_t end, int a, float cmin,
                                       const SahSplit& split, Box& lc, Box& rc) {
+    // binOf(c) <= split.bin, as binOf rounds: int(clamp(f)) <= bin exactly
+    // when !(f >= bin + 1) (bin < bins - 1; a NaN f maps to bin 0).
+    const float limit = float(split.bin + 1);
     auto isLeft = [&](const PrimRef& p) {
-        return binOf(centroid2(p)[a], cmin, split.scale, bins_) <= split.bin;
+        return !((centroid2(p)[a] - cmin) * split.scale >= limit);
     };
+    // Local accumulators: lc and rc may alias memory the swaps write, which
+    // would keep them out of registers.
+    Box l = lc, r = rc;
     std::uint32_t i = begin, j = end;
     for (;;) {
-        while (i < j && isLeft(prims_[i])) lc.grow(centroid2(prims_[i++]));
-        while (i < j && !isLeft(prims_[j - 1])) rc.grow(centroid2(prims_[--j]));
+        while (i < j && isLeft(prims_[i])) l.grow(centroid2(prims_[i++]));
+        while (i < j && !isLeft(prims_[j - 1])) r.grow(centroid2(prims_[--j]));
         if (i >= j) break;
         std::swap(prims_[i], prims_[j - 1]);
-        lc.grow(centroid2(prims_[i++]));
-        rc.grow(centroid2(prims_[--j]));
+        l.grow(centroid2(prims_[i++]));
+        r.grow(centroid2(prims_[--j]));
     }
+    lc = l;
+    rc = r;
     return i;
 }
 
@@ -477,6 +566,7 @@ void Builder::buildTask(const Task& task, Subtree& out) {
     if (n < kTaskMinPrims) {
         out.nodes.data = arena_.take(2 * std::size_t(n) - 1);
         buildSerial(task, out.nodes, out.maxDepth, bins);
+        writeTriIndices(task.begin, task.end);
         return;
     }
     Task left, right;
@@ -484,6 +574,7 @@ void Builder::buildTask(const Task& task, Subtree& out) {
         out.nodes.data = arena_.take(1);
         out.nodes.push_back(makeNode(task.box, task.begin, n));
         out.maxDepth = task.depth;
+        writeTriIndices(task.begin, task.end);
         return;
     }
     out.top = makeNode(task.box, 0, 0);
@@ -506,18 +597,27 @@ std::uint32_t measure(Subtree& t) {
     return d;
 }
 
+// A node's term of the SAH cost (times the root's half area).
+double sahTerm(const gpu::BvhNode& node, float traversalCost) {
+    return halfAreaD(node.bmin, node.bmax) *
+           (node.count > 0 ? double(node.count) : double(traversalCost));
+}
+
 // Places the subtree at node index `base` of the depth-first order: interior
-// nodes of the parallel top are written, built subtrees listed for copying.
+// nodes of the parallel top are written (their SAH terms added to sahSum),
+// built subtrees listed for copying.
 void layout(Subtree& t, std::uint32_t base, std::vector<gpu::BvhNode>& out,
-            std::vector<std::pair<const Subtree*, std::uint32_t>>& copies) {
+            std::vector<std::pair<const Subtree*, std::uint32_t>>& copies, float traversalCost,
+            double& sahSum) {
     if (!t.left) {
         copies.emplace_back(&t, base);
         return;
     }
     out[base] = t.top;
     out[base].leftOrFirst = base + 1 + t.left->size;
-    layout(*t.left, base + 1, out, copies);
-    layout(*t.right, base + 1 + t.left->size, out, copies);
+    sahSum += sahTerm(out[base], traversalCost);
+    layout(*t.left, base + 1, out, copies, traversalCost, sahSum);
+    layout(*t.right, base + 1 + t.left->size, out, copies, traversalCost, sahSum);
 }
 
 }  // namespace
@@ -571,8 +671,12 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
             root.cbox.grow(part.cbox);
         }
 
+        bvh.triIndices.reserve(n);
+        adviseHugePages(bvh.triIndices.data(), std::size_t(n) * sizeof(std::uint32_t));
+        bvh.triIndices.resize(n);
         NodeArena arena(2 * std::size_t(n));
-        Builder builder(prims.get(), arena, std::clamp(options.bins, kMinBins, kMaxBins),
+        Builder builder(prims.get(), bvh.triIndices.data(), arena,
+                        std::clamp(options.bins, kMinBins, kMaxBins),
                         std::uint32_t(std::max(options.maxLeafSize, 1)), options.traversalCost,
                         &pool);
         Subtree tree;
@@ -586,33 +690,31 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
         adviseHugePages(bvh.nodes.data(), std::size_t(tree.size) * sizeof(gpu::BvhNode));
         bvh.nodes.resize(tree.size);
         std::vector<std::pair<const Subtree*, std::uint32_t>> copies;
-        layout(tree, 0, bvh.nodes, copies);
-        bvh.triIndices.reserve(n);
-        adviseHugePages(bvh.triIndices.data(), std::size_t(n) * sizeof(std::uint32_t));
-        bvh.triIndices.resize(n);
+        double sum = 0.0;  // SAH terms of the nodes layout() writes
+        layout(tree, 0, bvh.nodes, copies, options.traversalCost, sum);
+        // SAH cost summed per copied subtree, then over them in node order
+        // after the parallel top's nodes: independent of the thread count.
         const std::uint32_t jobs = std::uint32_t(copies.size());
-        pool.parallelFor(jobs + chunks, [&](std::uint32_t j) {
-            if (j >= jobs) {
-                const std::uint32_t b = (j - jobs) * kChunkPrims;
-                for (std::uint32_t i = b, e = std::min(n, b + kChunkPrims); i < e; ++i) {
-                    bvh.triIndices[i] = prims[i].id();
-                }
-                return;
-            }
+        std::vector<double> jobSum(jobs);
+        std::vector<std::uint32_t> jobLeaves(jobs);
+        pool.parallelFor(jobs, [&](std::uint32_t j) {
             const auto [sub, base] = copies[j];
             gpu::BvhNode* dst = bvh.nodes.data() + base;
+            double part = 0.0;
+            std::uint32_t leaves = 0;
             for (std::uint32_t k = 0; k < sub->nodes.size; ++k) {
                 gpu::BvhNode node = sub->nodes.data[k];
                 if (node.count == 0) node.leftOrFirst += base;
                 *dst++ = node;
+                part += sahTerm(node, options.traversalCost);
+                leaves += node.count > 0 ? 1u : 0u;
             }
+            jobSum[j] = part;
+            jobLeaves[j] = leaves;
         });
-        // SAH cost in node order, so it does not depend on the thread count.
-        double sum = 0.0;
-        for (const gpu::BvhNode& node : bvh.nodes) {
-            const double area = halfAreaD(node.bmin, node.bmax);
-            sum += area * (node.count > 0 ? double(node.count) : double(options.traversalCost));
-            bvh.stats.leaves += node.count > 0 ? 1u : 0u;
+        for (std::uint32_t j = 0; j < jobs; ++j) {
+            sum += jobSum[j];
+            bvh.stats.leaves += jobLeaves[j];
         }
         const double rootArea = halfAreaD(toVec3(root.box.lo), toVec3(root.box.hi));
         bvh.stats.sahCost = rootArea > 0.0 ? sum / rootArea : 0.0;
