@@ -2,12 +2,15 @@
 # depfile, so edits to included files rebuild) and embeds the SPIR-V in a
 # static library. For each shaders/NAME.comp the library defines
 #   extern const std::uint32_t kSpirv_NAME[]; extern const std::size_t kSpirvSize_NAME;
-# (size in bytes) declared in <strata_spirv.h>. The .spv files stay in
-# ${CMAKE_BINARY_DIR}/spirv for spirv-val in the tests.
+# (size in bytes) declared in <strata_spirv.h>. VARIANTS entries
+# NAME=shaders/SRC.comp:DEFINE compile SRC again with -DDEFINE as kSpirv_NAME
+# (a variant that compiles code out rather than leaving it to a
+# specialization constant: the driver then never sees it). The .spv files
+# stay in ${CMAKE_BINARY_DIR}/spirv for spirv-val in the tests.
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 
 function(strata_add_shaders target)
-  cmake_parse_arguments(ARG "" "" "SHADERS;INCLUDE_DIRS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SHADERS;VARIANTS;INCLUDE_DIRS" ${ARGN})
   set(spv_dir ${CMAKE_BINARY_DIR}/spirv)
   file(MAKE_DIRECTORY ${spv_dir})
   set(inc_flags "")
@@ -16,19 +19,34 @@ function(strata_add_shaders target)
   endforeach()
   set(gen_sources "")
   set(decls "")
+  set(entries "")
   foreach(shader ${ARG_SHADERS})
     get_filename_component(name ${shader} NAME_WE)
+    list(APPEND entries "${name}=${shader}:")
+  endforeach()
+  list(APPEND entries ${ARG_VARIANTS})
+  foreach(entry ${entries})
+    string(REGEX MATCH "^([A-Za-z0-9_]+)=([^:]+):(.*)$" ok "${entry}")
+    if(NOT ok)
+      message(FATAL_ERROR "strata_add_shaders: bad entry '${entry}'")
+    endif()
+    set(name ${CMAKE_MATCH_1})
+    set(shader ${CMAKE_MATCH_2})
+    set(define_flags "")
+    if(CMAKE_MATCH_3)
+      set(define_flags "-D${CMAKE_MATCH_3}")
+    endif()
     set(spv ${spv_dir}/${name}.spv)
     set(hdr ${spv_dir}/${name}.spv.h)
     add_custom_command(
       OUTPUT ${spv} ${hdr}
-      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.1 ${inc_flags}
+      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.1 ${inc_flags} ${define_flags}
               --depfile ${spv}.d -o ${spv} ${CMAKE_SOURCE_DIR}/${shader}
-      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.1 ${inc_flags}
+      COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.1 ${inc_flags} ${define_flags}
               --vn kSpirv_${name} -o ${hdr} ${CMAKE_SOURCE_DIR}/${shader}
       DEPENDS ${CMAKE_SOURCE_DIR}/${shader}
       DEPFILE ${spv}.d
-      COMMENT "glslangValidator ${shader}"
+      COMMENT "glslangValidator ${shader} ${define_flags}"
       VERBATIM)
     set(cpp ${spv_dir}/${name}.spv.cpp)
     file(GENERATE OUTPUT ${cpp} CONTENT

@@ -201,7 +201,6 @@ DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal 
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {
     spec.resize(std::max<std::size_t>(spec.size(), gpu::SPEC_BVH_REGS + 1), 0u);
     spec[gpu::SPEC_TEXEL_FETCH] = scene.reads;
-    spec[gpu::SPEC_BVH_WIDE] = scene.wide ? 1u : 0u;
     spec[gpu::SPEC_BVH_REGS] = scene.bvhRegs;
 }
 

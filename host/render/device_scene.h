@@ -72,7 +72,7 @@ struct DeviceScene {
     vk::Buffer envTexels, envTables;  // 16-byte placeholders without an environment map
     vk::TexelView envTexelView;       // RGBA32F over envTexels
     std::uint32_t reads = gpu::kReadsStorage;  // SPEC_TEXEL_FETCH
-    bool wide = false;   // `nodes` holds GpuScene::wide (SPEC_BVH_WIDE), else the BVH2
+    bool wide = false;   // `nodes` holds GpuScene::wide, else the BVH2 (the *_bvh2 shaders)
     std::uint32_t bvhRegs = 16;  // SPEC_BVH_REGS with `wide`
     std::uint64_t triangles = 0;  // counts of what was uploaded (the GpuScene's
     std::uint64_t nodeCount = 0;  // arrays may be released since)
@@ -82,7 +82,7 @@ struct DeviceScene {
     bool texel() const { return reads != gpu::kReadsStorage; }
 };
 
-// bvhWidth 4: the four-wide BVH (SPEC_BVH_WIDE 1) unless the scene's wide tree
+// bvhWidth 4: the four-wide BVH unless the scene's wide tree
 // is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2. `overrides` as sceneLimits.
 DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth = 4,
                         const SceneLimits& overrides = {});
@@ -96,7 +96,8 @@ DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal 
                              const SceneLimits& overrides = {});
 
 // The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,
-// SPEC_BVH_WIDE, SPEC_BVH_REGS) into `spec`, grown as needed.
+// SPEC_BVH_REGS) into `spec`, grown as needed. The BVH width is the shader's:
+// pathtrace/trace, or pathtrace_bvh2/trace_bvh2 when !scene.wide.
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec);
 
 // The traversal's inputs: nodes, triangles, their texel views, and what the

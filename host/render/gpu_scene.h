@@ -21,8 +21,8 @@ struct SceneFeatures {
 
 struct GpuScene {
     std::string source;                     // Scene::path, for messages
-    std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; SPEC_BVH_WIDE 0)
-    std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h; SPEC_BVH_WIDE 1)
+    std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; the *_bvh2 shaders)
+    std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h)
     std::uint32_t wideDepth = 0;            // WideBvh::maxDepth
     std::uint64_t triangleCount = 0;        // triangles packed (stays when uploadAndRelease frees tris)
     std::vector<gpu::TriVerts> tris;        // BVH order

@@ -92,7 +92,10 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     spec[SPEC_FEATURES] = scene.features.bits;
     spec[SPEC_MIS] = s.mis;
     spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
-    vk::Kernel kernel(ctx, {kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4},
+    const std::span<const std::uint32_t> spirv =
+        dev.wide ? std::span<const std::uint32_t>(kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4)
+                 : std::span<const std::uint32_t>(kSpirvPtr_pathtrace_bvh2, kSpirvSize_pathtrace_bvh2 / 4);
+    vk::Kernel kernel(ctx, spirv,
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);
     bindTraversal(kernel, dev);

@@ -19,7 +19,9 @@ DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traver
     bindings.insert(bindings.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                      {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
     kernel_ = std::make_unique<vk::Kernel>(
-        ctx, std::span<const std::uint32_t>(kSpirvPtr_trace, kSpirvSize_trace / 4),
+        ctx,
+        scene_.wide ? std::span<const std::uint32_t>(kSpirvPtr_trace, kSpirvSize_trace / 4)
+                    : std::span<const std::uint32_t>(kSpirvPtr_trace_bvh2, kSpirvSize_trace_bvh2 / 4),
         std::move(bindings), sizeof(TraceParams), spec);
     bindTraversal(*kernel_, scene_);
 }

@@ -9,7 +9,6 @@
 #include "shared/bindings.h"
 #include "lib/reads.glsl"
 
-layout(constant_id = SPEC_BVH_WIDE) const uint kBvhWide = 0u;
 layout(constant_id = SPEC_BVH_REGS) const uint kBvhRegs = 16u;
 #include "lib/features.glsl"
 

@@ -11,7 +11,7 @@ namespace strata::gpu {
 #endif
 
 STRATA_BINDING(BINDING_FRAME, 0);         // uniform FrameUniforms
-STRATA_BINDING(BINDING_NODES, 1);         // storage uvec4[]: BvhNode or BvhNode4 (SPEC_BVH_WIDE)
+STRATA_BINDING(BINDING_NODES, 1);         // storage uvec4[]: BvhNode4, or BvhNode in the *_bvh2 shaders
 STRATA_BINDING(BINDING_TRIS, 2);          // storage TriVerts[]
 STRATA_BINDING(BINDING_SHADING, 3);       // storage TriShading[]
 STRATA_BINDING(BINDING_MATERIALS, 4);     // storage Material[]
@@ -43,8 +43,7 @@ STRATA_BINDING(SPEC_SAMPLER, 2);          // kSampler* (types.h)
 STRATA_BINDING(SPEC_FEATURES, 3);         // kFeature* bits (types.h): what the scene uses
 STRATA_BINDING(SPEC_MIS, 4);              // kMis* (types.h): how light and BSDF samples combine
 STRATA_BINDING(SPEC_COUNT_RAYS, 5);       // 1: count closest and shadow rays in RenderCounters
-STRATA_BINDING(SPEC_BVH_WIDE, 6);         // 1: BINDING_NODES holds BvhNode4 (four-wide traversal)
-STRATA_BINDING(SPEC_BVH_REGS, 7);         // four-wide traversal stack entries: 16, 24 or 32
+STRATA_BINDING(SPEC_BVH_REGS, 6);         // four-wide traversal stack entries: 16, 24 or 32
 
 #ifdef __cplusplus
 }  // namespace strata::gpu
