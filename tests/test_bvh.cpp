@@ -599,6 +599,100 @@ TEST_CASE("wide bvh: collapsed tree covers every triangle once, boxes nest") {
     }
 }
 
+namespace {
+
+// The shader's four-wide traversal (shaders/lib/bvh.glsl, bvhTrace4) on the
+// CPU with an unbounded stack: its closest hits equal brute force, and it
+// never holds more entries than the wide depth, the bound the shader's
+// register stack is sized by (bvhRegsFor).
+struct WideTrace {
+    Hit hit;
+    std::uint32_t maxEntries = 0;
+};
+
+WideTrace traceWide(const WideBvh& w, const std::vector<gpu::TriVerts>& tris, const Ray& ray) {
+    const glm::vec3 inv(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
+    WideTrace out;
+    float bestT = ray.tmax;
+    std::vector<std::uint32_t> stack;
+    std::uint32_t ref = 15u;
+    for (;;) {
+        bool descend = false;
+        if (ref & gpu::kBvhLeafBit) {
+            const std::uint32_t first = (ref & ~gpu::kBvhLeafBit) >> gpu::kBvhLeafCountBits;
+            const std::uint32_t end = first + (ref & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u;
+            for (std::uint32_t i = first; i < end; ++i) {
+                float t, u, v;
+                const auto& tv = tris[i];
+                if (intersectTriangle(Ray{ray.origin, ray.dir, ray.tmin, ray.tmax}, glm::vec3(tv.v0),
+                                      glm::vec3(tv.v1), glm::vec3(tv.v2), t, u, v) &&
+                    (t < bestT || (t == bestT && i < out.hit.triangle))) {
+                    bestT = t;
+                    out.hit = Hit{t, i, u, v};
+                }
+            }
+        } else {
+            const gpu::BvhNode4& n = w.nodes[ref >> 4];
+            float best = INFINITY;
+            int slot = -1;
+            std::uint32_t mask = 0;
+            for (int k = 0; k < 4; ++k) {
+                if (!(ref & (1u << k)) || n.child[k] == gpu::kBvhChildEmpty) continue;
+                // A slightly widened slab test: a superset of the shader's boxes.
+                float tnear = ray.tmin, tfar = bestT;
+                const float lo[3] = {n.minX[k], n.minY[k], n.minZ[k]}, hi[3] = {n.maxX[k], n.maxY[k], n.maxZ[k]};
+                for (int a = 0; a < 3; ++a) {
+                    float t0 = (lo[a] - ray.origin[a]) * inv[a], t1 = (hi[a] - ray.origin[a]) * inv[a];
+                    if (std::signbit(ray.dir[a])) std::swap(t0, t1);  // by sign, as NaNs need
+                    tnear = t0 > tnear ? t0 : tnear;
+                    tfar = t1 < tfar ? t1 : tfar;
+                }
+                if (!(tnear <= tfar * 1.0001f)) continue;
+                mask |= 1u << k;
+                if (tnear < best || slot < 0) best = tnear, slot = k;
+            }
+            if (mask) {
+                const std::uint32_t rest = mask & ~(1u << slot);
+                if (rest) stack.push_back((ref & ~15u) | rest);
+                out.maxEntries = std::max(out.maxEntries, std::uint32_t(stack.size()));
+                const std::uint32_t c = n.child[slot];
+                ref = (c & gpu::kBvhLeafBit) ? c : (c << 4) | 15u;
+                descend = true;
+            }
+        }
+        if (descend) continue;
+        if (stack.empty()) break;
+        ref = stack.back();
+        stack.pop_back();
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("wide bvh: the register-stack traversal finds the brute-force hits within the wide depth") {
+    std::mt19937 rng(31u);
+    for (Case& c : testCases()) {
+        CAPTURE(c.name);
+        Bvh bvh = buildBvh(c.mesh.v0, c.mesh.v1, c.mesh.v2, c.options);
+        WideBvh w = collapseBvh4(bvh.nodes);
+        const std::vector<gpu::TriVerts> tris = bvhOrder(bvh, c.mesh);
+        std::size_t mismatches = 0, hits = 0;
+        std::uint32_t most = 0;
+        for (const Ray& r : makeRays(rng, c.mesh, 4000)) {
+            const WideTrace wt = traceWide(w, tris, r);
+            const Hit ref = traceBruteForce(tris, r);
+            hits += ref.hit();
+            mismatches += wt.hit.triangle != ref.triangle || (ref.hit() && wt.hit.t != ref.t);
+            most = std::max(most, wt.maxEntries);
+        }
+        INFO("wide depth " << w.maxDepth << ", most entries held " << most);
+        CHECK(mismatches == 0);
+        CHECK(hits > 0);
+        CHECK(most <= w.maxDepth);
+    }
+}
+
 TEST_CASE("wide bvh: empty input, a leaf root, and a leaf above the reference's count") {
     Bvh empty = buildBvh({}, {}, {});
     WideBvh we = collapseBvh4(empty.nodes);

@@ -2,6 +2,7 @@
 // CPU reference traversal, through both texel and storage reads.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <random>
 
 #include "bvh/bvh.h"
@@ -107,5 +108,61 @@ TEST_CASE("shader traversal matches the CPU BVH on the Cornell box") {
     }
     compareWithCpu(g, rays, Traversal::Texel, 4);
     compareWithCpu(g, rays, Traversal::Texel, 2);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// A chain of triangles shrinking by 2.1x, one per leaf: a BVH about as deep
+// as it gets, so the four-wide traversal needs more than 16 stack registers.
+TEST_CASE("four-wide traversal of a deep tree (24 or 32 stack registers) matches the CPU BVH") {
+    Scene chain;
+    chain.materials.push_back(MaterialDesc{});
+    for (int i = 0; i < 60; ++i) {
+        const float x = std::pow(2.1f, float(i - 30)), s = 0.3f * x;
+        Triangle t;
+        t.v[0] = {x, 0.0f, 0.0f};
+        t.v[1] = {x + s, s, 0.0f};
+        t.v[2] = {x, s, s};
+        t.n[0] = t.n[1] = t.n[2] = glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+        chain.triangles.push_back(t);
+    }
+    BvhBuildOptions options;
+    options.bins = 2;
+    options.maxLeafSize = 1;
+    GpuScene g = packScene(chain, options);
+    INFO("BVH2 depth " << g.bvh.maxDepth << ", wide depth " << g.wideDepth);
+    REQUIRE(g.wideDepth > 16);
+    REQUIRE(g.wideDepth <= 32);
+    // Rays along the chain from its small end, through the boxes of every
+    // level (the traversal descends to the deepest node first, holding an
+    // entry per level); then rays at each triangle's centroid from random
+    // directions, at distances on the triangle's own scale.
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> d(-1.0f, 1.0f);
+    std::vector<gpu::TraceRay> rays;
+    std::uniform_real_distribution<float> slope(0.0f, 0.3f);
+    for (int k = 0; k < 3000; ++k) {
+        gpu::TraceRay r{};
+        r.origin = glm::vec3(0.0f);
+        r.dir = glm::normalize(glm::vec3(1.0f, slope(rng), slope(rng)));
+        r.tmax = 1e30f;
+        rays.push_back(r);
+    }
+    for (const Triangle& t : chain.triangles) {
+        const glm::vec3 c = (t.v[0] + t.v[1] + t.v[2]) / 3.0f;
+        const float scale = glm::length(t.v[1] - t.v[0]);
+        for (int k = 0; k < 50; ++k) {
+            glm::vec3 dir = glm::normalize(glm::vec3(d(rng), d(rng), d(rng)) + glm::vec3(0.0f, 0.0f, 1e-3f));
+            gpu::TraceRay r{};
+            r.origin = c - dir * (4.0f * scale);
+            r.dir = dir;
+            r.tmax = 1e30f;
+            rays.push_back(r);
+        }
+    }
+    DeviceTracer tracer(context(), g, Traversal::Texel, 4);
+    CHECK(tracer.bvhRegs() == bvhRegsFor(g.wideDepth));
+    CHECK(tracer.bvhRegs() > 16);
+    compareWithCpu(g, rays, Traversal::Texel, 4);
+    compareWithCpu(g, rays, Traversal::Storage, 4);
     CHECK(vk::validationMessageCount() == 0);
 }

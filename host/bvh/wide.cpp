@@ -33,8 +33,7 @@ struct Collapser {
             out.maxDepth = std::max(out.maxDepth, depth);
             return gpu::kBvhLeafBit | first << gpu::kBvhLeafCountBits | (count - 1);
         }
-        const std::uint32_t index = static_cast<std::uint32_t>(out.nodes.size());
-        out.nodes.emplace_back();
+        const std::uint32_t index = newNode();
         const std::uint32_t chunk = std::max(kMax, (count + 3) / 4);
         std::uint32_t refs[4] = {gpu::kBvhChildEmpty, gpu::kBvhChildEmpty, gpu::kBvhChildEmpty,
                                  gpu::kBvhChildEmpty};
@@ -61,6 +60,15 @@ struct Collapser {
         w.child[k] = gpu::kBvhChildEmpty;
     }
 
+    // A new wide node's index; the traversal's stack entries keep it in 27
+    // bits ((index << 4) | children mask, below kBvhLeafBit).
+    std::uint32_t newNode() {
+        if (out.nodes.size() >= (std::size_t(1) << 27))
+            throw Error("strata: error: the scene's four-wide BVH needs more than 2^27 nodes");
+        out.nodes.emplace_back();
+        return static_cast<std::uint32_t>(out.nodes.size() - 1);
+    }
+
     // Wide node for interior BVH2 node `root` at `depth` wide nodes below the root.
     std::uint32_t node(std::uint32_t root, std::uint32_t depth) {
         std::uint32_t kids[4] = {root + 1, in[root].leftOrFirst, 0, 0};
@@ -76,8 +84,7 @@ struct Collapser {
             kids[best] = open + 1;
             kids[n++] = in[open].leftOrFirst;
         }
-        const std::uint32_t index = static_cast<std::uint32_t>(out.nodes.size());
-        out.nodes.emplace_back();
+        const std::uint32_t index = newNode();
         for (int k = 0; k < n; ++k) {
             const gpu::BvhNode& c = in[kids[k]];
             const std::uint32_t ref = c.count > 0 ? leafRef(c.leftOrFirst, c.count, c, depth + 1)

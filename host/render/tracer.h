@@ -27,6 +27,7 @@ public:
     bool texel() const { return scene_.texel(); }
     const DeviceScene& deviceScene() const { return scene_; }
     int bvhWidth() const { return scene_.wide ? 4 : 2; }
+    std::uint32_t bvhRegs() const { return scene_.bvhRegs; }
 
 private:
     const vk::Context& ctx_;

@@ -1,16 +1,18 @@
-// Closest-hit and any-hit traversal of the flattened BVH2 built by
-// host/bvh/build.cpp, mirroring host/bvh/traverse.cpp step for step: the same
-// watertight triangle test, slab test, nearer-child-first order and tie rule
-// (equal t: lowest BVH-order triangle index).
+// Closest-hit and any-hit traversal of the BVH built by host/bvh/build.cpp:
+// the flattened BVH2, mirroring host/bvh/traverse.cpp step for step (the same
+// watertight triangle test, slab test, nearer-child-first order and tie rule,
+// equal t: lowest BVH-order triangle index), or the same tree collapsed four
+// wide (host/bvh/wide.h), which finds the same hits. STRATA_BVH2, a
+// compile-time define (the *_bvh2 shader variants), selects the binary
+// traversal; compiling the unused one out rather than folding it by a
+// specialization constant took about a fifth off pipeline creation on
+// lavapipe.
 //
 // The including shader defines, before including this file:
-//   BvhNode bvhFetchNode(uint index);    // with STRATA_BVH2 defined
+//   BvhNode bvhFetchNode(uint index);    // with STRATA_BVH2
 //   BvhNode4 bvhFetchNode4(uint index);  // without
-// STRATA_BVH2 (a compile-time define: the *_bvh2 shader variants) selects
-// the binary traversal; otherwise the four-wide one. Compiling the unused one
-// out rather than folding it by a specialization constant took about a
-// fifth off pipeline creation on lavapipe.
-//   TriVerts bvhFetchTri(uint index);   // BVH order
+//   const uint kBvhRegs;                 // SPEC_BVH_REGS, without STRATA_BVH2
+//   TriVerts bvhFetchTri(uint index);    // BVH order
 //   const uint kFeatures;               // SPEC_FEATURES
 //   uint bvhRayHash(vec3 origin, vec3 dir);
 //   bool bvhIsHole(uint tri, float u, float v, uint rayHash);
@@ -38,9 +40,6 @@ const uint kBvhStackSize = 64u;
 // 1/d and (b - o) * (1/d) carrying 2.5 + 0.5 + 0.5 ULP instead of 3 x 0.5.
 const float kBvhSlabScale = 1.00000095367431640625;
 
-// Four-wide traversal: at most 3 pushes per node over fewer than kBvhStackSize
-// BVH2 levels (host/bvh/wide.h); four entries live in registers.
-const uint kBvh4StackSize = 24u;
 const float kBvhFloatMax = 3.402823466e38;
 
 // Per-ray constants of the slab and triangle tests.
@@ -320,9 +319,9 @@ vec4 bvhSlab4(BvhRay r, BvhNode4 n, float tmin, float tmax, out bvec4 hit) {
 // needs at most the wide tree's depth (host/bvh/wide.h) and lives in
 // kBvhRegs variables (SPEC_BVH_REGS: 16, 24 or 32, the host's choice from
 // that depth): a push or pop shifts them (selects; the unused ones are
-// compiled out). On lavapipe an
-// indexed private array is a per-lane scalar loop that runs on every push
-// and pop whether or not a lane takes that branch. Resuming a node
+// compiled out). On lavapipe an indexed private array is a per-lane scalar
+// loop that runs on every push and pop whether or not a lane takes that
+// branch. Resuming a node
 // re-fetches it and re-tests the remaining children against the closest
 // hit so far, so children that moved out of reach are culled.
 #define BVH_PUSH(x) { \
