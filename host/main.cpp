@@ -66,6 +66,11 @@ unsigned long parseUnsigned(const std::string& flag, const std::string& value, u
     return v;
 }
 
+int parseBvhWidth(const std::string& value) {
+    if (value != "2" && value != "4") badFlag("--bvh expects 2 or 4, got '" + value + "'");
+    return value == "2" ? 2 : 4;
+}
+
 double parsePositive(const std::string& flag, const std::string& value, double max, const char* what) {
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
@@ -162,8 +167,7 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
             cmd.settings.filter.radius = static_cast<float>(parsePositive(a, value(), 16, "a radius in pixels"));
             radiusGiven = true;
         } else if (a == "--bvh") {
-            cmd.settings.bvhWidth = static_cast<int>(parseUnsigned(a, value(), 2, 4));
-            if (cmd.settings.bvhWidth == 3) badFlag("--bvh expects 2 or 4, got '3'");
+            cmd.settings.bvhWidth = parseBvhWidth(value());
         } else if (a == "--traversal") {
             const std::string& v = value();
             if (v == "auto") cmd.settings.traversal = strata::Traversal::Auto;
@@ -302,10 +306,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         else if (a == "--max-depth") cmd.maxDepth = parseUnsigned(a, value(), 0, 1024);
         else if (a == "--reference") cmd.reference = value();
         else if (a == "--quick") cmd.quick = true;
-        else if (a == "--bvh") {
-            cmd.bvhWidth = static_cast<int>(parseUnsigned(a, value(), 2, 4));
-            if (cmd.bvhWidth == 3) badFlag("--bvh expects 2 or 4, got '3'");
-        }
+        else if (a == "--bvh") cmd.bvhWidth = parseBvhWidth(value());
         else if (a == "--only") {
             cmd.only = value();
             if (cmd.only != "traversal") badFlag("--only takes 'traversal' (got '" + cmd.only + "')");
