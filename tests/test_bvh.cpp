@@ -541,13 +541,13 @@ void checkWide(const Mesh& m, const Bvh& bvh, const WideBvh& w) {
     std::uint32_t deepest = 0;
     std::size_t badBox = 0, badEmpty = 0;
     struct Item { std::uint32_t node, depth; glm::vec3 lo, hi; };
-    std::vector<Item> todo{{0, 0, glm::vec3(-INFINITY), glm::vec3(INFINITY)}};
+    std::vector<Item> pending{{0, 0, glm::vec3(-INFINITY), glm::vec3(INFINITY)}};
     auto inside = [](glm::vec3 p, glm::vec3 lo, glm::vec3 hi) {
         return glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThanEqual(p, hi));
     };
-    while (!todo.empty()) {
-        const Item it = todo.back();
-        todo.pop_back();
+    while (!pending.empty()) {
+        const Item it = pending.back();
+        pending.pop_back();
         REQUIRE(it.node < w.nodes.size());
         ++reached[it.node];
         const gpu::BvhNode4& wn = w.nodes[it.node];
@@ -570,7 +570,7 @@ void checkWide(const Mesh& m, const Bvh& bvh, const WideBvh& w) {
                     for (const glm::vec3& v : {m.v0[t], m.v1[t], m.v2[t]}) badBox += !inside(v, lo, hi);
                 }
             } else {
-                todo.push_back({c, it.depth + 1, lo, hi});
+                pending.push_back({c, it.depth + 1, lo, hi});
             }
         }
     }

@@ -183,6 +183,14 @@ bool bvhLeafAny(BvhRay r, uint first, uint end, float tmin, float tmax, uint ray
     return false;
 }
 
+// The result of a closest-hit traversal: false (hit left a miss) or true
+// with the hit.
+bool bvhSetHit(float t, uint triangle, float u, float v, inout TraceHit hit) {
+    if (triangle == kNoHit) return false;
+    hit = TraceHit(t, triangle, u, v);
+    return true;
+}
+
 // The empty BVH is a single node with count 0 and leftOrFirst 0 (an interior
 // node's right child is never node 0).
 bool bvhIsEmpty(BvhNode root) {
@@ -192,10 +200,7 @@ bool bvhIsEmpty(BvhNode root) {
 // Closest hit with tmin < t < tmax. On a miss hit.t = -1 and
 // hit.triangle = kNoHit.
 bool bvhTraceClosest2(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
-    hit.t = -1.0;
-    hit.triangle = kNoHit;
-    hit.u = 0.0;
-    hit.v = 0.0;
+    hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
     BvhRay r = bvhMakeRay(origin, dir);
     uint index = 0u;
     BvhNode node = bvhFetchNode(0u);
@@ -238,12 +243,7 @@ bool bvhTraceClosest2(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHi
         index = stack[--sp];
         node = bvhFetchNode(index);
     }
-    if (bestTri == kNoHit) return false;
-    hit.t = bestT;
-    hit.triangle = bestTri;
-    hit.u = bestU;
-    hit.v = bestV;
-    return true;
+    return bvhSetHit(bestT, bestTri, bestU, bestV, hit);
 }
 
 // bvhTraceAny on the BVH2.
@@ -371,10 +371,7 @@ uint bvhVisit4(BvhRay r, uint ref, float tmin, float tmax, out uint next, out ui
 // hit is the one bvhTraceClosest2 finds: the boxes, the slab test and the tie
 // rule are the same, and the result does not depend on the visiting order.
 bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
-    hit.t = -1.0;
-    hit.triangle = kNoHit;
-    hit.u = 0.0;
-    hit.v = 0.0;
+    hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
     BvhRay r = bvhMakeRay(origin, dir);
     uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
     float bestT = tmax;  // stays tmax for anyHit
@@ -409,12 +406,7 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
         if (count == 0u) break;
         BVH_POP(ref);
     }
-    if (bestTri == kNoHit) return false;
-    hit.t = bestT;
-    hit.triangle = bestTri;
-    hit.u = bestU;
-    hit.v = bestV;
-    return true;
+    return bvhSetHit(bestT, bestTri, bestU, bestV, hit);
 }
 
 bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
