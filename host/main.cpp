@@ -29,6 +29,7 @@ constexpr const char* kUsage =
     "usage: strata render SCENE.gltf|.glb [-o OUT.exr|OUT.png]... [--spp N] [--seed S]\n"
     "                     [--max-depth D] [--width W] [--height H] [--camera I] [--device I]\n"
     "                     [--time SECONDS] [--traversal auto|texel|storage] [--bvh 2|4] [--quiet]\n"
+    "                     [--bvh-stack auto|registers|memory]\n"
     "                     [--sampler independent|regular|rotated|stratified|sobol|bluenoise]\n"
     "                     [--filter box|tent|gaussian|blackman-harris] [--filter-radius PIXELS]\n"
     "                     [--mis power|bsdf|light]\n"
@@ -43,7 +44,8 @@ constexpr const char* kUsage =
     "       strata edges [--spp 64] [--sampler NAME|all] [--seed S] [-o TABLE.csv] [--plot PLOT.png]\n"
     "       strata bench SCENE [--width W] [--height H] [--spp N] [--reference REF.exr] [--seed S]\n"
     "                    [--max-depth D] [--reps R] [--camera I] [--device I] [--quick] [--only traversal]\n"
-    "                    [--bvh 2|4] [--json FILE]\n"
+    "                    [--bvh 2|4] [--bvh-stack auto|registers|memory] [--traversal auto|texel|storage]\n"
+    "                    [--json FILE]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
@@ -69,6 +71,20 @@ unsigned long parseUnsigned(const std::string& flag, const std::string& value, u
 int parseBvhWidth(const std::string& value) {
     if (value != "2" && value != "4") badFlag("--bvh expects 2 or 4, got '" + value + "'");
     return value == "2" ? 2 : 4;
+}
+
+strata::Traversal parseTraversal(const std::string& v) {
+    if (v == "auto") return strata::Traversal::Auto;
+    if (v == "texel") return strata::Traversal::Texel;
+    if (v == "storage") return strata::Traversal::Storage;
+    badFlag("--traversal expects auto, texel or storage, got '" + v + "'");
+}
+
+strata::BvhStack parseBvhStack(const std::string& v) {
+    if (v == "auto") return strata::BvhStack::Auto;
+    if (v == "registers") return strata::BvhStack::Registers;
+    if (v == "memory") return strata::BvhStack::Memory;
+    badFlag("--bvh-stack expects auto, registers or memory, got '" + v + "'");
 }
 
 double parsePositive(const std::string& flag, const std::string& value, double max, const char* what) {
@@ -169,11 +185,9 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
         } else if (a == "--bvh") {
             cmd.settings.bvhWidth = parseBvhWidth(value());
         } else if (a == "--traversal") {
-            const std::string& v = value();
-            if (v == "auto") cmd.settings.traversal = strata::Traversal::Auto;
-            else if (v == "texel") cmd.settings.traversal = strata::Traversal::Texel;
-            else if (v == "storage") cmd.settings.traversal = strata::Traversal::Storage;
-            else badFlag("--traversal expects auto, texel or storage, got '" + v + "'");
+            cmd.settings.traversal = parseTraversal(value());
+        } else if (a == "--bvh-stack") {
+            cmd.settings.bvhStack = parseBvhStack(value());
         } else if (!a.empty() && a[0] == '-') badFlag("unknown option '" + a + "' (see 'strata --help')");
         else if (cmd.scene.empty()) cmd.scene = a;
         else badFlag("unexpected argument '" + a + "' (one scene per render)");
@@ -307,6 +321,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
         else if (a == "--reference") cmd.reference = value();
         else if (a == "--quick") cmd.quick = true;
         else if (a == "--bvh") cmd.bvhWidth = parseBvhWidth(value());
+        else if (a == "--traversal") cmd.traversal = parseTraversal(value());
+        else if (a == "--bvh-stack") cmd.bvhStack = parseBvhStack(value());
         else if (a == "--only") {
             cmd.only = value();
             if (cmd.only != "traversal") badFlag("--only takes 'traversal' (got '" + cmd.only + "')");

@@ -61,6 +61,7 @@ TEST_CASE("bad flags are one-line errors with exit 2 and write nothing") {
           "render " + scene + " -o " + (out.path / "a.jpg").string(),
           "render " + scene + o + " --camera 5", "render " + scene + o + " --time -1",
           "render " + scene + o + " --traversal fast", "render " + scene + o + " --bvh 3",
+          "render " + scene + o + " --bvh-stack heap",
           "render " + scene + o + " --bvh", "render", "frobnicate",
           "render " + scene + o + " --sampler regular --spp 10", "render " + scene + o + " --sampler magic",
           "render " + scene + o + " --sampler bluenoise --spp 12",

@@ -209,12 +209,32 @@ TEST_CASE("bench relMSE: zero against a reference of the same seed, positive aga
     }
 }
 
+TEST_CASE("bench --traversal chooses the read mode; texel views and storage buffers find the same hits") {
+    TempDir d;
+    std::vector<nlohmann::json> rays;
+    for (const char* mode : {"texel", "storage"}) {
+        CAPTURE(mode);
+        const Run r = run("bench " + kBox + " --only traversal --width 32 --height 24 --reps 1 --traversal " +
+                          mode + " --json " + (d / "b.json"));
+        CAPTURE(r.output);
+        REQUIRE(r.status == 0);
+        const nlohmann::json j = readJson(d / "b.json")["traversal"];
+        CHECK(j["reads"] == mode);
+        rays.push_back(j["rays"]);
+    }
+    for (const char* set : {"primary", "diffuse"}) CHECK(rays[0][set]["hits"] == rays[1][set]["hits"]);
+    CHECK(rays[0]["occlusion"]["occluded"] == rays[1]["occlusion"]["occluded"]);
+    CHECK(rays[0]["primary"]["hits"].get<int>() > 32 * 24 / 2);
+}
+
 TEST_CASE("bench rejects bad flags and a mismatched reference with one line and exit 2") {
     TempDir d;
     REQUIRE(run("render " + kBox + " --spp 1 --width 16 --height 8 --quiet -o " + (d / "r.exr")).status == 0);
     for (const std::string& args : std::vector<std::string>{
              "bench", "bench " + kBox + " --spp 0", "bench " + kBox + " --width 0", "bench " + kBox + " --bogus",
              "bench " + kBox + " --spp", "bench " + kBox + " --max-depth -1",
+             "bench " + kBox + " --traversal fast", "bench " + kBox + " --bvh 3",
+             "bench " + kBox + " --bvh-stack heap",
              "bench " + kBox + " --quick --reference " + (d / "r.exr"),  // 1024x768 against 16x8
              "bench " + kBox + " --quick --width 16 --height 16 --reference " + (d / "r.exr"),
              "bench " + kBox + " --quick --width 16 --height 8 --reference " + (d / "none.exr"),

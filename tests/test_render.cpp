@@ -90,15 +90,22 @@ TEST_CASE("the image does not depend on how samples are split into submissions")
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("the four-wide and the binary BVH render the same image") {
+TEST_CASE("the four-wide BVH (register or memory stack) and the binary BVH render the same image") {
     RenderSettings s = small(2, 4, 5);
+    s.bvhStack = BvhStack::Registers;
     Rendered four = renderFile("scenes/cornell-box.gltf", s);
+    s.bvhStack = BvhStack::Memory;
+    Rendered memory = renderFile("scenes/cornell-box.gltf", s);
     s.bvhWidth = 2;
     Rendered two = renderFile("scenes/cornell-box.gltf", s);
     CHECK(four.result.bvhWidth == 4);
+    CHECK(std::string(four.result.bvhStack) == "registers");
+    CHECK(memory.result.bvhWidth == 4);
+    CHECK(std::string(memory.result.bvhStack) == "memory");
     CHECK(two.result.bvhWidth == 2);
-    const auto ma = four.result.film.mean(), mb = two.result.film.mean();
+    const auto ma = four.result.film.mean(), mb = two.result.film.mean(), mm = memory.result.film.mean();
     CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(ma.data(), mm.data(), ma.size() * sizeof(float)) == 0);
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -49,12 +49,15 @@ std::vector<gpu::TraceRay> randomRays(std::size_t count, std::uint32_t seed) {
     return rays;
 }
 
-void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, Traversal mode, int width = 4) {
-    INFO("BVH" << width << (mode == Traversal::Texel ? ", texel reads" : ", storage reads"));
+void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, Traversal mode, int width = 4,
+                    BvhStack stack = BvhStack::Registers) {
+    INFO("BVH" << width << (mode == Traversal::Texel ? ", texel reads" : ", storage reads")
+               << (stack == BvhStack::Memory ? ", memory stack" : ""));
     Bvh bvh;
     bvh.nodes = g.nodes;
-    DeviceTracer tracer(context(), g, mode, width);
+    DeviceTracer tracer(context(), g, mode, width, stack);
     REQUIRE(tracer.bvhWidth() == width);
+    CHECK(tracer.memoryStack() == (width == 4 && stack == BvhStack::Memory));
     const auto hits = tracer.trace(rays, gpu::kTraceClosest);
     const auto occluded = tracer.trace(rays, gpu::kTraceAny);
     std::size_t mismatches = 0, hitCount = 0;
@@ -87,6 +90,9 @@ TEST_CASE("shader traversal matches the CPU BVH on random rays (BVH4 and BVH2, t
         compareWithCpu(g, rays, Traversal::Texel, width);
         compareWithCpu(g, rays, Traversal::Storage, width);
     }
+    // The four-wide traversal with its stack in an array (GPUs' default).
+    compareWithCpu(g, rays, Traversal::Texel, 4, BvhStack::Memory);
+    compareWithCpu(g, rays, Traversal::Storage, 4, BvhStack::Memory);
     CHECK(vk::validationMessageCount() == 0);
 }
 
@@ -164,5 +170,6 @@ TEST_CASE("four-wide traversal of a deep tree (24 or 32 stack registers) matches
     CHECK(tracer.bvhRegs() > 16);
     compareWithCpu(g, rays, Traversal::Texel, 4);
     compareWithCpu(g, rays, Traversal::Storage, 4);
+    compareWithCpu(g, rays, Traversal::Storage, 4, BvhStack::Memory);
     CHECK(vk::validationMessageCount() == 0);
 }

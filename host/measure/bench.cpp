@@ -91,7 +91,7 @@ struct Upload {
 // passes each).
 nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& gpu, const Framing& fr,
                                         const BenchCommand& cmd, Upload& upload) {
-    DeviceTracer tracer(ctx, gpu, Traversal::Auto, cmd.bvhWidth);
+    DeviceTracer tracer(ctx, gpu, cmd.traversal, cmd.bvhWidth, cmd.bvhStack);
     const glm::vec3 lo = fr.lo, hi = fr.hi;
     const Camera& cam = fr.camera;
     const float eps = 1e-4f * glm::length(hi - lo);
@@ -141,6 +141,7 @@ nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& 
     j["reps"] = cmd.reps;
     j["reads"] = readsName(tracer.deviceScene().reads);
     j["bvh_width"] = tracer.bvhWidth();
+    j["bvh_stack"] = bvhStackName(tracer.deviceScene());
     j["secondary_origin_offset"] = eps;
     j["occlusion_point"] = {light.x, light.y, light.z};
     j["rays"] = {
@@ -197,9 +198,9 @@ std::string benchText(const nlohmann::ordered_json& j) {
                 b["wide_depth"].get<int>(), num(b["wide_bytes"]) / 1048576.0);
     o += "memory: " + memoryText(j["memory"]) + "\n";
     const auto& t = j["traversal"];
-    o += format("traversal (%dx%d, BVH%d, %s reads, median of %d):\n", t["image"][0].get<int>(),
-                t["image"][1].get<int>(), t["bvh_width"].get<int>(), t["reads"].get<std::string>().c_str(),
-                t["reps"].get<int>());
+    o += format("traversal (%dx%d, BVH%d, stack in %s, %s reads, median of %d):\n", t["image"][0].get<int>(),
+                t["image"][1].get<int>(), t["bvh_width"].get<int>(), t["bvh_stack"].get<std::string>().c_str(),
+                t["reads"].get<std::string>().c_str(), t["reps"].get<int>());
     for (const char* set : {"primary", "diffuse", "occlusion"}) {
         const auto& r = t["rays"][set];
         const bool occl = r.contains("occluded");

@@ -17,6 +17,8 @@
 #include <cstdint>
 #include <string>
 
+#include "render/device_scene.h"
+
 namespace strata {
 
 struct BenchCommand {
@@ -31,6 +33,8 @@ struct BenchCommand {
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
     bool quick = false;               // small dispatch section, for tests
     int bvhWidth = 4;                 // --bvh: 4 (four-wide where it fits) or 2
+    Traversal traversal = Traversal::Auto;  // --traversal: texel views or storage buffers
+    BvhStack bvhStack = BvhStack::Auto;     // --bvh-stack: the four-wide traversal's stack
     std::string only;                 // "traversal": start-up, BVH and traversal sections only
     std::string json;
     bool validation = false;

@@ -25,6 +25,8 @@ RenderSettings settingsFor(const BenchCommand& cmd, int width, int height, std::
     s.seed = cmd.seed;
     s.maxDepth = cmd.maxDepth;
     s.bvhWidth = cmd.bvhWidth;
+    s.traversal = cmd.traversal;
+    s.bvhStack = cmd.bvhStack;
     s.warmUp = true;
     return s;
 }

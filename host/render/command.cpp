@@ -49,7 +49,7 @@ int runRender(const RenderCommand& cmd) {
                      ctx.info.type.c_str(), ctx.info.driver.c_str());
 
     const DeviceScene dev = uploadAndRelease(ctx, gpu, cmd.settings.traversal, cmd.settings.bvhWidth,
-                                             cmd.settings.limits);
+                                             cmd.settings.bvhStack, cmd.settings.limits);
     RenderResult result = render(ctx, dev, gpu, scene.cameras[cmd.camera], cmd.settings);
 
     StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs, deviceMs};

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include <strata_spirv.h>
+
 #include "util/error.h"
 
 namespace strata {
@@ -69,7 +71,8 @@ void release(const std::vector<T>&) {}
 
 // G is GpuScene (each large array freed once uploaded) or const GpuScene (kept).
 template <class G>
-DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidth, const SceneLimits& overrides) {
+DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidth, BvhStack stack,
+                   const SceneLimits& overrides) {
     const auto t0 = std::chrono::steady_clock::now();
     const SceneLimits limits = sceneLimits(ctx, overrides);
     const std::uint32_t regs = bvhRegsFor(scene.wideDepth);
@@ -79,6 +82,8 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     d.reads = chooseReads(limits, scene, mode, wide, ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU);
     d.wide = wide;
     d.bvhRegs = wide ? regs : 16u;
+    const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    d.memoryStack = wide && (stack == BvhStack::Memory || (stack == BvhStack::Auto && !cpu));
     d.triangles = scene.tris.size();
     d.nodeCount = wide ? scene.wide.size() : scene.nodes.size();
     for (const ArrayUse& a : arrayUses(scene, wide)) d.packedBytes += a.bytes;
@@ -188,20 +193,35 @@ void bindArray(vk::Kernel& kernel, std::uint32_t storageBinding, std::uint32_t t
     kernel.bind(texelBinding, a.texel);
 }
 
-DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth,
+DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth, BvhStack stack,
                         const SceneLimits& overrides) {
-    return upload(ctx, scene, mode, bvhWidth, overrides);
+    return upload(ctx, scene, mode, bvhWidth, stack, overrides);
 }
 
-DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth,
+DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth, BvhStack stack,
                              const SceneLimits& overrides) {
-    return upload(ctx, scene, mode, bvhWidth, overrides);
+    return upload(ctx, scene, mode, bvhWidth, stack, overrides);
 }
 
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {
     spec.resize(std::max<std::size_t>(spec.size(), gpu::SPEC_BVH_REGS + 1), 0u);
     spec[gpu::SPEC_TEXEL_FETCH] = scene.reads;
     spec[gpu::SPEC_BVH_REGS] = scene.bvhRegs;
+}
+
+const char* bvhStackName(const DeviceScene& scene) {
+    return scene.wide && !scene.memoryStack ? "registers" : "memory";
+}
+
+std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace) {
+    using Span = std::span<const std::uint32_t>;
+    if (!scene.wide)
+        return pathtrace ? Span(kSpirvPtr_pathtrace_bvh2, kSpirvSize_pathtrace_bvh2 / 4)
+                         : Span(kSpirvPtr_trace_bvh2, kSpirvSize_trace_bvh2 / 4);
+    if (scene.memoryStack)
+        return pathtrace ? Span(kSpirvPtr_pathtrace_bvh4m, kSpirvSize_pathtrace_bvh4m / 4)
+                         : Span(kSpirvPtr_trace_bvh4m, kSpirvSize_trace_bvh4m / 4);
+    return pathtrace ? Span(kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4) : Span(kSpirvPtr_trace, kSpirvSize_trace / 4);
 }
 
 void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& d) {

@@ -20,6 +20,12 @@ namespace strata {
 
 enum class Traversal { Auto, Texel, Storage };
 
+// Where the four-wide traversal keeps its stack (shaders/lib/bvh.glsl): in
+// registers (CPU devices: lavapipe runs an indexed array as a scalar loop per
+// lane) or in an indexed array (GPUs, where shifting registers costs more).
+// Auto: registers on CPU devices, memory elsewhere.
+enum class BvhStack { Auto, Registers, Memory };
+
 // The limits a scene is planned and bound against. sceneLimits() gives the
 // device's; a nonzero override lowers one (tests reach the large-scene path
 // on small scenes that way).
@@ -74,6 +80,7 @@ struct DeviceScene {
     std::uint32_t reads = gpu::kReadsStorage;  // SPEC_TEXEL_FETCH
     bool wide = false;   // `nodes` holds GpuScene::wide, else the BVH2 (the *_bvh2 shaders)
     std::uint32_t bvhRegs = 16;  // SPEC_BVH_REGS with `wide`
+    bool memoryStack = false;    // with `wide`: the *_bvh4m shaders (stack in an array)
     std::uint64_t triangles = 0;  // counts of what was uploaded (the GpuScene's
     std::uint64_t nodeCount = 0;  // arrays may be released since)
     std::uint64_t packedBytes = 0;  // bytes of the arrays uploaded, as packed
@@ -85,7 +92,7 @@ struct DeviceScene {
 // bvhWidth 4: the four-wide BVH unless the scene's wide tree
 // is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2. `overrides` as sceneLimits.
 DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth = 4,
-                        const SceneLimits& overrides = {});
+                        BvhStack stack = BvhStack::Auto, const SceneLimits& overrides = {});
 
 // The same, and frees each of the scene's large arrays (BVH, triangles,
 // shading, texture coordinates, tangents, texture and environment texels) as
@@ -93,12 +100,21 @@ DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal
 // What the renderer still reads of `scene` (materials, emitters, lights,
 // features, counts) stays.
 DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth = 4,
-                             const SceneLimits& overrides = {});
+                             BvhStack stack = BvhStack::Auto, const SceneLimits& overrides = {});
 
 // The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,
 // SPEC_BVH_REGS) into `spec`, grown as needed. The BVH width is the shader's:
 // pathtrace/trace, or pathtrace_bvh2/trace_bvh2 when !scene.wide.
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec);
+
+// The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp built for the
+// scene's traversal: BVH2, four-wide with registers, or four-wide with an
+// array stack.
+std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace);
+
+// "registers" (four-wide, register stack) or "memory" (an indexed array: the
+// four-wide memory stack, and always the BVH2's).
+const char* bvhStackName(const DeviceScene& scene);
 
 // The traversal's inputs: nodes, triangles, their texel views, and what the
 // alpha test reads (shading, materials, texture coordinates, texture refs and

@@ -51,7 +51,7 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                     const RenderSettings& s, const Checkpoints& checkpoints) {
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
-    const DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth, s.limits);
+    const DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth, s.bvhStack, s.limits);
     return render(ctx, dev, scene, camera, s, checkpoints);
 }
 
@@ -92,10 +92,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     spec[SPEC_FEATURES] = scene.features.bits;
     spec[SPEC_MIS] = s.mis;
     spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
-    const std::span<const std::uint32_t> spirv =
-        dev.wide ? std::span<const std::uint32_t>(kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4)
-                 : std::span<const std::uint32_t>(kSpirvPtr_pathtrace_bvh2, kSpirvSize_pathtrace_bvh2 / 4);
-    vk::Kernel kernel(ctx, spirv,
+    vk::Kernel kernel(ctx, traversalShader(dev, true),
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);
     bindTraversal(kernel, dev);
@@ -110,6 +107,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     result.film = Film(s.width, s.height);
     result.reads = dev.reads;
     result.bvhWidth = dev.wide ? 4 : 2;
+    result.bvhStack = bvhStackName(dev);
     result.uploadMs = dev.uploadMs;
     result.sceneBytes = dev.packedBytes;
     result.sceneDeviceBytes = dev.deviceBytes;

@@ -24,6 +24,7 @@ struct RenderSettings {
     bool progress = false;              // progress line on stderr
     Traversal traversal = Traversal::Auto;
     int bvhWidth = 4;                   // 4: four-wide BVH where it fits (render/device_scene.h), 2: BVH2
+    BvhStack bvhStack = BvhStack::Auto; // the four-wide traversal's stack (render/device_scene.h)
     std::uint32_t sampler = gpu::kSamplerSobol;  // render/sampler_kind.h; default: Sobol,
                                         // the best time-to-error measured (README, Sampling)
     PixelFilter filter;                 // pixel reconstruction filter (box, radius 0.5)
@@ -72,6 +73,7 @@ struct RenderResult {
     std::uint32_t warmUpPixels = 0;
     std::uint32_t reads = gpu::kReadsStorage;  // SPEC_TEXEL_FETCH: how the scene's arrays were read
     int bvhWidth = 2;                   // the BVH the shader traversed
+    const char* bvhStack = "memory";    // its stack: bvhStackName (render/device_scene.h)
     std::uint64_t sceneBytes = 0;       // the scene's arrays as packed (DeviceScene::packedBytes)
     std::uint64_t sceneDeviceBytes = 0; // device memory holding them
     std::uint64_t peakDeviceBytes = 0;  // most device memory the process held at once, by the

@@ -9,8 +9,9 @@
 
 namespace strata {
 
-DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth)
-    : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal, bvhWidth)) {
+DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth,
+                           BvhStack stack)
+    : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal, bvhWidth, stack)) {
     using namespace gpu;
     std::vector<std::uint32_t> spec(SPEC_BVH_REGS + 1, 0u);
     setTraversalSpec(scene_, spec);
@@ -19,10 +20,7 @@ DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traver
     bindings.insert(bindings.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                      {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
     kernel_ = std::make_unique<vk::Kernel>(
-        ctx,
-        scene_.wide ? std::span<const std::uint32_t>(kSpirvPtr_trace, kSpirvSize_trace / 4)
-                    : std::span<const std::uint32_t>(kSpirvPtr_trace_bvh2, kSpirvSize_trace_bvh2 / 4),
-        std::move(bindings), sizeof(TraceParams), spec);
+        ctx, traversalShader(scene_, false), std::move(bindings), sizeof(TraceParams), spec);
     bindTraversal(*kernel_, scene_);
 }
 

@@ -15,8 +15,9 @@ namespace strata {
 // many times.
 class DeviceTracer {
 public:
-    // bvhWidth: as uploadScene (render/device_scene.h).
-    DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth = 4);
+    // bvhWidth, stack: as uploadScene (render/device_scene.h).
+    DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth = 4,
+                 BvhStack stack = BvhStack::Auto);
     ~DeviceTracer();
 
     // `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h). Runs
@@ -28,6 +29,7 @@ public:
     const DeviceScene& deviceScene() const { return scene_; }
     int bvhWidth() const { return scene_.wide ? 4 : 2; }
     std::uint32_t bvhRegs() const { return scene_.bvhRegs; }
+    bool memoryStack() const { return scene_.memoryStack; }
 
 private:
     const vk::Context& ctx_;

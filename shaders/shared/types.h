@@ -46,6 +46,9 @@ struct BvhNode4 {
 STRATA_CONST(uint, kBvhChildEmpty, 0xffffffffu);
 STRATA_CONST(uint, kBvhLeafBit, 0x80000000u);
 STRATA_CONST(uint, kBvhLeafCountBits, 5u);
+// Deepest four-wide tree the shaders traverse (host/bvh/wide.h): the stack
+// bound of the four-wide traversals; deeper trees take the BVH2.
+STRATA_CONST(uint, kBvhMaxWideDepth, 32u);
 // First triangle of a leaf reference: below this (kBvhChildEmpty stays unique).
 STRATA_CONST(uint, kBvhMaxLeafFirst, (1u << (31u - kBvhLeafCountBits)) - 1u);
 
