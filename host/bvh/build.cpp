@@ -421,8 +421,13 @@ void Builder::buildTask(const Task& task, Subtree& out) {
     const std::uint32_t n = task.end - task.begin;
     BinSet bins(bins_);
     if (n < kTaskMinPrims) {
-        out.nodes.data = arena_.take(2 * std::size_t(n) - 1);
+        const std::size_t taken = 2 * std::size_t(n) - 1;
+        out.nodes.data = arena_.take(taken);
         buildSerial(task, out.nodes, out.maxDepth, bins);
+        // The unused tail of the range goes back to the kernel: on huge pages
+        // a neighbour's writes would otherwise keep it resident (the whole
+        // arena, twice the nodes built).
+        discardPages(out.nodes.data + out.nodes.size, (taken - out.nodes.size) * sizeof(gpu::BvhNode));
         writeTriIndices(task.begin, task.end);
         return;
     }
@@ -481,14 +486,22 @@ void layout(Subtree& t, std::uint32_t base, std::vector<gpu::BvhNode>& out,
 
 Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
              const std::vector<glm::vec3>& v2, const BvhBuildOptions& options) {
-    const auto start = std::chrono::steady_clock::now();
     if (v0.size() != v1.size() || v0.size() != v2.size()) {
         throw std::invalid_argument("buildBvh: vertex arrays differ in length");
     }
-    if (v0.size() >= std::size_t(gpu::kNoHit)) {
+    TriangleVertices view;
+    const std::vector<glm::vec3>* arrays[3] = {&v0, &v1, &v2};
+    for (int k = 0; k < 3; ++k) view.base[k] = reinterpret_cast<const std::byte*>(arrays[k]->data());
+    view.count = v0.size();
+    return buildBvh(view, options);
+}
+
+Bvh buildBvh(const TriangleVertices& tris, const BvhBuildOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    if (tris.count >= std::size_t(gpu::kNoHit)) {
         throw std::invalid_argument("buildBvh: too many triangles");
     }
-    const std::uint32_t n = std::uint32_t(v0.size());
+    const std::uint32_t n = std::uint32_t(tris.count);
 
     Bvh bvh;
     if (n == 0) {
@@ -511,9 +524,7 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
             Task& part = parts[c];
             for (std::uint32_t i = c * kChunkPrims, e = std::min(n, i + kChunkPrims); i < e; ++i) {
                 Box b;
-                b.grow(toV4(v0[i]));
-                b.grow(toV4(v1[i]));
-                b.grow(toV4(v2[i]));
+                for (int k = 0; k < 3; ++k) b.grow(toV4(tris.vertex(i, k)));
                 part.box.grow(b);
                 b.lo[3] = std::bit_cast<float>(i);
                 b.hi[3] = 0.0f;
@@ -539,6 +550,7 @@ Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
         Subtree tree;
         builder.buildTask(root, tree);
         pool.drain();
+        prims.reset();  // not read again; freed before the output nodes exist
 
         // Depth-first layout: the parallel top first, then the built
         // subtrees copied in parallel with their node indices offset.

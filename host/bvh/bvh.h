@@ -1,7 +1,9 @@
 // Binned SAH BVH2 over triangles, flattened depth-first into the 32-byte
 // nodes shared with GLSL (shaders/shared/types.h).
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -49,6 +51,23 @@ struct Bvh {
 // count == 0 && leftOrFirst == 0 as a miss before testing its box.
 Bvh buildBvh(const std::vector<glm::vec3>& v0, const std::vector<glm::vec3>& v1,
              const std::vector<glm::vec3>& v2, const BvhBuildOptions& options = {});
+
+// The builder's view of its input without a copy: vertex k of triangle i is
+// the glm::vec3 at base[k] + i * stride bytes (an array of structs holding
+// the three vertices, or three arrays with stride sizeof(glm::vec3)).
+struct TriangleVertices {
+    const std::byte* base[3] = {nullptr, nullptr, nullptr};
+    std::size_t stride = sizeof(glm::vec3);
+    std::size_t count = 0;
+    glm::vec3 vertex(std::size_t i, int k) const {
+        glm::vec3 v;
+        std::memcpy(&v, base[k] + i * stride, sizeof v);
+        return v;
+    }
+};
+
+// The same over a view; what buildBvh above calls.
+Bvh buildBvh(const TriangleVertices& triangles, const BvhBuildOptions& options = {});
 
 struct Ray {
     glm::vec3 origin;

@@ -37,9 +37,8 @@ int runRender(const RenderCommand& cmd) {
                             std::to_string(scene.cameras.size()) + " camera(s))");
 
     t0 = std::chrono::steady_clock::now();
-    GpuScene gpu = packScene(scene);
+    GpuScene gpu = packSceneAndRelease(scene, {}, cmd.settings.bvhWidth);
     const double packMs = msSince(t0);
-    releaseGeometry(scene);  // packed into `gpu`
 
     t0 = std::chrono::steady_clock::now();
     vk::Context ctx({cmd.device, cmd.validation});

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
+#include <type_traits>
 
 #include <strata_spirv.h>
 
@@ -77,6 +79,9 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     const SceneLimits limits = sceneLimits(ctx, overrides);
     const std::uint32_t regs = bvhRegsFor(scene.wideDepth);
     const bool wide = bvhWidth == 4 && regs > 0 && !scene.wide.empty();
+    if (!wide && scene.nodes.empty())
+        throw std::logic_error("uploadScene: the scene was packed without its BVH2 (packSceneAndRelease, bvhWidth 4)");
+    constexpr bool consume = !std::is_const_v<G>;  // each array released as it is copied
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     DeviceScene d;
     d.reads = chooseReads(limits, scene, mode, wide, ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU);
@@ -87,20 +92,23 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     d.triangles = scene.tris.size();
     d.nodeCount = wide ? scene.wide.size() : scene.nodes.size();
     for (const ArrayUse& a : arrayUses(scene, wide)) d.packedBytes += a.bytes;
+    // The tree not traversed is released first, the other once on the device.
     if (wide) {
-        d.nodes = uploadArray(ctx, scene.wide, limits);
+        release(scene.nodes);
+        d.nodes = uploadArray(ctx, scene.wide, limits, consume);
     } else {
-        d.nodes = uploadArray(ctx, scene.nodes, limits);
+        release(scene.wide);
+        d.nodes = uploadArray(ctx, scene.nodes, limits, consume);
     }
     release(scene.wide);
     release(scene.nodes);
-    d.tris = uploadArray(ctx, scene.tris, limits);
+    d.tris = uploadArray(ctx, scene.tris, limits, consume);
     release(scene.tris);
-    d.shading = uploadArray(ctx, scene.shading, limits);
+    d.shading = uploadArray(ctx, scene.shading, limits, consume);
     release(scene.shading);
-    d.texcoords = uploadArray(ctx, scene.texcoords, limits);
+    d.texcoords = uploadArray(ctx, scene.texcoords, limits, consume);
     release(scene.texcoords);
-    d.tangents = uploadArray(ctx, scene.tangents, limits);
+    d.tangents = uploadArray(ctx, scene.tangents, limits, consume);
     release(scene.tangents);
     d.emitters = uploadArray(ctx, scene.emitters, limits);
     d.materials = vk::uploadVector(ctx, scene.materials, storage);
@@ -178,9 +186,11 @@ const char* readsName(std::uint32_t reads) {
     return reads == gpu::kReadsTexelAll ? "texel-all" : reads == gpu::kReadsTexelBvh ? "texel" : "storage";
 }
 
-DeviceArray uploadArray(const vk::Context& ctx, std::span<const std::byte> bytes, const SceneLimits& limits) {
+DeviceArray uploadArray(const vk::Context& ctx, std::span<const std::byte> bytes, const SceneLimits& limits,
+                        bool releaseSource) {
     DeviceArray a;
-    a.buffer = vk::uploadBuffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    a.buffer = vk::uploadBuffer(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+                                releaseSource);
     const VkDeviceSize size = a.buffer.size();  // a multiple of 16, at least 16
     a.storageRange = std::max<VkDeviceSize>(kTexel, std::min<VkDeviceSize>(size, limits.storageRange) & ~(kTexel - 1));
     const VkDeviceSize texelRange = std::min<VkDeviceSize>(size, std::max<std::uint64_t>(1, limits.texelElements) * kTexel);

@@ -58,11 +58,14 @@ struct DeviceArray {
     vk::TexelView texel;  // RGBA32UI
 };
 
-DeviceArray uploadArray(const vk::Context& ctx, std::span<const std::byte> bytes, const SceneLimits& limits);
+// releaseSource as vk::uploadBuffer: the bytes are read no more.
+DeviceArray uploadArray(const vk::Context& ctx, std::span<const std::byte> bytes, const SceneLimits& limits,
+                        bool releaseSource = false);
 
 template <class T>
-DeviceArray uploadArray(const vk::Context& ctx, const std::vector<T>& v, const SceneLimits& limits) {
-    return uploadArray(ctx, std::as_bytes(std::span<const T>(v)), limits);
+DeviceArray uploadArray(const vk::Context& ctx, const std::vector<T>& v, const SceneLimits& limits,
+                        bool releaseSource = false) {
+    return uploadArray(ctx, std::as_bytes(std::span<const T>(v)), limits, releaseSource);
 }
 
 // Binds the array's storage range at `storageBinding` and its view at `texelBinding`.

@@ -60,6 +60,14 @@ struct GpuScene {
 //   environment  pi R^2 * 4 pi * (solid-angle mean of Y(L))   (as pbrt-v4)
 GpuScene packScene(const Scene& scene, const BvhBuildOptions& options = {});
 
+// The same, consuming the scene's geometry (releaseGeometry(scene) done):
+// each page of the triangles is handed back as soon as it has been read, so
+// packing a large scene needs little more memory than the packed arrays.
+// bvhWidth 4 (the traversal the scene will get, as uploadScene's) also drops
+// `nodes`, the BVH2, once the four-wide tree is built, where that tree is
+// shallow enough to be traversed; bvhWidth 2 keeps it.
+GpuScene packSceneAndRelease(Scene& scene, const BvhBuildOptions& options = {}, int bvhWidth = 4);
+
 // Fills FrameUniforms.counts.x and the env* members from the packed scene.
 void setLightUniforms(gpu::FrameUniforms& frame, const GpuScene& scene);
 

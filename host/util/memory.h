@@ -6,6 +6,7 @@
 
 #include <sys/mman.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 namespace strata {
 
@@ -34,20 +35,22 @@ inline void adviseHugePages(const void* p, std::size_t bytes) {
 #endif
 }
 
+// Hands the whole pages inside [p, p + bytes) back to the kernel
+// (MADV_DONTNEED): the resident set shrinks and the bytes there read as zero
+// afterwards. For the consumed front of a large array that is read no more;
+// partial pages at either end (and so any allocator header) are kept.
+inline void discardPages(const void* p, std::size_t bytes) {
+    const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+    const std::uintptr_t b = (std::uintptr_t(p) + page - 1) & ~(page - 1);
+    const std::uintptr_t e = (std::uintptr_t(p) + bytes) & ~(page - 1);
+    if (e > b) madvise(reinterpret_cast<void*>(b), e - b, MADV_DONTNEED);
+}
+
 // v.reserve(n), the new storage advised for huge pages before anything touches it.
 template <class T>
 void reserveHuge(std::vector<T>& v, std::size_t n) {
     v.reserve(n);
     adviseHugePages(v.data(), v.capacity() * sizeof(T));
-}
-
-// n value-initialised elements on huge pages (reserveHuge, then resize).
-template <class T>
-std::vector<T> hugeVector(std::size_t n) {
-    std::vector<T> v;
-    reserveHuge(v, n);
-    v.resize(n);
-    return v;
 }
 
 }  // namespace strata

@@ -157,20 +157,23 @@ void OneShot::submitAndWait(double timeoutSeconds) {
     VK_CHECK(r);
 }
 
-Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage) {
+Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage,
+                    bool releaseSource) {
     const VkDeviceSize size = std::max<VkDeviceSize>(16, (bytes.size() + 15) & ~VkDeviceSize(15));
     Buffer buffer(ctx, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     auto fill = [&](void* dst, VkDeviceSize offset, VkDeviceSize n) {
         const VkDeviceSize data = offset < bytes.size() ? std::min<VkDeviceSize>(n, bytes.size() - offset) : 0;
         if (data > 0) std::memcpy(dst, bytes.data() + offset, data);
         if (data < n) std::memset(static_cast<std::byte*>(dst) + data, 0, n - data);
+        if (releaseSource && data > 0) discardPages(bytes.data() + offset, data);
     };
+    const VkDeviceSize chunk = std::min(size, kStagingBytes);
     if (buffer.mapped()) {  // host-visible, coherent device memory: no copy on the device
         adviseHugePages(buffer.mapped(), size);  // host memory on lavapipe, touched here first
-        fill(buffer.mapped(), 0, size);
+        for (VkDeviceSize offset = 0; offset < size; offset += chunk)
+            fill(static_cast<std::byte*>(buffer.mapped()) + offset, offset, std::min(chunk, size - offset));
         return buffer;
     }
-    const VkDeviceSize chunk = std::min(size, kStagingBytes);
     Buffer staging(ctx, chunk, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
     OneShot once(ctx);
     for (VkDeviceSize offset = 0; offset < size; offset += chunk) {

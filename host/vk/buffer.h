@@ -76,8 +76,13 @@ std::uint64_t peakDeviceMemoryBytes();
 // memory is host-visible, else copied through a staging buffer of at most
 // kStagingBytes, reused chunk by chunk. Size is rounded up to 16 bytes and
 // never zero (texel views need >= 1 element); the padding is zero.
+// releaseSource: the caller reads `bytes` no more, so the whole pages of each
+// chunk copied are handed back to the kernel as the copy goes
+// (discardPages): the host never holds a large array twice, also where
+// device memory is host memory (lavapipe).
 inline constexpr VkDeviceSize kStagingBytes = VkDeviceSize(64) << 20;
-Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
+Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage,
+                    bool releaseSource = false);
 
 template <class T>
 Buffer uploadVector(const Context& ctx, const std::vector<T>& v, VkBufferUsageFlags usage) {
