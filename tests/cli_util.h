@@ -19,10 +19,10 @@ struct Run {
     std::string output;  // stdout and stderr together
 };
 
-// Runs `strata ARGS` (a shell command line) and waits for it.
-inline Run run(const std::string& args) {
+// Runs a shell command line and waits for it, stderr merged into the output.
+inline Run runShell(const std::string& command) {
     Run r;
-    FILE* p = popen((std::string(STRATA_EXE) + " " + args + " 2>&1").c_str(), "r");
+    FILE* p = popen((command + " 2>&1").c_str(), "r");
     REQUIRE(p != nullptr);
     std::array<char, 4096> buf;
     std::size_t n;
@@ -30,6 +30,12 @@ inline Run run(const std::string& args) {
     const int raw = pclose(p);
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     return r;
+}
+
+// Runs `strata ARGS` (a shell command line); `env` (NAME=value ...) is set
+// for that run only.
+inline Run run(const std::string& args, const std::string& env = "") {
+    return runShell((env.empty() ? "" : "env " + env + " ") + std::string(STRATA_EXE) + " " + args);
 }
 
 inline std::size_t lines(const std::string& s) {

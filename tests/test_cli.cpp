@@ -96,6 +96,27 @@ TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
     CHECK(d.output.find("0: ") == 0);
 }
 
+TEST_CASE("OpenImageIO is a module loaded for images only; without it an image is a one-line error") {
+    // strata itself does not link OpenImageIO (its libraries' start-up cost
+    // every command ~0.25 s): the executable's dependencies do not name it.
+    const Run deps = runShell("ldd " + std::string(STRATA_EXE));
+    REQUIRE(deps.status == 0);
+    CHECK(deps.output.find("libvulkan") != std::string::npos);
+    CHECK(deps.output.find("OpenImageIO") == std::string::npos);
+    // Reading or writing an image loads it; a missing module fails that one step.
+    TempDir out;
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    const Run r = run("render " + scene + " -o " + (out.path / "c.png").string() + kSmall,
+                      "STRATA_OIIO_MODULE=/nonexistent/libstrata_oiio.so");
+    CAPTURE(r.output);
+    CHECK(r.status == 2);
+    CHECK(lines(r.output) == 1);
+    CHECK(r.output.find("c.png: error: image support (OpenImageIO) could not be loaded") != std::string::npos);
+    CHECK(out.empty());
+    const Run d = run("devices", "STRATA_OIIO_MODULE=/nonexistent/libstrata_oiio.so");
+    CHECK(d.status == 0);  // no image involved
+}
+
 TEST_CASE("--time stops early and records the spp actually reached") {
     TempDir out;
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";

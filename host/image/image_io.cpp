@@ -4,14 +4,15 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <system_error>
 
+#include <dlfcn.h>
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
+#include "oiio/module.h"
 #include "util/error.h"
 
 namespace strata {
@@ -33,41 +34,56 @@ float linearToSrgb(float x) {
 
 namespace {
 
-void writeOne(const std::string& path, const std::string& tmp, int w, int h,
-              const std::vector<float>& rgb, const std::vector<float>* variance) {
-    auto out = OIIO::ImageOutput::create(path);  // format chosen by the real name
-    if (!out) fail(path, "cannot create an image writer: " + OIIO::geterror());
-    const ImageFormat format = outputFormat(path);
-    bool ok;
-    if (format == ImageFormat::Exr && variance) {
-        OIIO::ImageSpec spec(w, h, 6, OIIO::TypeDesc::FLOAT);
-        spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-        spec.attribute("compression", "zip");
-        std::vector<float> six(rgb.size() * 2);
-        for (std::size_t i = 0; i < rgb.size() / 3; ++i)
-            for (int c = 0; c < 3; ++c) {
-                six[i * 6 + c] = rgb[i * 3 + c];
-                six[i * 6 + 3 + c] = (*variance)[i * 3 + c];
-            }
-        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, six.data());
-    } else if (format == ImageFormat::Exr) {
-        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
-        spec.attribute("compression", "zip");
-        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, rgb.data());
+// The module: $STRATA_OIIO_MODULE when set (only there), else where CMake
+// built it, else beside the running executable.
+const oiio::Api* loadModule(std::string& error) {
+    std::vector<std::string> candidates;
+    if (const char* env = std::getenv("STRATA_OIIO_MODULE")) {
+        candidates.push_back(env);
+    } else {
+        candidates.push_back(STRATA_OIIO_MODULE);
+        std::error_code ec;
+        const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+        if (!ec) candidates.push_back((exe.parent_path() / "libstrata_oiio.so").string());
+    }
+    for (const std::string& path : candidates) {
+        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            const char* why = dlerror();
+            if (error.empty()) error = why ? why : path + ": cannot be loaded";
+            continue;
+        }
+        auto entry = reinterpret_cast<const oiio::Api* (*)()>(dlsym(handle, "strata_oiio_api"));
+        const oiio::Api* api = entry ? entry() : nullptr;
+        if (api && api->version == oiio::kApiVersion) return api;
+        error = path + ": not this build's image module";
+    }
+    return nullptr;
+}
+
+void writeOne(const std::string& path, const std::string& tmp, int w, int h, const std::vector<float>& rgb,
+              const std::vector<float>* variance) {
+    const oiio::Api& module = imageModule(path);
+    std::string error;
+    if (outputFormat(path) == ImageFormat::Exr) {
+        error = module.writeExr(path, tmp, w, h, rgb.data(), variance ? variance->data() : nullptr);
     } else {
         std::vector<std::uint8_t> bytes(rgb.size());
         for (std::size_t i = 0; i < rgb.size(); ++i)
             bytes[i] = static_cast<std::uint8_t>(std::lround(linearToSrgb(rgb[i]) * 255.0f));
-        OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-        spec.attribute("oiio:ColorSpace", "sRGB");
-        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+        error = module.writePng(path, tmp, w, h, bytes.data());
     }
-    std::string err = ok ? "" : out->geterror();
-    if (!out->close() && ok) ok = false, err = out->geterror();
-    if (!ok) fail(path, "cannot write image: " + err);
+    if (!error.empty()) fail(path, error);
 }
 
 }  // namespace
+
+const oiio::Api& imageModule(const std::string& path) {
+    static std::string error;
+    static const oiio::Api* api = loadModule(error);
+    if (!api) fail(path, "image support (OpenImageIO) could not be loaded: " + error);
+    return *api;
+}
 
 void writeImages(const std::vector<std::string>& paths, int width, int height,
                  const std::vector<float>& rgb, const std::vector<float>* variance) {
@@ -79,9 +95,11 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
     try {
         for (const auto& path : paths) {
             fs::path p(path);
-            fs::path tmp = p.parent_path() /
-                           ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) +
-                            p.extension().string());
+            std::string name = ".";
+            name += p.stem().string();
+            name += ".tmp" + std::to_string(::getpid());
+            name += p.extension().string();
+            const fs::path tmp = p.parent_path() / name;
             temps.push_back(tmp.string());
             writeOne(path, tmp.string(), width, height, rgb, variance);
         }
@@ -97,22 +115,9 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
 }
 
 Image readImage(const std::string& path) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) {
-        std::string err = OIIO::geterror();
-        std::replace(err.begin(), err.end(), '\n', ' ');
-        fail(path, "cannot read image: " + err);
-    }
-    const OIIO::ImageSpec& spec = in->spec();
     Image img;
-    img.width = spec.width;
-    img.height = spec.height;
-    img.channels = spec.nchannels;
-    img.channelNames = spec.channelnames;
-    img.pixels.resize(static_cast<std::size_t>(img.width) * img.height * img.channels);
-    if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-        fail(path, "cannot read image: " + in->geterror());
-    in->close();
+    const std::string error = imageModule(path).read(path, img);
+    if (!error.empty()) fail(path, error);
     return img;
 }
 

@@ -1,11 +1,16 @@
-// Image files through OpenImageIO. EXR: linear float RGB. PNG: sRGB-encoded
-// 8-bit, clamped. Every file appears whole or not at all: written under a
-// temporary name in the same directory, then renamed.
+// Image files through OpenImageIO, loaded on first use (host/oiio/module.h).
+// EXR: linear float RGB. PNG: sRGB-encoded 8-bit, clamped. Every file
+// appears whole or not at all: written under a temporary name in the same
+// directory, then renamed.
 #pragma once
 #include <string>
 #include <vector>
 
 namespace strata {
+
+namespace oiio {
+struct Api;
+}
 
 struct Image {
     int width = 0;
@@ -43,6 +48,10 @@ RgbImage readRgb(const std::string& path);
 
 // Reads any image OpenImageIO can read, as float. Throws strata::Error.
 Image readImage(const std::string& path);
+
+// The OpenImageIO module, loaded on the first call. Throws strata::Error
+// naming `path` (the file that needed it) when it cannot be loaded.
+const oiio::Api& imageModule(const std::string& path);
 
 // IEC 61966-2-1 sRGB transfer function (linear -> encoded), input clamped to [0,1].
 float linearToSrgb(float linear);

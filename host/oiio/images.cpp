@@ -1,0 +1,77 @@
+// Image files through OpenImageIO (host/oiio/module.h).
+#include <algorithm>
+#include <exception>
+
+#include <OpenImageIO/imageio.h>
+
+#include "oiio/module.h"
+
+namespace strata::oiio {
+namespace {
+
+std::string oneLine(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    return s;
+}
+
+std::string write(const std::string& path, const std::string& tmp, const OIIO::ImageSpec& spec,
+                  OIIO::TypeDesc type, const void* pixels) {
+    auto out = OIIO::ImageOutput::create(path);  // format chosen by the real name
+    if (!out) return "cannot create an image writer: " + oneLine(OIIO::geterror());
+    bool ok = out->open(tmp, spec) && out->write_image(type, pixels);
+    std::string err = ok ? "" : out->geterror();
+    if (!out->close() && ok) ok = false, err = out->geterror();
+    return ok ? "" : "cannot write image: " + oneLine(err);
+}
+
+std::string writeExr(const std::string& path, const std::string& tmp, int w, int h, const float* rgb,
+                     const float* variance) {
+    if (variance) {
+        OIIO::ImageSpec spec(w, h, 6, OIIO::TypeDesc::FLOAT);
+        spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+        spec.attribute("compression", "zip");
+        std::vector<float> six(static_cast<std::size_t>(w) * h * 6);
+        for (std::size_t i = 0; i < six.size() / 6; ++i)
+            for (int c = 0; c < 3; ++c) {
+                six[i * 6 + c] = rgb[i * 3 + c];
+                six[i * 6 + 3 + c] = variance[i * 3 + c];
+            }
+        return write(path, tmp, spec, OIIO::TypeDesc::FLOAT, six.data());
+    }
+    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+    spec.attribute("compression", "zip");
+    return write(path, tmp, spec, OIIO::TypeDesc::FLOAT, rgb);
+}
+
+std::string writePng(const std::string& path, const std::string& tmp, int w, int h, const std::uint8_t* rgb) {
+    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    return write(path, tmp, spec, OIIO::TypeDesc::UINT8, rgb);
+}
+
+std::string read(const std::string& path, Image& img) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return "cannot read image: " + oneLine(OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    img.width = spec.width;
+    img.height = spec.height;
+    img.channels = spec.nchannels;
+    img.channelNames = spec.channelnames;
+    img.pixels.resize(static_cast<std::size_t>(img.width) * img.height * img.channels);
+    if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
+        return "cannot read image: " + oneLine(in->geterror());
+    in->close();
+    return "";
+}
+
+}  // namespace
+
+std::string drawChart(const std::vector<Panel>& panels, int panelWidth, int height, std::vector<float>& rgb);
+
+}  // namespace strata::oiio
+
+extern "C" const strata::oiio::Api* strata_oiio_api() {
+    static const strata::oiio::Api api{strata::oiio::kApiVersion, strata::oiio::writeExr, strata::oiio::writePng,
+                                       strata::oiio::read, strata::oiio::drawChart};
+    return &api;
+}

@@ -1,0 +1,39 @@
+// The OpenImageIO side of strata, built as a module (libstrata_oiio.so) that
+// image/image_io.cpp loads on the first image read or written. Linking
+// OpenImageIO into strata itself cost every command ~0.25 s before main (the
+// static initialisers of the ~260 libraries Debian's OpenImageIO pulls in):
+// `strata devices` took 0.30 s linked, 0.02 s without it.
+//
+// Functions return "" on success, else the error (one line, no file name).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "image/image_io.h"
+#include "measure/plot.h"
+
+namespace strata::oiio {
+
+inline constexpr int kApiVersion = 1;
+
+struct Api {
+    int version = kApiVersion;
+    // Linear float RGB (and variance.R/G/B when `variance` is not null),
+    // zip-compressed, written to `tmp` in the format `path` names (EXR).
+    std::string (*writeExr)(const std::string& path, const std::string& tmp, int width, int height,
+                            const float* rgb, const float* variance);
+    // sRGB-encoded 8-bit RGB written to `tmp` in the format `path` names (PNG).
+    std::string (*writePng)(const std::string& path, const std::string& tmp, int width, int height,
+                            const std::uint8_t* rgb);
+    // Any image OpenImageIO reads, as float, with its channel names.
+    std::string (*read)(const std::string& path, Image& out);
+    // Draws the panels side by side (panelWidth x height each) as display
+    // RGB floats, row 0 at the top.
+    std::string (*chart)(const std::vector<Panel>& panels, int panelWidth, int height, std::vector<float>& rgb);
+};
+
+}  // namespace strata::oiio
+
+// The module's one exported symbol.
+extern "C" const strata::oiio::Api* strata_oiio_api();
