@@ -55,7 +55,8 @@ const oiio::Api* loadModule(std::string& error) {
         }
         auto entry = reinterpret_cast<const oiio::Api* (*)()>(dlsym(handle, "strata_oiio_api"));
         const oiio::Api* api = entry ? entry() : nullptr;
-        if (api && api->version == oiio::kApiVersion) return api;
+        if (api && api->version == oiio::kApiVersion) return api;  // stays loaded
+        dlclose(handle);
         error = path + ": not this build's image module";
     }
     return nullptr;

@@ -83,11 +83,11 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
         throw std::logic_error("uploadScene: the scene was packed without its BVH2 (packSceneAndRelease, bvhWidth 4)");
     constexpr bool consume = !std::is_const_v<G>;  // each array released as it is copied
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     DeviceScene d;
-    d.reads = chooseReads(limits, scene, mode, wide, ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    d.reads = chooseReads(limits, scene, mode, wide, cpu);
     d.wide = wide;
     d.bvhRegs = wide ? regs : 16u;
-    const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     d.memoryStack = wide && (stack == BvhStack::Memory || (stack == BvhStack::Auto && !cpu));
     d.triangles = scene.tris.size();
     d.nodeCount = wide ? scene.wide.size() : scene.nodes.size();

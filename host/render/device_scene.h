@@ -93,13 +93,16 @@ struct DeviceScene {
 };
 
 // bvhWidth 4: the four-wide BVH unless the scene's wide tree
-// is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2. `overrides` as sceneLimits.
+// is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2 (a scene packed by
+// packSceneAndRelease for width 4 has none: std::logic_error). `stack`: the
+// four-wide traversal's (BvhStack). `overrides` as sceneLimits.
 DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth = 4,
                         BvhStack stack = BvhStack::Auto, const SceneLimits& overrides = {});
 
 // The same, and frees each of the scene's large arrays (BVH, triangles,
 // shading, texture coordinates, tangents, texture and environment texels) as
-// soon as it is on the device, so host memory does not hold the scene twice.
+// soon as it is on the device (each array's pages handed back chunk by chunk
+// as they are copied), so host memory does not hold the scene twice.
 // What the renderer still reads of `scene` (materials, emitters, lights,
 // features, counts) stays.
 DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth = 4,
