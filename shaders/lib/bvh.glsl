@@ -426,10 +426,10 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
 // shaders): a stack of child references in an indexed array (local memory),
 // a node's entered children sorted by entry distance, the nearest visited
 // next and the others pushed farthest first, at most 3 per wide level. On an
-// NVIDIA H200 this ran 1.16-1.23x the BVH2 on diffuse rays where the register
-// stack below ran 0.81-0.85x (shifting 16-32 registers per push and pop costs
-// a GPU more than a local-memory store); on lavapipe it runs 0.5x the
-// register stack. Finds the same closest hit (the result does not depend on
+// NVIDIA H200 this ran 1.01-1.23x the BVH2 on diffuse rays (1.16-1.23x from
+// 97k to 10M triangles) where the register stack below ran 0.76-0.85x
+// (shifting 16-32 registers per push and pop costs a GPU more than a
+// local-memory store); on lavapipe it runs 0.5x the register stack. Finds the same closest hit (the result does not depend on
 // the order).
 bool bvhTrace4Sorted(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
     hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
