@@ -38,6 +38,7 @@ std::uint64_t storageOnlyBytes(const GpuScene& g) {
 void checkLargePathMatches(const Scene& scene) {
     const GpuScene g = packScene(scene);
     RenderSettings s;
+    s.traversal = Traversal::Texel;  // the BVH through texel views, the rest as storage
     s.width = 24;
     s.height = 16;
     s.spp = 2;
@@ -47,7 +48,7 @@ void checkLargePathMatches(const Scene& scene) {
     s.limits.storageRange = storageOnlyBytes(g);
     REQUIRE(g.shading.size() * sizeof(gpu::TriShading) > s.limits.storageRange);
     const RenderResult large = render(context(), g, scene.cameras.at(0), s);
-    CHECK(normal.reads != gpu::kReadsTexelAll);
+    CHECK(normal.reads == gpu::kReadsTexelBvh);
     CHECK(large.reads == gpu::kReadsTexelAll);
     CHECK(large.nonFinite == 0);
     CHECK(large.closestRays == normal.closestRays);
@@ -86,8 +87,14 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
     g.shading.resize(1000);  // 48000 bytes
     g.materials.resize(1);
     SceneLimits l{1u << 20, 1u << 20, 1u << 30};
-    CHECK(chooseReads(l, g, Traversal::Auto, false, true) == gpu::kReadsTexelBvh);  // lavapipe
+    CHECK(chooseReads(l, g, Traversal::Auto, false, true) == gpu::kReadsTexelAll);  // lavapipe
     CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsStorage);  // a GPU
+    CHECK(chooseReads(l, g, Traversal::Texel, false, true) == gpu::kReadsTexelBvh);
+    g.shading.resize(2000);   // 96000 bytes: 6000 texels, past a view of 4000 but within the storage range
+    l.texelElements = 4000;
+    CHECK(chooseReads(l, g, Traversal::Auto, false, true) == gpu::kReadsTexelBvh);  // the BVH alone
+    g.shading.resize(1000);
+    l.texelElements = 1u << 20;
     CHECK(chooseReads(l, g, Traversal::Storage, false, true) == gpu::kReadsStorage);
 
     l.storageRange = 16384;  // the triangles and their shading only fit texel views

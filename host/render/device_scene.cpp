@@ -179,6 +179,10 @@ std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Trav
         return gpu::kReadsTexelAll;
     }
     if (mode == Traversal::Texel) return gpu::kReadsTexelBvh;
+    // CPU devices: every array through texel views where they all fit (a
+    // divergent storage load is a scalar loop on lavapipe): path tracing
+    // 1.13x on the Cornell box, 0.98-1.02x elsewhere, against the BVH alone.
+    if (cpuDevice && !beyondTexel) return gpu::kReadsTexelAll;
     return cpuDevice && !bvhBeyondTexel ? gpu::kReadsTexelBvh : gpu::kReadsStorage;
 }
 

@@ -37,9 +37,11 @@ struct SceneLimits {
 
 SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {});
 
-// SPEC_TEXEL_FETCH for `scene` (kReads*). Auto: the BVH through texel views on
-// CPU devices (lavapipe), and every array through them wherever one exceeds
-// limits.storageRange; Texel and Storage force the BVH's reads. Throws
+// SPEC_TEXEL_FETCH for `scene` (kReads*). Auto: every array through texel
+// views on CPU devices (lavapipe; the BVH alone where another array does not
+// fit a texel view), storage elsewhere, and every array through texel views
+// wherever one exceeds limits.storageRange; Texel and Storage force the BVH's
+// reads. Throws
 // strata::Error (one line naming the scene file) when an array exceeds
 // limits.allocation, when an array fits neither a storage descriptor nor a
 // texel view, or when the forced reads cannot address the scene.
