@@ -176,17 +176,15 @@ std::string benchText(const nlohmann::ordered_json& j) {
     o += "features: " + (features.empty() ? std::string("none") : features) + "; camera: " +
          j["camera"].get<std::string>() + "\n";
     const auto& su = j["startup"];
+    o += "start-up: " + startupText(su);
     if (!su.contains("pipeline_ms"))
-        o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms\n",
-                    num(su["load_ms"]), num(su["bvh_build_ms"]), num(su["pack_ms"]), num(su["device_init_ms"]),
-                    num(su["upload_ms"]));
+        o += "\n";
     else
-        o += format("start-up: load %.1f ms, BVH build %.1f ms (pack %.1f ms in all), device %.1f ms, upload %.1f ms,\n"
+        o += format(",\n"
                 "          pipeline %.1f ms (median %.1f of %d), first dispatch %.2f ms device / %.2f ms host "
                 "(%d px of the image);\n"
                 "          at 64^2 a fresh pipeline's first dispatch %.2f ms, later ones %.2f ms\n",
-                num(su["load_ms"]), num(su["bvh_build_ms"]), num(su["pack_ms"]), num(su["device_init_ms"]),
-                num(su["upload_ms"]), num(su["pipeline_ms"]), num(su["pipeline_ms_median"]),
+                num(su["pipeline_ms"]), num(su["pipeline_ms_median"]),
                 su["pipelines_created"].get<int>(), num(su["first_dispatch_device_ms"]),
                 num(su["first_dispatch_host_ms"]), su["first_dispatch_pixels"].get<int>(),
                 num(su["first_dispatch_device_ms_64"]), num(su["steady_dispatch_device_ms_64"]));

@@ -92,24 +92,23 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     d.triangles = scene.tris.size();
     d.nodeCount = wide ? scene.wide.size() : scene.nodes.size();
     for (const ArrayUse& a : arrayUses(scene, wide)) d.packedBytes += a.bytes;
-    // The tree not traversed is released first, the other once on the device.
+    // Each array is handed back as it is copied and released once on the
+    // device; the tree not traversed is released first.
+    auto put = [&](DeviceArray& dst, auto& src) {
+        dst = uploadArray(ctx, src, limits, consume);
+        release(src);
+    };
     if (wide) {
         release(scene.nodes);
-        d.nodes = uploadArray(ctx, scene.wide, limits, consume);
+        put(d.nodes, scene.wide);
     } else {
         release(scene.wide);
-        d.nodes = uploadArray(ctx, scene.nodes, limits, consume);
+        put(d.nodes, scene.nodes);
     }
-    release(scene.wide);
-    release(scene.nodes);
-    d.tris = uploadArray(ctx, scene.tris, limits, consume);
-    release(scene.tris);
-    d.shading = uploadArray(ctx, scene.shading, limits, consume);
-    release(scene.shading);
-    d.texcoords = uploadArray(ctx, scene.texcoords, limits, consume);
-    release(scene.texcoords);
-    d.tangents = uploadArray(ctx, scene.tangents, limits, consume);
-    release(scene.tangents);
+    put(d.tris, scene.tris);
+    put(d.shading, scene.shading);
+    put(d.texcoords, scene.texcoords);
+    put(d.tangents, scene.tangents);
     d.emitters = uploadArray(ctx, scene.emitters, limits);
     d.materials = vk::uploadVector(ctx, scene.materials, storage);
     d.textureRefs = vk::uploadVector(ctx, scene.textureRefs, storage);

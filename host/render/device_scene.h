@@ -41,8 +41,7 @@ SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {
 // views on CPU devices (lavapipe; the BVH alone where another array does not
 // fit a texel view), storage elsewhere, and every array through texel views
 // wherever one exceeds limits.storageRange; Texel and Storage force the BVH's
-// reads. Throws
-// strata::Error (one line naming the scene file) when an array exceeds
+// reads. Throws strata::Error (one line naming the scene file) when an array exceeds
 // limits.allocation, when an array fits neither a storage descriptor nor a
 // texel view, or when the forced reads cannot address the scene.
 std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Traversal mode, bool wide,

@@ -31,4 +31,9 @@ std::string statsText(const nlohmann::json& stats);
 nlohmann::json memoryJson(std::uint64_t scenePackedBytes, std::uint64_t sceneDeviceBytes);
 std::string memoryText(const nlohmann::json& memory);
 
+// "load ... ms, BVH build ... ms (pack ... ms in all), device ... ms, upload
+// ... ms" from a start-up object (load_ms, bvh_build_ms, pack_ms,
+// device_init_ms, upload_ms), as `--stats` and `strata bench` print it.
+std::string startupText(const nlohmann::json& startup);
+
 }  // namespace strata
