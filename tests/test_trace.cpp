@@ -173,3 +173,25 @@ TEST_CASE("four-wide traversal of a deep tree (24 or 32 stack registers) matches
     compareWithCpu(g, rays, Traversal::Storage, 4, BvhStack::Memory);
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_CASE("the trace kernel's mode is a specialization constant: one pipeline per mode, an unknown mode refused") {
+    GpuScene g = packScene(randomSoup(2000, 4));
+    DeviceTracer tracer(context(), g, Traversal::Texel, 4);
+    const auto rays = randomRays(512, 7);
+    // Modes in turn on one tracer, each from its own pipeline (compareWithCpu
+    // checks them against the CPU); the first pipeline still answers after
+    // the second was built.
+    const auto closest = tracer.trace(rays, gpu::kTraceClosest);
+    const auto any = tracer.trace(rays, gpu::kTraceAny);
+    const auto closestAgain = tracer.trace(rays, gpu::kTraceClosest);
+    std::size_t hits = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        hits += closest[i].triangle != gpu::kNoHit;
+        CHECK((any[i].t > 0.0f) == (closest[i].triangle != gpu::kNoHit));
+        CHECK(closestAgain[i].triangle == closest[i].triangle);
+        CHECK(closestAgain[i].t == closest[i].t);
+    }
+    CHECK(hits > rays.size() / 10);
+    CHECK_THROWS_AS(tracer.trace(rays, 3u), std::invalid_argument);
+    CHECK(vk::validationMessageCount() == 0);
+}

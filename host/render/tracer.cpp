@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include <strata_spirv.h>
 
@@ -11,17 +13,26 @@ namespace strata {
 
 DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth,
                            BvhStack stack)
-    : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal, bvhWidth, stack)) {
+    : ctx_(ctx), scene_(uploadScene(ctx, scene, traversal, bvhWidth, stack)), features_(scene.features.bits) {}
+
+vk::Kernel& DeviceTracer::kernel(std::uint32_t mode) {
     using namespace gpu;
-    std::vector<std::uint32_t> spec(SPEC_BVH_REGS + 1, 0u);
-    setTraversalSpec(scene_, spec);
-    spec[SPEC_FEATURES] = scene.features.bits;  // alpha-tested holes are skipped as in pathtrace
-    std::vector<vk::BindingDesc> bindings = sceneBindings();
-    bindings.insert(bindings.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                                     {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-    kernel_ = std::make_unique<vk::Kernel>(
-        ctx, traversalShader(scene_, false), std::move(bindings), sizeof(TraceParams), spec);
-    bindTraversal(*kernel_, scene_);
+    if (mode != kTraceClosest && mode != kTraceAny && mode != kTraceSpawn)
+        throw std::invalid_argument("trace: unknown mode " + std::to_string(mode));
+    std::unique_ptr<vk::Kernel>& k = kernels_[mode];
+    if (!k) {
+        std::vector<std::uint32_t> spec(SPEC_TRACE_MODE + 1, 0u);
+        setTraversalSpec(scene_, spec);
+        spec[SPEC_FEATURES] = features_;  // alpha-tested holes are skipped as in pathtrace
+        spec[SPEC_TRACE_MODE] = mode;
+        std::vector<vk::BindingDesc> bindings = sceneBindings();
+        bindings.insert(bindings.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                         {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+        k = std::make_unique<vk::Kernel>(ctx_, traversalShader(scene_, false), std::move(bindings),
+                                         sizeof(TraceParams), spec);
+        bindTraversal(*k, scene_);
+    }
+    return *k;
 }
 
 DeviceTracer::~DeviceTracer() = default;
@@ -34,8 +45,9 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
     vk::Buffer hitBuf(ctx_, hitBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                       vk::MemoryUse::Device);
     vk::Buffer back(ctx_, hitBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
-    kernel_->bind(BINDING_RAYS, rayBuf);
-    kernel_->bind(BINDING_HITS, hitBuf);
+    vk::Kernel& kern = kernel(mode);
+    kern.bind(BINDING_RAYS, rayBuf);
+    kern.bind(BINDING_HITS, hitBuf);
 
     vk::OneShot submit(ctx_);
     vk::DeviceTimer timer(ctx_);
@@ -47,9 +59,8 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
         for (std::size_t first = 0; first < rays.size(); first += kRaysPerDispatch) {
             TraceParams p{};
             p.count = static_cast<std::uint32_t>(std::min(kRaysPerDispatch, rays.size() - first));
-            p.mode = mode;
             p.first = static_cast<std::uint32_t>(first);
-            kernel_->dispatch(cmd, &p, (p.count + 63) / 64);
+            kern.dispatch(cmd, &p, (p.count + 63) / 64);
         }
         timer.end(cmd);
         vk::recordReadback(cmd, hitBuf, back, hitBytes);

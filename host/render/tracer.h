@@ -11,8 +11,8 @@
 
 namespace strata {
 
-// The scene uploaded once and the kernel built once; trace() may be called
-// many times.
+// The scene uploaded once and one kernel per mode, built on its first use
+// (the mode is a specialization constant); trace() may be called many times.
 class DeviceTracer {
 public:
     // bvhWidth, stack: as uploadScene (render/device_scene.h).
@@ -32,9 +32,12 @@ public:
     bool memoryStack() const { return scene_.memoryStack; }
 
 private:
+    vk::Kernel& kernel(std::uint32_t mode);
+
     const vk::Context& ctx_;
     DeviceScene scene_;
-    std::unique_ptr<vk::Kernel> kernel_;
+    std::uint32_t features_ = 0;
+    std::unique_ptr<vk::Kernel> kernels_[3];  // by mode
 };
 
 // One-shot convenience: upload, trace once, return the hits.

@@ -44,6 +44,7 @@ STRATA_BINDING(SPEC_FEATURES, 3);         // kFeature* bits (types.h): what the 
 STRATA_BINDING(SPEC_MIS, 4);              // kMis* (types.h): how light and BSDF samples combine
 STRATA_BINDING(SPEC_COUNT_RAYS, 5);       // 1: count closest and shadow rays in RenderCounters
 STRATA_BINDING(SPEC_BVH_REGS, 6);         // four-wide traversal stack entries: 16, 24 or 32
+STRATA_BINDING(SPEC_TRACE_MODE, 7);       // trace kernel: kTraceClosest, kTraceAny or kTraceSpawn
 
 #ifdef __cplusplus
 }  // namespace strata::gpu

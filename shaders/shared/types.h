@@ -267,8 +267,8 @@ struct TraceHit {
 
 STRATA_CONST(uint, kNoHit, 0xffffffffu);
 
-// Trace kernel modes. kTraceAny: hit.t = 1 if occluded, else -1.
-// kTraceSpawn: rays come in pairs; ray 2i is traced to its closest hit, then
+// Trace kernel modes (SPEC_TRACE_MODE, one pipeline each). kTraceAny:
+// hit.t = 1 if occluded, else -1. kTraceSpawn: rays come in pairs; ray 2i is traced to its closest hit, then
 // a ray leaves that hit along the direction of ray 2i+1 from the origin the
 // path tracer would use (spawnOrigin), and hit 2i+1 is its closest hit.
 STRATA_CONST(uint, kTraceClosest, 0u);
@@ -278,9 +278,9 @@ STRATA_CONST(uint, kTraceSpawn, 2u);
 // Trace kernel push constants.
 struct TraceParams {
     uint count;         // rays in this dispatch
-    uint mode;          // kTraceClosest, kTraceAny or kTraceSpawn
     uint first;         // index of this dispatch's first ray
-    uint pad0;
+    uint pad0;          // (the mode is SPEC_TRACE_MODE)
+    uint pad1;
 };
 
 // Sampling test kernel (sample_test.comp): draws `count` samples of one GLSL
