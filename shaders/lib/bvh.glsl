@@ -397,22 +397,24 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
     float bestU = 0.0;
     float bestV = 0.0;
     BVH_STACK_DECL;
+    // Every iteration visits a wide node, then, if the nearest child it
+    // enters is a leaf, that leaf's triangles: an iteration runs the node and
+    // the leaf code for all 8 lanes on lavapipe whichever a lane needs, so a
+    // leaf in an iteration of its own cost a whole extra iteration. Entries
+    // popped are always wide nodes (leaves are never pushed).
     uint ref = 15u;  // the root, all children
     for (;;) {
-        if ((ref & kBvhLeafBit) != 0u) {
-            if (bvhVisitLeaf(r, ref, tmin, tmax, rayHash, anyHit, bestT, bestTri, bestU, bestV, hit)) return true;
-        } else {
-            uint next, slot;
-            uint mask = bvhVisit4(r, ref, tmin, bestT, next, slot);
-            if (mask != 0u) {
-                uint rest = mask & ~(1u << slot);
-                if (rest != 0u) BVH_PUSH((ref & ~15u) | rest);
-                ref = bvhEnter(next);
-                continue;
-            }
+        uint next, slot;
+        uint mask = bvhVisit4(r, ref, tmin, bestT, next, slot);
+        uint rest = mask & ~(1u << slot);
+        if (rest != 0u) BVH_PUSH((ref & ~15u) | rest);
+        ref = bvhEnter(next);
+        bool leaf = mask != 0u && (ref & kBvhLeafBit) != 0u;
+        if (leaf && bvhVisitLeaf(r, ref, tmin, tmax, rayHash, anyHit, bestT, bestTri, bestU, bestV, hit)) return true;
+        if (mask == 0u || leaf) {
+            if (count == 0u) break;
+            BVH_POP(ref);
         }
-        if (count == 0u) break;
-        BVH_POP(ref);
     }
     return bvhSetHit(bestT, bestTri, bestU, bestV, hit);
 }
