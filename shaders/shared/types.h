@@ -268,9 +268,10 @@ struct TraceHit {
 STRATA_CONST(uint, kNoHit, 0xffffffffu);
 
 // Trace kernel modes (SPEC_TRACE_MODE, one pipeline each). kTraceAny:
-// hit.t = 1 if occluded, else -1. kTraceSpawn: rays come in pairs; ray 2i is traced to its closest hit, then
-// a ray leaves that hit along the direction of ray 2i+1 from the origin the
-// path tracer would use (spawnOrigin), and hit 2i+1 is its closest hit.
+// hit.t = 1 if occluded, else -1. kTraceSpawn: rays come in pairs; ray 2i
+// is traced to its closest hit, then a ray leaves that hit along the
+// direction of ray 2i+1 from the origin the path tracer would use
+// (spawnOrigin), and hit 2i+1 is its closest hit.
 STRATA_CONST(uint, kTraceClosest, 0u);
 STRATA_CONST(uint, kTraceAny, 1u);
 STRATA_CONST(uint, kTraceSpawn, 2u);
