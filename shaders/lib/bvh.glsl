@@ -384,16 +384,6 @@ uint bvhVisit4(BvhRay r, uint ref, float tmin, float tmax, out uint next, out ui
     return mask;
 }
 
-// One node pass of bvhTrace4: visit wide node entry `ref`, push it back with
-// the children still to visit, and step into the nearest entered child
-// (`leaf`: it is a leaf; mask 0: nothing entered, pop next).
-#define BVH4_NODE_PASS { \
-    mask = bvhVisit4(r, ref, tmin, bestT, next, slot); \
-    uint rest = mask & ~(1u << slot); \
-    if (rest != 0u) BVH_PUSH((ref & ~15u) | rest); \
-    ref = bvhEnter(next); \
-    leaf = mask != 0u && (ref & kBvhLeafBit) != 0u; }
-
 // Closest (anyHit false) or any hit on the four-wide BVH;
 // `anyHit` must be a literal (the call is inlined and folded). The closest
 // hit is the one bvhTraceClosest2 finds: the boxes, the slab test and the tie
@@ -407,23 +397,43 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
     float bestU = 0.0;
     float bestV = 0.0;
     BVH_STACK_DECL;
-    // An iteration makes up to two node passes, then tests the leaf the
-    // last one entered (if its nearest child is a leaf), then pops if the
-    // lane needs a node. lavapipe runs every statement of the loop for all 8
-    // lanes in every iteration, whichever a lane needs, and the leaf loop's
-    // first pass is paid each time: a leaf in an iteration of its own cost a
-    // whole node pass, and one node pass per iteration paid a triangle pass
-    // per node (two passes: 1.10-1.18x on 97k-994k triangles; three: 0.78-
-    // 0.97x of two). Popped entries are always wide nodes (leaves are never
-    // pushed).
-    uint ref = 15u;  // the root, all children
+    // An iteration makes two node passes, then tests the leaf (at most one)
+    // that they entered. lavapipe runs every statement of the loop for all 8
+    // lanes in every iteration, whichever a lane needs, and pays the leaf
+    // loop's first pass each time: a leaf in an iteration of its own cost a
+    // whole node pass, one node pass per iteration a triangle pass per node
+    // (three passes: 0.78-0.97x of two). A lane whose first pass entered a
+    // leaf or nothing pops for its second pass; if that meets a second leaf,
+    // the node goes back on the stack with it (re-tested after the first).
+    // Popped entries are always wide nodes (leaves are never pushed).
+    uint ref = 15u;  // the next node entry to visit, the root first; 0: pop one
     for (;;) {
-        uint next, slot, mask;
-        bool leaf;
-        BVH4_NODE_PASS;
-        if (mask != 0u && !leaf) BVH4_NODE_PASS;
-        if (leaf && bvhVisitLeaf(r, ref, tmin, tmax, rayHash, anyHit, bestT, bestTri, bestU, bestV, hit)) return true;
-        if (mask == 0u || leaf) {
+        uint next, slot;
+        // First pass.
+        uint mask = bvhVisit4(r, ref, tmin, bestT, next, slot);
+        uint rest = mask & ~(1u << slot);
+        if (rest != 0u) BVH_PUSH((ref & ~15u) | rest);
+        ref = bvhEnter(next);
+        bool leaf = mask != 0u && (ref & kBvhLeafBit) != 0u;
+        uint held = leaf ? ref : 0u;  // the leaf to test this iteration
+        bool pop = mask == 0u || leaf;
+        bool empty = pop && count == 0u;
+        if (pop && !empty) BVH_POP(ref);
+        // Second pass.
+        if (!empty) {
+            mask = bvhVisit4(r, ref, tmin, bestT, next, slot);
+            uint child = bvhEnter(next);
+            leaf = mask != 0u && (child & kBvhLeafBit) != 0u;
+            bool second = leaf && held != 0u;
+            rest = second ? mask : mask & ~(1u << slot);
+            if (rest != 0u) BVH_PUSH((ref & ~15u) | rest);
+            if (leaf && !second) held = child;
+            ref = (mask == 0u || leaf) ? 0u : child;
+        } else {
+            ref = 0u;
+        }
+        if (held != 0u && bvhVisitLeaf(r, held, tmin, tmax, rayHash, anyHit, bestT, bestTri, bestU, bestV, hit)) return true;
+        if (ref == 0u) {
             if (count == 0u) break;
             BVH_POP(ref);
         }
