@@ -55,13 +55,22 @@ uint nestedUniformScramble(uint x, uint seed) {
 
 // First two Sobol dimensions as 32-bit fixed-point fractions: dimension 0 is
 // the van der Corput sequence (bit reversal); dimension 1 uses the direction
-// numbers of the primitive polynomial x + 1, v_k = v_(k-1) xor (v_(k-1) >> 1).
+// numbers of the primitive polynomial x + 1, v_k = v_(k-1) xor (v_(k-1) >> 1),
+// so v_(i+1) has bit 31 - j set exactly when C(i, j) is odd, that is when
+// the bits of j are a subset of those of i (Lucas). Bit 31 - j of the result
+// is then the xor of the index bits i that contain j: a superset sum over
+// the 5-bit positions, five shift-mask-xor steps instead of a loop over the
+// index bits (lavapipe runs a loop until its slowest lane, 32 trips for a
+// scrambled index).
 uvec2 sobol2D(uint index) {
     uint x = bitfieldReverse(index);
-    uint y = 0u;
-    for (uint v = 1u << 31u; index != 0u; index >>= 1u, v ^= v >> 1u)
-        if ((index & 1u) != 0u) y ^= v;
-    return uvec2(x, y);
+    uint z = index;
+    z ^= (z >> 1u) & 0x55555555u;
+    z ^= (z >> 2u) & 0x33333333u;
+    z ^= (z >> 4u) & 0x0f0f0f0fu;
+    z ^= (z >> 8u) & 0x00ff00ffu;
+    z ^= (z >> 16u) & 0x0000ffffu;
+    return uvec2(x, bitfieldReverse(z));
 }
 
 // Owen-scrambled 2D Sobol point number `index`, with the sample order
