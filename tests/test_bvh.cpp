@@ -601,10 +601,14 @@ TEST_CASE("wide bvh: collapsed tree covers every triangle once, boxes nest") {
 
 namespace {
 
-// The shader's four-wide traversal (shaders/lib/bvh.glsl, bvhTrace4) on the
-// CPU with an unbounded stack: its closest hits equal brute force, and it
-// never holds more entries than the wide depth, the bound the shader's
-// register stack is sized by (bvhRegsFor).
+// The stack discipline of the shader's four-wide traversal
+// (shaders/lib/bvh.glsl, bvhTrace4) on the CPU with an unbounded stack: one
+// entry per wide node on the path, pushed with its children still to visit.
+// (The shader groups these steps two node passes to an iteration and may
+// push a node back with a second leaf it cannot test yet, which changes
+// neither the hits nor the entries held.) Its closest hits equal brute force,
+// and it never holds more entries than the wide depth, the bound the
+// shader's register stack is sized by (bvhRegsFor).
 struct WideTrace {
     Hit hit;
     std::uint32_t maxEntries = 0;

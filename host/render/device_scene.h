@@ -41,9 +41,9 @@ SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {
 // views on CPU devices (lavapipe; the BVH alone where another array does not
 // fit a texel view), storage elsewhere, and every array through texel views
 // wherever one exceeds limits.storageRange; Texel and Storage force the BVH's
-// reads. Throws strata::Error (one line naming the scene file) when an array exceeds
-// limits.allocation, when an array fits neither a storage descriptor nor a
-// texel view, or when the forced reads cannot address the scene.
+// reads. Throws strata::Error (one line naming the scene file) when an array
+// exceeds limits.allocation, when an array fits neither a storage descriptor
+// nor a texel view, or when the forced reads cannot address the scene.
 std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Traversal mode, bool wide,
                           bool cpuDevice);
 
@@ -110,8 +110,8 @@ DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal 
                              BvhStack stack = BvhStack::Auto, const SceneLimits& overrides = {});
 
 // The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,
-// SPEC_BVH_REGS) into `spec`, grown as needed. The BVH width is the shader's:
-// pathtrace/trace, or pathtrace_bvh2/trace_bvh2 when !scene.wide.
+// SPEC_BVH_REGS) into `spec`, grown as needed. The BVH width and the stack
+// are the shader's (traversalShader below).
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec);
 
 // The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp built for the

@@ -8,8 +8,6 @@
 
 #include <unistd.h>
 
-#include <strata_spirv.h>
-
 #include "../../shaders/shared/bindings.h"
 #include "render/sampler_kind.h"
 #include "vk/check.h"

@@ -5,8 +5,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <strata_spirv.h>
-
 #include "vk/timer.h"
 
 namespace strata {

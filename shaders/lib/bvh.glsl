@@ -322,9 +322,9 @@ vec4 bvhSlab4(BvhRay r, BvhNode4 n, float tmin, float tmax, out bvec4 hit) {
 // that depth): a push or pop shifts them (selects; the unused ones are
 // compiled out). On lavapipe an indexed private array is a per-lane scalar
 // loop that runs on every push and pop whether or not a lane takes that
-// branch. Resuming a node
-// re-fetches it and re-tests the remaining children against the closest
-// hit so far, so children that moved out of reach are culled.
+// branch. Resuming a node re-fetches it and re-tests the remaining children
+// against the closest hit so far, so children that moved out of reach are
+// culled.
 #define BVH_PUSH(x) { \
     if (kBvhRegs > 24u) { s31 = s30; s30 = s29; s29 = s28; s28 = s27; s27 = s26; s26 = s25; s25 = s24; s24 = s23; } \
     if (kBvhRegs > 16u) { s23 = s22; s22 = s21; s21 = s20; s20 = s19; s19 = s18; s18 = s17; s17 = s16; s16 = s15; } \
@@ -453,8 +453,8 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
 // NVIDIA H200 this ran 1.01-1.23x the BVH2 on diffuse rays (1.16-1.23x from
 // 97k to 10M triangles) where the register stack below ran 0.76-0.85x
 // (shifting 16-32 registers per push and pop costs a GPU more than a
-// local-memory store); on lavapipe it runs 0.5x the register stack. Finds the same closest hit (the result does not depend on
-// the order).
+// local-memory store); on lavapipe it runs 0.5x the register stack. Finds
+// the same closest hit (the result does not depend on the order).
 bool bvhTrace4Sorted(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
     hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
     BvhRay r = bvhMakeRay(origin, dir);
