@@ -1,6 +1,7 @@
 #include "bvh/wide.h"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 
@@ -19,6 +20,69 @@ float halfArea(const gpu::BvhNode& n) {
 struct Collapser {
     const std::vector<gpu::BvhNode>& in;
     WideBvh out;
+
+    // The least cost of BVH2 node i's subtree in at most j child slots of a
+    // wide node is cost[i][j - 1]; split[i][j - 1] is how many of those slots
+    // its left subtree takes (0: the subtree takes one slot itself, as a
+    // leaf if asLeaf[i], else as a wide node); tris and firstTri give its
+    // triangle range (contiguous: the builder keeps a subtree's triangles
+    // together, checked below).
+    std::vector<std::array<float, 4>> cost;
+    std::vector<std::array<std::uint8_t, 4>> split;
+    std::vector<std::uint8_t> asLeaf;
+    std::vector<std::uint32_t> tris, firstTri;
+
+    // Bottom-up over the BVH2 (children follow their parent in the array).
+    void plan() {
+        const std::size_t n = in.size();
+        cost.assign(n, {});
+        split.assign(n, {});
+        asLeaf.assign(n, 0);
+        tris.assign(n, 0);
+        firstTri.assign(n, 0);
+        for (std::size_t i = n; i-- > 0;) {
+            const gpu::BvhNode& b = in[i];
+            const float area = halfArea(b);
+            if (b.count > 0) {
+                tris[i] = b.count;
+                firstTri[i] = b.leftOrFirst;
+                asLeaf[i] = 1;
+                cost[i].fill(area * float(b.count));
+                continue;
+            }
+            const std::uint32_t l = std::uint32_t(i) + 1, r = b.leftOrFirst;
+            tris[i] = tris[l] + tris[r];
+            firstTri[i] = firstTri[l];
+            float spread[4] = {kInf, kInf, kInf, kInf};  // both subtrees, in at most j slots
+            std::uint8_t left[4] = {0, 0, 0, 0};
+            for (int j = 2; j <= 4; ++j)
+                for (int k = 1; k < j; ++k) {
+                    const float c = cost[l][k - 1] + cost[r][j - k - 1];
+                    if (c < spread[j - 1]) spread[j - 1] = c, left[j - 1] = std::uint8_t(k);
+                }
+            const bool contiguous = firstTri[l] + tris[l] == firstTri[r];
+            const float leaf = contiguous && tris[i] <= kWideLeafMax ? area * float(tris[i]) : kInf;
+            const float node = area * kWideNodeCost + spread[3];
+            asLeaf[i] = leaf <= node;
+            cost[i][0] = std::min(leaf, node);
+            for (int j = 2; j <= 4; ++j) {
+                const bool fewer = cost[i][j - 2] <= spread[j - 1];
+                cost[i][j - 1] = fewer ? cost[i][j - 2] : spread[j - 1];
+                split[i][j - 1] = fewer ? split[i][j - 2] : left[j - 1];
+            }
+        }
+    }
+
+    // The BVH2 nodes that take the (at most j) slots of node i's subtree.
+    void gather(std::uint32_t i, int j, std::uint32_t* kids, int& n) const {
+        const int k = split[i][j - 1];
+        if (k == 0) {
+            kids[n++] = i;
+            return;
+        }
+        gather(i + 1, k, kids, n);
+        gather(in[i].leftOrFirst, j - k, kids, n);
+    }
 
     // Leaf reference(s) for BVH2 leaf [first, first + count): one child, or
     // (count above 2^kBvhLeafCountBits, only where centroids coincide) a node
@@ -71,26 +135,18 @@ struct Collapser {
 
     // Wide node for interior BVH2 node `root` at `depth` wide nodes below the root.
     std::uint32_t node(std::uint32_t root, std::uint32_t depth) {
-        std::uint32_t kids[4] = {root + 1, in[root].leftOrFirst, 0, 0};
-        int n = 2;
-        while (n < 4) {
-            int best = -1;
-            float bestArea = -1.0f;
-            for (int k = 0; k < n; ++k)
-                if (in[kids[k]].count == 0 && halfArea(in[kids[k]]) > bestArea)
-                    best = k, bestArea = halfArea(in[kids[k]]);
-            if (best < 0) break;
-            const std::uint32_t open = kids[best];
-            kids[best] = open + 1;
-            kids[n++] = in[open].leftOrFirst;
-        }
+        std::uint32_t kids[4] = {0, 0, 0, 0};
+        int n = 0;
+        gather(root + 1, split[root][3], kids, n);
+        gather(in[root].leftOrFirst, 4 - split[root][3], kids, n);
         const std::uint32_t index = newNode();
         for (int k = 0; k < n; ++k) {
-            const gpu::BvhNode& c = in[kids[k]];
-            const std::uint32_t ref = c.count > 0 ? leafRef(c.leftOrFirst, c.count, c, depth + 1)
-                                                  : node(kids[k], depth + 1);
+            const std::uint32_t i = kids[k];
+            const gpu::BvhNode& c = in[i];
+            const std::uint32_t ref = asLeaf[i] ? leafRef(firstTri[i], tris[i], c, depth + 1) : node(i, depth + 1);
             setBox(index, k, c);
             out.nodes[index].child[k] = ref;
+            out.sahCost += double(halfArea(c)) * (asLeaf[i] ? double(tris[i]) : double(kWideNodeCost));
         }
         for (int k = n; k < 4; ++k) setEmpty(index, k);
         return index;
@@ -118,8 +174,12 @@ WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes) {
         const std::uint32_t ref = c.leafRef(nodes[0].leftOrFirst, nodes[0].count, nodes[0], 1);
         c.setBox(0, 0, nodes[0]);
         c.out.nodes[0].child[0] = ref;
+        c.out.sahCost = kWideNodeCost + nodes[0].count;
     } else {
+        c.plan();
         c.node(0, 0);
+        const float rootArea = halfArea(nodes[0]);
+        c.out.sahCost = rootArea > 0.0f ? kWideNodeCost + c.out.sahCost / rootArea : 0.0;
     }
     return std::move(c.out);
 }

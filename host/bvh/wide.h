@@ -1,8 +1,11 @@
 // Four-wide BVH collapsed from the binary one (gpu::BvhNode4, shaders/shared/types.h).
-// Each wide node takes a BVH2 node and repeatedly opens its interior child of
-// largest surface area until it has four children or only leaves; the boxes
-// are the BVH2 boxes, so a traversal of either tree visits the same triangles
-// with the same slab tests and finds the same closest hit.
+// The collapse has the least SAH cost over the BVH2's subtrees (Ylitie,
+// Karras & Laine 2017, "Efficient Incoherent Ray Traversal on GPUs Through
+// Compressed Wide BVHs", section 3, for four children): a dynamic program
+// over the BVH2 decides for each wide node which BVH2 nodes below it take its
+// four child slots, and which subtrees of at most kWideLeafMax triangles
+// become one leaf. The boxes are BVH2 boxes and a leaf holds its subtree's
+// triangles, so a traversal of either tree finds the same closest hit.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -16,10 +19,21 @@ namespace strata {
 // than that is traversed as the BVH2.
 inline constexpr std::uint32_t kBvhMaxRegs = gpu::kBvhMaxWideDepth;
 
+// SAH cost of a wide node visit, in triangle tests. On lavapipe a node pass
+// costs about as much as two triangle passes, but a higher cost (fewer,
+// fuller nodes over somewhat larger leaves) measured better: iterations per
+// subgroup fell 5-7% at 3 against 2-5% at 2 (docs/design-notes.md).
+inline constexpr float kWideNodeCost = 3.0f;
+// Most triangles in a leaf made from a BVH2 subtree (the BVH2's own leaves
+// keep their size).
+inline constexpr std::uint32_t kWideLeafMax = 8;
+
 struct WideBvh {
     std::vector<gpu::BvhNode4> nodes;  // depth-first; nodes[0] is the root
     std::uint32_t maxDepth = 0;        // wide nodes from the root to the deepest leaf
                                        // reference: the most stack entries a traversal holds
+    double sahCost = 0.0;              // expected cost per ray (kWideNodeCost a node
+                                       // visit, 1 a triangle test), relative to the root area
 };
 
 // Stack registers for a tree of that depth: 16, 24 or 32; 0 above kBvhMaxRegs.

@@ -24,6 +24,7 @@ struct GpuScene {
     std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; the *_bvh2 shaders)
     std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h)
     std::uint32_t wideDepth = 0;            // WideBvh::maxDepth
+    double wideSahCost = 0.0;               // WideBvh::sahCost
     std::uint64_t triangleCount = 0;        // triangles packed (stays when uploadAndRelease frees tris)
     std::vector<gpu::TriVerts> tris;        // BVH order
     std::vector<gpu::TriShading> shading;   // BVH order
