@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <limits>
 #include <string>
 
@@ -162,6 +163,7 @@ std::uint32_t bvhRegsFor(std::uint32_t wideDepth) {
 }
 
 WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes) {
+    const auto start = std::chrono::steady_clock::now();
     Collapser c{nodes, {}};
     c.out.nodes.reserve(nodes.size() / 2 + 1);
     const bool empty = nodes.empty() || (nodes[0].count == 0 && nodes[0].leftOrFirst == 0);
@@ -181,6 +183,7 @@ WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes) {
         const float rootArea = halfArea(nodes[0]);
         c.out.sahCost = rootArea > 0.0f ? kWideNodeCost + c.out.sahCost / rootArea : 0.0;
     }
+    c.out.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return std::move(c.out);
 }
 

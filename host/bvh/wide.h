@@ -32,6 +32,7 @@ struct WideBvh {
     std::vector<gpu::BvhNode4> nodes;  // depth-first; nodes[0] is the root
     std::uint32_t maxDepth = 0;        // wide nodes from the root to the deepest leaf
                                        // reference: the most stack entries a traversal holds
+    double buildMs = 0.0;              // the collapse's time
     double sahCost = 0.0;              // expected cost per ray (kWideNodeCost a node
                                        // visit, 1 a triangle test), relative to the root area
 };

@@ -246,6 +246,7 @@ GpuScene pack(S& scene, const BvhBuildOptions& options, int bvhWidth) {
     g.wide = std::move(wide.nodes);
     g.wideDepth = wide.maxDepth;
     g.wideSahCost = wide.sahCost;
+    g.wideBuildMs = wide.buildMs;
     if (consume && bvhWidth == 4 && bvhRegsFor(g.wideDepth) > 0)
         std::vector<gpu::BvhNode>().swap(g.nodes);  // the four-wide tree will be traversed
     g.bvh = bvh.stats;

@@ -25,6 +25,7 @@ struct GpuScene {
     std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h)
     std::uint32_t wideDepth = 0;            // WideBvh::maxDepth
     double wideSahCost = 0.0;               // WideBvh::sahCost
+    double wideBuildMs = 0.0;               // WideBvh::buildMs
     std::uint64_t triangleCount = 0;        // triangles packed (stays when uploadAndRelease frees tris)
     std::vector<gpu::TriVerts> tris;        // BVH order
     std::vector<gpu::TriShading> shading;   // BVH order
