@@ -85,8 +85,9 @@ struct Collapser {
         gather(in[i].leftOrFirst, j - k, kids, n);
     }
 
-    // Leaf reference(s) for BVH2 leaf [first, first + count): one child, or
-    // (count above 2^kBvhLeafCountBits, only where centroids coincide) a node
+    // Leaf reference(s) for triangles [first, first + count) (a BVH2 leaf or
+    // a subtree made one leaf): one child, or (count above
+    // 2^kBvhLeafCountBits, only a BVH2 leaf where centroids coincide) a node
     // of up to four chunks under the same box, nested as needed.
     std::uint32_t leafRef(std::uint32_t first, std::uint32_t count, const gpu::BvhNode& box,
                           std::uint32_t depth) {
