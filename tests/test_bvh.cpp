@@ -533,6 +533,10 @@ TEST_CASE("bvh: parallel build equals the one-thread build") {
 namespace strata {
 namespace {
 
+// A wide leaf reference's first triangle and triangle count (gpu::BvhNode4).
+std::uint32_t leafFirst(std::uint32_t ref) { return (ref & ~gpu::kBvhLeafBit) >> gpu::kBvhLeafCountBits; }
+std::uint32_t leafCount(std::uint32_t ref) { return (ref & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u; }
+
 // SAH cost of a wide tree as WideBvh::sahCost defines it, from its boxes.
 double wideSah(const WideBvh& w) {
     double sum = 0.0, rootArea = 0.0;
@@ -546,7 +550,7 @@ double wideSah(const WideBvh& w) {
             const std::uint32_t ref = n.child[k];
             if (ref == gpu::kBvhChildEmpty) continue;
             const bool leaf = (ref & gpu::kBvhLeafBit) != 0;
-            sum += area(n, k) * (leaf ? double((ref & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u) : kWideNodeCost);
+            sum += area(n, k) * (leaf ? double(leafCount(ref)) : kWideNodeCost);
         }
     // The root's box: the union of its children's.
     glm::dvec3 lo(INFINITY), hi(-INFINITY);
@@ -613,8 +617,7 @@ void checkWide(const Mesh& m, const Bvh& bvh, const WideBvh& w) {
             }
             if (!inside(lo, it.lo, it.hi) || !inside(hi, it.lo, it.hi)) ++badBox;
             if (c & gpu::kBvhLeafBit) {
-                const std::uint32_t first = (c & ~gpu::kBvhLeafBit) >> gpu::kBvhLeafCountBits;
-                const std::uint32_t count = (c & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u;
+                const std::uint32_t first = leafFirst(c), count = leafCount(c);
                 deepest = std::max(deepest, it.depth + 1);
                 for (std::uint32_t i = first; i < first + count; ++i) {
                     REQUIRE(i < n);
@@ -661,9 +664,8 @@ TEST_CASE("wide bvh: collapsed tree covers every triangle once, boxes nest") {
         for (const gpu::BvhNode4& n : w.nodes)
             for (int k = 0; k < 4; ++k)
                 if (const std::uint32_t ref = n.child[k]; ref != gpu::kBvhChildEmpty && (ref & gpu::kBvhLeafBit)) {
-                    const std::uint32_t first = (ref & ~gpu::kBvhLeafBit) >> gpu::kBvhLeafCountBits;
-                    const std::uint32_t count = (ref & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u;
-                    oversized += count > kWideLeafMax && !bvh2Leaves.count({first, count});
+                    const std::uint32_t count = leafCount(ref);
+                    oversized += count > kWideLeafMax && !bvh2Leaves.count({leafFirst(ref), count});
                 }
         CHECK(oversized == 0);
     }
@@ -686,7 +688,7 @@ TEST_CASE("wide bvh: the collapse merges small subtrees into leaves where that l
     for (const gpu::BvhNode4& n : w.nodes)
         for (int k = 0; k < 4; ++k)
             if (const std::uint32_t ref = n.child[k]; ref != gpu::kBvhChildEmpty && (ref & gpu::kBvhLeafBit))
-                merged += (ref & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u > 1u;
+                merged += leafCount(ref) > 1u;
     CHECK(merged > 0);
     CHECK(w.sahCost <= grandchildrenSah(bvh));
 }
@@ -715,8 +717,7 @@ WideTrace traceWide(const WideBvh& w, const std::vector<gpu::TriVerts>& tris, co
     for (;;) {
         bool descend = false;
         if (ref & gpu::kBvhLeafBit) {
-            const std::uint32_t first = (ref & ~gpu::kBvhLeafBit) >> gpu::kBvhLeafCountBits;
-            const std::uint32_t end = first + (ref & ((1u << gpu::kBvhLeafCountBits) - 1u)) + 1u;
+            const std::uint32_t first = leafFirst(ref), end = first + leafCount(ref);
             for (std::uint32_t i = first; i < end; ++i) {
                 float t, u, v;
                 const auto& tv = tris[i];
