@@ -671,6 +671,28 @@ TEST_CASE("wide bvh: collapsed tree covers every triangle once, boxes nest") {
     }
 }
 
+// Large enough that the plan splits into subtrees planned in parallel
+// (kPlanMinNodes in host/bvh/wide.cpp): the tree must not depend on the
+// thread count.
+TEST_CASE("wide bvh: the parallel collapse equals the one-thread collapse") {
+    std::mt19937 rng(31u);
+    Mesh m = triangleSoup(rng, 40000);
+    Mesh hf = heightField(rng, 120);
+    for (std::size_t i = 0; i < hf.size(); ++i) m.add(hf.v0[i], hf.v1[i], hf.v2[i]);
+    const Bvh bvh = buildBvh(m.v0, m.v1, m.v2);
+    REQUIRE(bvh.nodes.size() > 4u * (1u << 14));
+    const WideBvh a = collapseBvh4(bvh.nodes, 1);
+    checkWide(m, bvh, a);
+    for (unsigned threads : {2u, 3u, 8u}) {
+        CAPTURE(threads);
+        const WideBvh b = collapseBvh4(bvh.nodes, threads);
+        REQUIRE(a.nodes.size() == b.nodes.size());
+        CHECK(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(gpu::BvhNode4)) == 0);
+        CHECK(a.sahCost == b.sahCost);
+        CHECK(a.maxDepth == b.maxDepth);
+    }
+}
+
 TEST_CASE("wide bvh: the collapse merges small subtrees into leaves where that lowers the cost") {
     // Eight tiny triangles in a corner of a big box: the BVH2 (leaves of one
     // triangle) splits them apart; one leaf of eight under a wide node is cheaper.

@@ -3,15 +3,22 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <string>
+#include <thread>
 
+#include "bvh/build_memory.h"
+#include "bvh/task_pool.h"
 #include "util/error.h"
 
 namespace strata {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+// Subtrees smaller than this are planned whole by one thread.
+constexpr std::uint32_t kPlanMinNodes = 1u << 14;
 
 float halfArea(const gpu::BvhNode& n) {
     const glm::vec3 e = n.bmax - n.bmin;
@@ -22,61 +29,128 @@ struct Collapser {
     const std::vector<gpu::BvhNode>& in;
     WideBvh out;
 
-    // The least cost of BVH2 node i's subtree in at most j child slots of a
-    // wide node is cost[i][j - 1]; split[i][j - 1] is how many of those slots
-    // its left subtree takes (0: the subtree takes one slot itself, as a
-    // leaf if asLeaf[i], else as a wide node); tris and firstTri give its
-    // triangle range (contiguous: the builder keeps a subtree's triangles
-    // together, checked below).
-    std::vector<std::array<float, 4>> cost;
-    std::vector<std::array<std::uint8_t, 4>> split;
-    std::vector<std::uint8_t> asLeaf;
-    std::vector<std::uint32_t> tris, firstTri;
+    // What the plan keeps of BVH2 node i: decision[i] bits 2(j-2) and up
+    // say how many of the (at most j, 2 <= j <= 4) slots of its subtree its
+    // left subtree takes (0: the subtree takes one slot itself), bit
+    // kAsLeaf that a slot it takes itself is a leaf (else a wide node).
+    static constexpr std::uint8_t kAsLeaf = 0x40;
+    std::unique_ptr<std::uint8_t[]> decision;
 
-    // Bottom-up over the BVH2 (children follow their parent in the array).
-    void plan() {
-        const std::size_t n = in.size();
-        cost.assign(n, {});
-        split.assign(n, {});
-        asLeaf.assign(n, 0);
-        tris.assign(n, 0);
-        firstTri.assign(n, 0);
-        for (std::size_t i = n; i-- > 0;) {
-            const gpu::BvhNode& b = in[i];
-            const float area = halfArea(b);
-            if (b.count > 0) {
-                tris[i] = b.count;
-                firstTri[i] = b.leftOrFirst;
-                asLeaf[i] = 1;
-                cost[i].fill(area * float(b.count));
-                continue;
+    int splitOf(std::uint32_t i, int j) const { return j < 2 ? 0 : (decision[i] >> (2 * (j - 2))) & 3; }
+    bool asLeaf(std::uint32_t i) const { return (decision[i] & kAsLeaf) != 0; }
+
+    // A subtree's plan: cost[j - 1] is the least SAH cost of holding it in
+    // at most j child slots; first and tris its triangle range (tris stops
+    // counting at 255; only ranges of at most kWideLeafMax are used).
+    struct Plan {
+        std::array<float, 4> cost;
+        std::uint32_t first;
+        std::uint32_t tris;
+    };
+
+    // Node i from its subtrees' plans (Ylitie et al.'s recurrence for four
+    // slots); records the decision and returns i's plan.
+    Plan combine(std::uint32_t i, const Plan& l, const Plan& r) {
+        const gpu::BvhNode& b = in[i];
+        const float area = halfArea(b);
+        Plan p;
+        p.first = l.first;
+        p.tris = std::min(l.tris + r.tris, 255u);
+        float spread[4] = {kInf, kInf, kInf, kInf};  // both subtrees, in at most j slots
+        int left[4] = {0, 0, 0, 0};
+        for (int j = 2; j <= 4; ++j)
+            for (int k = 1; k < j; ++k) {
+                const float c = l.cost[k - 1] + r.cost[j - k - 1];
+                if (c < spread[j - 1]) spread[j - 1] = c, left[j - 1] = k;
             }
-            const std::uint32_t l = std::uint32_t(i) + 1, r = b.leftOrFirst;
-            tris[i] = tris[l] + tris[r];
-            firstTri[i] = firstTri[l];
-            float spread[4] = {kInf, kInf, kInf, kInf};  // both subtrees, in at most j slots
-            std::uint8_t left[4] = {0, 0, 0, 0};
-            for (int j = 2; j <= 4; ++j)
-                for (int k = 1; k < j; ++k) {
-                    const float c = cost[l][k - 1] + cost[r][j - k - 1];
-                    if (c < spread[j - 1]) spread[j - 1] = c, left[j - 1] = std::uint8_t(k);
-                }
-            const bool contiguous = firstTri[l] + tris[l] == firstTri[r];
-            const float leaf = contiguous && tris[i] <= kWideLeafMax ? area * float(tris[i]) : kInf;
-            const float node = area * kWideNodeCost + spread[3];
-            asLeaf[i] = leaf <= node;
-            cost[i][0] = std::min(leaf, node);
-            for (int j = 2; j <= 4; ++j) {
-                const bool fewer = cost[i][j - 2] <= spread[j - 1];
-                cost[i][j - 1] = fewer ? cost[i][j - 2] : spread[j - 1];
-                split[i][j - 1] = fewer ? split[i][j - 2] : left[j - 1];
-            }
+        // The builder keeps a subtree's triangles together; checked here.
+        const bool contiguous = l.first + l.tris == r.first;
+        const float leaf = contiguous && p.tris <= kWideLeafMax ? area * float(p.tris) : kInf;
+        const float node = area * kWideNodeCost + spread[3];
+        std::uint8_t d = leaf <= node ? kAsLeaf : 0;
+        p.cost[0] = std::min(leaf, node);
+        int k = 0;
+        for (int j = 2; j <= 4; ++j) {
+            const bool fewer = p.cost[j - 2] <= spread[j - 1];
+            p.cost[j - 1] = fewer ? p.cost[j - 2] : spread[j - 1];
+            k = fewer ? k : left[j - 1];
+            d = std::uint8_t(d | k << (2 * (j - 2)));
         }
+        decision[i] = d;
+        return p;
+    }
+
+    Plan leafPlan(std::uint32_t i) {
+        const gpu::BvhNode& b = in[i];
+        decision[i] = kAsLeaf;
+        Plan p;
+        p.cost.fill(halfArea(b) * float(b.count));
+        p.first = b.leftOrFirst;
+        p.tris = std::min(b.count, 255u);
+        return p;
+    }
+
+    // Depth first, so the nodes are read in array order (children follow
+    // their parent; the BVH2 is at most kBvhStackSize deep).
+    Plan planSubtree(std::uint32_t i) {
+        if (in[i].count > 0) return leafPlan(i);
+        const Plan l = planSubtree(i + 1);
+        const Plan r = planSubtree(in[i].leftOrFirst);
+        return combine(i, l, r);
+    }
+
+    // The subtrees under a cut through the top of the tree (a subtree is
+    // the contiguous range [i, end)) are planned in parallel, then the nodes
+    // above the cut from the highest index down (each after its children).
+    // The decisions do not depend on the cut.
+    void plan(unsigned threads) {
+        const std::size_t n = in.size();
+        decision = allocateLarge<std::uint8_t>(n);
+        struct Range {
+            std::uint32_t begin, end;
+        };
+        std::vector<Range> ranges{{0, std::uint32_t(n)}};
+        std::vector<std::uint32_t> top;
+        const std::size_t want = threads > 1 ? 4 * std::size_t(threads) : 1;
+        while (ranges.size() < want) {
+            auto largest = std::max_element(ranges.begin(), ranges.end(), [](const Range& a, const Range& b) {
+                return a.end - a.begin < b.end - b.begin;
+            });
+            const Range r = *largest;
+            if (r.end - r.begin < kPlanMinNodes || in[r.begin].count > 0) break;
+            top.push_back(r.begin);
+            *largest = {r.begin + 1, in[r.begin].leftOrFirst};
+            ranges.push_back({in[r.begin].leftOrFirst, r.end});
+        }
+        if (ranges.size() == 1) {
+            planSubtree(0);
+            return;
+        }
+        std::vector<Plan> plans(ranges.size());
+        TaskPool pool(threads - 1);
+        pool.parallelFor(std::uint32_t(ranges.size()),
+                         [&](std::uint32_t k) { plans[k] = planSubtree(ranges[k].begin); });
+        std::vector<std::pair<std::uint32_t, Plan>> done;  // (node, plan) above and at the cut
+        for (std::size_t k = 0; k < ranges.size(); ++k) done.push_back({ranges[k].begin, plans[k]});
+        auto planOf = [&done](std::uint32_t i) {
+            return std::find_if(done.begin(), done.end(), [i](const auto& e) { return e.first == i; })->second;
+        };
+        std::sort(top.begin(), top.end(), std::greater<>());
+        for (std::uint32_t i : top) done.push_back({i, combine(i, planOf(i + 1), planOf(in[i].leftOrFirst))});
+    }
+
+    // The triangle range of node i's subtree, from its leaves.
+    std::uint32_t firstTri(std::uint32_t i) const {
+        while (in[i].count == 0) ++i;  // the leftmost leaf: left children follow their parent
+        return in[i].leftOrFirst;
+    }
+    std::uint32_t triCount(std::uint32_t i) const {
+        return in[i].count > 0 ? in[i].count : triCount(i + 1) + triCount(in[i].leftOrFirst);
     }
 
     // The BVH2 nodes that take the (at most j) slots of node i's subtree.
     void gather(std::uint32_t i, int j, std::uint32_t* kids, int& n) const {
-        const int k = split[i][j - 1];
+        const int k = splitOf(i, j);
         if (k == 0) {
             kids[n++] = i;
             return;
@@ -139,16 +213,19 @@ struct Collapser {
     std::uint32_t node(std::uint32_t root, std::uint32_t depth) {
         std::uint32_t kids[4] = {0, 0, 0, 0};
         int n = 0;
-        gather(root + 1, split[root][3], kids, n);
-        gather(in[root].leftOrFirst, 4 - split[root][3], kids, n);
+        const int left = splitOf(root, 4);
+        gather(root + 1, left, kids, n);
+        gather(in[root].leftOrFirst, 4 - left, kids, n);
         const std::uint32_t index = newNode();
         for (int k = 0; k < n; ++k) {
             const std::uint32_t i = kids[k];
             const gpu::BvhNode& c = in[i];
-            const std::uint32_t ref = asLeaf[i] ? leafRef(firstTri[i], tris[i], c, depth + 1) : node(i, depth + 1);
+            const bool leaf = asLeaf(i);
+            const std::uint32_t tris = leaf ? triCount(i) : 0;
+            const std::uint32_t ref = leaf ? leafRef(firstTri(i), tris, c, depth + 1) : node(i, depth + 1);
             setBox(index, k, c);
             out.nodes[index].child[k] = ref;
-            out.sahCost += double(halfArea(c)) * (asLeaf[i] ? double(tris[i]) : double(kWideNodeCost));
+            out.sahCost += double(halfArea(c)) * (leaf ? double(tris) : double(kWideNodeCost));
         }
         for (int k = n; k < 4; ++k) setEmpty(index, k);
         return index;
@@ -163,10 +240,11 @@ std::uint32_t bvhRegsFor(std::uint32_t wideDepth) {
     return 0;
 }
 
-WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes) {
+WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes, unsigned threads) {
     const auto start = std::chrono::steady_clock::now();
     Collapser c{nodes, {}};
     c.out.nodes.reserve(nodes.size() / 2 + 1);
+    adviseHugePages(c.out.nodes.data(), c.out.nodes.capacity() * sizeof(gpu::BvhNode4));
     const bool empty = nodes.empty() || (nodes[0].count == 0 && nodes[0].leftOrFirst == 0);
     if (empty) {
         c.out.nodes.emplace_back();
@@ -179,7 +257,7 @@ WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes) {
         c.out.nodes[0].child[0] = ref;
         c.out.sahCost = kWideNodeCost + nodes[0].count;
     } else {
-        c.plan();
+        c.plan(std::max(threads > 0 ? threads : std::thread::hardware_concurrency(), 1u));
         c.node(0, 0);
         const float rootArea = halfArea(nodes[0]);
         c.out.sahCost = rootArea > 0.0f ? kWideNodeCost + c.out.sahCost / rootArea : 0.0;

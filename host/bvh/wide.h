@@ -40,7 +40,9 @@ struct WideBvh {
 // Stack registers for a tree of that depth: 16, 24 or 32; 0 above kBvhMaxRegs.
 std::uint32_t bvhRegsFor(std::uint32_t wideDepth);
 
-// Throws strata::Error when a leaf starts at or beyond gpu::kBvhMaxLeafFirst.
-WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes);
+// The plan runs on `threads` threads (0: all the hardware's); the tree is
+// the same for any count. Throws strata::Error when a leaf starts at or
+// beyond gpu::kBvhMaxLeafFirst.
+WideBvh collapseBvh4(const std::vector<gpu::BvhNode>& nodes, unsigned threads = 0);
 
 }  // namespace strata

@@ -242,7 +242,7 @@ GpuScene pack(S& scene, const BvhBuildOptions& options, int bvhWidth) {
     view.count = n;
     Bvh bvh = buildBvh(view, options);
     g.nodes = std::move(bvh.nodes);
-    WideBvh wide = collapseBvh4(g.nodes);
+    WideBvh wide = collapseBvh4(g.nodes, unsigned(std::max(options.threads, 0)));
     g.wide = std::move(wide.nodes);
     g.wideDepth = wide.maxDepth;
     g.wideSahCost = wide.sahCost;
