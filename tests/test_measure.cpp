@@ -105,6 +105,8 @@ TEST_CASE("bench reports every section with consistent numbers") {
     CHECK(j["memory"]["host_peak_rss_bytes"].get<double>() > 0.0);
 
     // Traversal: the peer's three ray sets.
+    // lavapipe (a CPU device) traces the bench's rays through the work queue.
+    CHECK(j["traversal"]["work_queue"].get<bool>() == (j["device_type"] == "CPU"));
     const auto& rays = j["traversal"]["rays"];
     CHECK(rays["primary"]["rays"].get<int>() == 64 * 48);
     // One diffuse ray per primary hit; occlusion rays only from hits facing the point.

@@ -195,3 +195,31 @@ TEST_CASE("the trace kernel's mode is a specialization constant: one pipeline pe
     CHECK_THROWS_AS(tracer.trace(rays, 3u), std::invalid_argument);
     CHECK(vk::validationMessageCount() == 0);
 }
+
+// The work queue (SPEC_WORK_QUEUE, lavapipe's default) hands rays to
+// subgroups from a counter, more at a time as it goes, until lavapipe's loop
+// budget (65535 loop iterations an invocation, all loops together) is half
+// spent. 300,000 rays (two dispatches) on a 20,000-triangle soup are enough
+// for subgroups to reach that budget (without the checks, rays come back
+// wrong); every ray must come back exactly as the plain dispatch traces it.
+TEST_CASE("the trace kernel's work queue traces every ray once, with the plain dispatch's hits") {
+    GpuScene g = packScene(randomSoup(20000, 8));
+    const auto rays = randomRays(300000, 12);
+    DeviceTracer queued(context(), g, Traversal::Texel, 4, BvhStack::Registers, WorkQueue::On);
+    DeviceTracer plain(context(), g, Traversal::Texel, 4, BvhStack::Registers, WorkQueue::Off);
+    REQUIRE(queued.workQueue());
+    REQUIRE_FALSE(plain.workQueue());
+    for (std::uint32_t mode : {gpu::kTraceClosest, gpu::kTraceAny, gpu::kTraceSpawn}) {
+        INFO("mode " << mode);
+        const auto a = queued.trace(rays, mode);
+        const auto b = plain.trace(rays, mode);
+        std::size_t different = 0, hits = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            different += a[i].triangle != b[i].triangle || a[i].t != b[i].t || a[i].u != b[i].u || a[i].v != b[i].v;
+            hits += b[i].t > 0.0f;
+        }
+        CHECK(hits > rays.size() / 10);
+        CHECK(different == 0);
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}

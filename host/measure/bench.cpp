@@ -142,6 +142,7 @@ nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& 
     j["reads"] = readsName(tracer.deviceScene().reads);
     j["bvh_width"] = tracer.bvhWidth();
     j["bvh_stack"] = bvhStackName(tracer.deviceScene());
+    j["work_queue"] = tracer.workQueue();
     j["secondary_origin_offset"] = eps;
     j["occlusion_point"] = {light.x, light.y, light.z};
     j["rays"] = {
@@ -197,9 +198,10 @@ std::string benchText(const nlohmann::ordered_json& j) {
                 num(b["wide_sah_cost"]), num(b["wide_bytes"]) / 1048576.0);
     o += "memory: " + memoryText(j["memory"]) + "\n";
     const auto& t = j["traversal"];
-    o += format("traversal (%dx%d, BVH%d, stack in %s, %s reads, median of %d):\n", t["image"][0].get<int>(),
-                t["image"][1].get<int>(), t["bvh_width"].get<int>(), t["bvh_stack"].get<std::string>().c_str(),
-                t["reads"].get<std::string>().c_str(), t["reps"].get<int>());
+    o += format("traversal (%dx%d, BVH%d, stack in %s, %s reads, %s, median of %d):\n",
+                t["image"][0].get<int>(), t["image"][1].get<int>(), t["bvh_width"].get<int>(),
+                t["bvh_stack"].get<std::string>().c_str(), t["reads"].get<std::string>().c_str(),
+                t["work_queue"].get<bool>() ? "work queue" : "one ray per invocation", t["reps"].get<int>());
     for (const char* set : {"primary", "diffuse", "occlusion"}) {
         const auto& r = t["rays"][set];
         const bool occl = r.contains("occluded");

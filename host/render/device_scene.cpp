@@ -185,6 +185,12 @@ std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Trav
     return cpuDevice && !bvhBeyondTexel ? gpu::kReadsTexelBvh : gpu::kReadsStorage;
 }
 
+bool useWorkQueue(const vk::Context& ctx, WorkQueue mode) {
+    if (ctx.info.subgroupSize > 64) return false;  // trace.comp's chunks are whole 64-lane groups
+    if (mode != WorkQueue::Auto) return mode == WorkQueue::On;
+    return ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
 const char* readsName(std::uint32_t reads) {
     return reads == gpu::kReadsTexelAll ? "texel-all" : reads == gpu::kReadsTexelBvh ? "texel" : "storage";
 }

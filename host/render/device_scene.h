@@ -47,6 +47,16 @@ SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {
 std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Traversal mode, bool wide,
                           bool cpuDevice);
 
+// SPEC_WORK_QUEUE: whether the trace kernel's subgroups take their rays from
+// a counter (BINDING_WORK; shaders/trace.comp) instead of by workgroup index,
+// and the path tracer shades a tile's 8x8 blocks in a permuted order
+// (shaders/pathtrace.comp). lavapipe splits a dispatch's workgroups into one
+// contiguous share per thread, so uneven rows or a core slowed by other
+// processes left a thread idle; a GPU schedules workgroups itself. Auto: on
+// for CPU devices; never with subgroups wider than 64.
+enum class WorkQueue { Auto, On, Off };
+bool useWorkQueue(const vk::Context& ctx, WorkQueue mode = WorkQueue::Auto);
+
 // "storage", "texel" (the BVH) or "texel-all" for a kReads* value.
 const char* readsName(std::uint32_t reads);
 

@@ -16,8 +16,9 @@ namespace strata {
 class DeviceTracer {
 public:
     // bvhWidth, stack: as uploadScene (render/device_scene.h).
+    // queue: SPEC_WORK_QUEUE (useWorkQueue).
     DeviceTracer(const vk::Context& ctx, const GpuScene& scene, Traversal traversal, int bvhWidth = 4,
-                 BvhStack stack = BvhStack::Auto);
+                 BvhStack stack = BvhStack::Auto, WorkQueue queue = WorkQueue::Auto);
     ~DeviceTracer();
 
     // `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h). Runs
@@ -30,6 +31,7 @@ public:
     int bvhWidth() const { return scene_.wide ? 4 : 2; }
     std::uint32_t bvhRegs() const { return scene_.bvhRegs; }
     bool memoryStack() const { return scene_.memoryStack; }
+    bool workQueue() const { return workQueue_; }
 
 private:
     vk::Kernel& kernel(std::uint32_t mode);
@@ -37,6 +39,7 @@ private:
     const vk::Context& ctx_;
     DeviceScene scene_;
     std::uint32_t features_ = 0;
+    bool workQueue_ = false;  // SPEC_WORK_QUEUE (useWorkQueue)
     std::unique_ptr<vk::Kernel> kernels_[3];  // by mode
 };
 

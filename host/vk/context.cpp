@@ -1,5 +1,6 @@
 #include "vk/context.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -38,7 +39,9 @@ const char* typeName(VkPhysicalDeviceType type) {
 }
 
 DeviceInfo describe(VkPhysicalDevice device, std::uint32_t index) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    driver.pNext = &subgroup;
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     props.pNext = &driver;
     vkGetPhysicalDeviceProperties2(device, &props);
@@ -50,6 +53,7 @@ DeviceInfo describe(VkPhysicalDevice device, std::uint32_t index) {
     info.driver = std::string(driver.driverName);
     if (driver.driverInfo[0]) info.driver += std::string(" ") + driver.driverInfo;
     info.apiVersion = versionString(props.properties.apiVersion);
+    info.subgroupSize = std::max(1u, subgroup.subgroupSize);
     return info;
 }
 

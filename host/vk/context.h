@@ -17,6 +17,7 @@ struct DeviceInfo {
     std::string driver;        // driver name and info
     std::string apiVersion;    // "1.3.230"
     VkPhysicalDeviceType vkType = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+    std::uint32_t subgroupSize = 1;  // VkPhysicalDeviceSubgroupProperties::subgroupSize
 };
 
 struct ContextOptions {

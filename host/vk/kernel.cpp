@@ -143,4 +143,11 @@ void Kernel::dispatch(VkCommandBuffer cmd, const void* push, std::uint32_t gx, s
     vkCmdDispatch(cmd, gx, gy, gz);
 }
 
+void Kernel::dispatchIndirect(VkCommandBuffer cmd, const void* push, const Buffer& args, VkDeviceSize offset) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    if (pushBytes_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_, push);
+    vkCmdDispatchIndirect(cmd, args.handle(), offset);
+}
+
 }  // namespace strata::vk

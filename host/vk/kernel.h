@@ -55,6 +55,9 @@ public:
     // Binds pipeline + set, pushes `push` (pushConstantBytes) and dispatches.
     void dispatch(VkCommandBuffer cmd, const void* push, std::uint32_t groupsX,
                   std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1) const;
+    // The same with the group counts read from `args` at `offset`
+    // (VkDispatchIndirectCommand, written by an earlier dispatch).
+    void dispatchIndirect(VkCommandBuffer cmd, const void* push, const Buffer& args, VkDeviceSize offset) const;
 
     // Host milliseconds vkCreateComputePipelines took for this kernel.
     double pipelineMs() const { return pipelineMs_; }

@@ -43,6 +43,17 @@ const float kBvhSlabScale = 1.00000095367431640625;
 
 const float kBvhFloatMax = 3.402823466e38;
 
+// An upper bound, per lane, of the loop iterations lavapipe counts for the
+// traversals of this invocation. gallivm keeps one loop limiter per
+// invocation for all its loops together and ends every loop once 65535
+// iterations are spent (LP_MAX_TGSI_LOOP_ITERATIONS), so a kernel that runs
+// many traversals in one invocation (trace.comp's work queue) must stop in
+// time. Each pass of a traversal loop adds 2 (itself and the leaf loop
+// inside it, whose body lavapipe runs at least once) and each leaf visit its
+// triangles; the 8 lanes' sum bounds what the subgroup spent, since a loop
+// runs as long as its longest lane. Kernels that do not read it compile it out.
+uint gBvhTicks = 0u;
+
 // Per-ray constants of the slab and triangle tests.
 struct BvhRay {
     vec3 origin;
@@ -158,6 +169,7 @@ bool bvhSlab(BvhRay r, BvhNode node, float tmin, float tmax, out float tEntry) {
 void bvhLeafClosest(BvhRay r, uint first, uint end, float tmin, float tmax, uint rayHash, inout float bestT,
                     inout uint bestTri, inout float bestU, inout float bestV) {
     const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
+    gBvhTicks += end - first;
     for (uint i = first; i < end; ++i) {
         TriVerts tri = bvhFetchTri(i);
         float t, u, v;
@@ -174,6 +186,7 @@ void bvhLeafClosest(BvhRay r, uint first, uint end, float tmin, float tmax, uint
 // True if any triangle of [first, end) is hit within (tmin, tmax).
 bool bvhLeafAny(BvhRay r, uint first, uint end, float tmin, float tmax, uint rayHash) {
     const bool alphaTest = (kFeatures & kFeatureAlphaTest) != 0u;
+    gBvhTicks += end - first;
     for (uint i = first; i < end; ++i) {
         TriVerts tri = bvhFetchTri(i);
         float t, u, v;
@@ -216,6 +229,7 @@ bool bvhTraceClosest2(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHi
     uint stack[kBvhStackSize];
     uint sp = 0u;
     for (;;) {
+        gBvhTicks += 2u;
         if (node.count > 0u) {
             bvhLeafClosest(r, node.leftOrFirst, node.leftOrFirst + node.count, tmin, tmax, rayHash, bestT,
                            bestTri, bestU, bestV);
@@ -259,6 +273,7 @@ bool bvhTraceAny2(vec3 origin, vec3 dir, float tmin, float tmax) {
     uint stack[kBvhStackSize];
     uint sp = 0u;
     for (;;) {
+        gBvhTicks += 2u;
         if (node.count > 0u) {
             if (bvhLeafAny(r, node.leftOrFirst, node.leftOrFirst + node.count, tmin, tmax, rayHash)) return true;
         } else {
@@ -408,6 +423,7 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
     // Popped entries are always wide nodes (leaves are never pushed).
     uint ref = 15u;  // the next node entry to visit, the root first; 0: pop one
     for (;;) {
+        gBvhTicks += 2u;
         uint next, slot;
         // First pass.
         uint mask = bvhVisit4(r, ref, tmin, bestT, next, slot);
@@ -468,6 +484,7 @@ bool bvhTrace4Sorted(vec3 origin, vec3 dir, float tmin, float tmax, const bool a
     uint ref = 0u;  // the root
     const float inf = uintBitsToFloat(0x7f800000u);
     for (;;) {
+        gBvhTicks += 2u;
         if ((ref & kBvhLeafBit) != 0u) {
             if (bvhVisitLeaf(r, ref, tmin, tmax, rayHash, anyHit, bestT, bestTri, bestU, bestV, hit)) return true;
         } else {

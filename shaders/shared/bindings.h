@@ -34,7 +34,8 @@ STRATA_BINDING(BINDING_SHADING_TEXEL, 20);    // usamplerBuffer over BINDING_SHA
 STRATA_BINDING(BINDING_TEXCOORDS_TEXEL, 21);  // usamplerBuffer over BINDING_TEXCOORDS (RGBA32UI)
 STRATA_BINDING(BINDING_TANGENTS_TEXEL, 22);   // usamplerBuffer over BINDING_TANGENTS (RGBA32UI)
 STRATA_BINDING(BINDING_EMITTERS_TEXEL, 23);   // usamplerBuffer over BINDING_EMITTERS (RGBA32UI)
-STRATA_BINDING(BINDING_COUNT, 24);
+STRATA_BINDING(BINDING_WORK, 24);         // storage uint[]: work-queue counters (trace kernel, SPEC_WORK_QUEUE)
+STRATA_BINDING(BINDING_COUNT, 25);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views
@@ -45,6 +46,8 @@ STRATA_BINDING(SPEC_MIS, 4);              // kMis* (types.h): how light and BSDF
 STRATA_BINDING(SPEC_COUNT_RAYS, 5);       // 1: count closest and shadow rays in RenderCounters
 STRATA_BINDING(SPEC_BVH_REGS, 6);         // four-wide traversal stack entries: 16, 24 or 32
 STRATA_BINDING(SPEC_TRACE_MODE, 7);       // trace kernel: kTraceClosest, kTraceAny or kTraceSpawn
+STRATA_BINDING(SPEC_WORK_QUEUE, 8);       // 1 (CPU devices): trace.comp's subgroups take rays from a counter,
+                                          // pathtrace.comp shades a tile's 8x8 blocks in a permuted order
 
 #ifdef __cplusplus
 }  // namespace strata::gpu

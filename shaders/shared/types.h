@@ -276,12 +276,27 @@ STRATA_CONST(uint, kTraceClosest, 0u);
 STRATA_CONST(uint, kTraceAny, 1u);
 STRATA_CONST(uint, kTraceSpawn, 2u);
 
+// The trace kernel's work queue (SPEC_WORK_QUEUE, trace.comp): the most
+// vectors of rays (one per lane each) a subgroup takes at a time, the part of
+// lavapipe's loop budget (kLoopLimit loop iterations an invocation) after
+// which it takes no more.
+STRATA_CONST(uint, kQueueMaxVectors, 32u);
+STRATA_CONST(uint, kQueueTickBudget, 32768u);
+STRATA_CONST(uint, kLoopLimit, 65535u);
+// The first pass launches a subgroup for every kQueueRaysPerSubgroup rays;
+// its last subgroup writes the second pass's group count for what is left.
+STRATA_CONST(uint, kQueueRaysPerSubgroup, 512u);
+// Per dispatch in BINDING_WORK, kQueueWords words: the ray counter, the
+// first pass's finished subgroups, and the second pass's
+// VkDispatchIndirectCommand (x, y, z).
+STRATA_CONST(uint, kQueueWords, 8u);
+
 // Trace kernel push constants.
 struct TraceParams {
     uint count;         // rays in this dispatch
     uint first;         // index of this dispatch's first ray
-    uint pad0;          // (the mode is SPEC_TRACE_MODE)
-    uint pad1;
+    uint slot;          // this dispatch's words in BINDING_WORK (SPEC_WORK_QUEUE; slot * kQueueWords)
+    uint pass;          // SPEC_WORK_QUEUE: 0 the first pass, 1 the second (the mode is SPEC_TRACE_MODE)
 };
 
 // Sampling test kernel (sample_test.comp): draws `count` samples of one GLSL
