@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <numeric>
 
 #include <unistd.h>
 
@@ -18,6 +19,20 @@ namespace strata {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// DispatchParams::blockStride for a tile: the integer nearest 0.618 times
+// its count of 8x8 blocks that shares no factor with it, so that workgroup w
+// shading block (w * stride) mod blocks visits every block once and any run
+// of consecutive workgroups (one lavapipe thread's share) spreads evenly over
+// the tile, as a rank-1 lattice with the golden ratio does. 1 (row order)
+// above 65536 blocks, where w * stride would not fit the shader's 32 bits.
+std::uint32_t blockStride(std::uint32_t tileW, std::uint32_t tileH) {
+    const std::uint32_t blocks = ((tileW + 7) / 8) * ((tileH + 7) / 8);
+    if (blocks > 65536) return 1;
+    std::uint32_t stride = std::max(1u, static_cast<std::uint32_t>(std::lround(blocks * 0.6180339887498949)));
+    while (std::gcd(stride, blocks) != 1) ++stride;
+    return stride;
+}
 
 gpu::FrameUniforms frameUniforms(const DeviceScene& dev, const GpuScene& scene, const Camera& cam,
                                  const RenderSettings& s) {
@@ -83,13 +98,14 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
     });
-    std::vector<std::uint32_t> spec(SPEC_BVH_REGS + 1);
+    std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1);
     setTraversalSpec(dev, spec);
     spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
     spec[SPEC_SAMPLER] = s.sampler;
     spec[SPEC_FEATURES] = scene.features.bits;
     spec[SPEC_MIS] = s.mis;
     spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
+    spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, s.workQueue) ? 1u : 0u;
     vk::Kernel kernel(ctx, traversalShader(dev, true),
                       std::move(bindings), sizeof(DispatchParams), spec);
     kernel.bind(BINDING_FRAME, frame);
@@ -116,6 +132,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         DispatchParams p{};
         p.tileW = std::min(64u, static_cast<std::uint32_t>(s.width));
         p.tileH = std::min(64u, static_cast<std::uint32_t>(s.height));
+        p.blockStride = blockStride(p.tileW, p.tileH);
         const auto w0 = Clock::now();
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
@@ -187,6 +204,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
                     p.tileW = std::min<std::uint32_t>(tile, s.width - tx);
                     p.tileH = std::min<std::uint32_t>(tile, s.height - ty);
                     p.sampleIndex = result.spp + k;
+                    p.blockStride = blockStride(p.tileW, p.tileH);
                     kernel.dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
                     ++result.dispatches;
                 }

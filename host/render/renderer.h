@@ -39,6 +39,8 @@ struct RenderSettings {
     bool warmUp = false;                // one dispatch (a tile of at most 64x64 pixels, sample 0)
                                         // before the loop, timed apart and cleared from the image
     bool countRays = true;              // SPEC_COUNT_RAYS: closest/shadow ray counters
+    WorkQueue workQueue = WorkQueue::Auto;  // SPEC_WORK_QUEUE: 8x8 blocks in a permuted order
+                                        // (render/device_scene.h; on for CPU devices)
     SceneLimits limits;                 // lower device limits to plan the scene against (0: the
                                         // device's; render/device_scene.h)
 };

@@ -245,7 +245,8 @@ struct DispatchParams {
     uint tileW;         // tile size in pixels (<= image size)
     uint tileH;
     uint sampleIndex;   // index of the sample being taken (0-based)
-    uint pad0;
+    uint blockStride;   // SPEC_WORK_QUEUE: workgroup w shades the tile's 8x8 block
+                        // (w * blockStride) mod blocks (coprime to blocks)
     uint pad1;
     uint pad2;
 };
