@@ -50,7 +50,8 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
     vk::Buffer back(ctx_, hitBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
     constexpr std::size_t kRaysPerDispatch = 1u << 18;  // bounds one dispatch's work; even (spawn pairs)
     const std::size_t dispatches = std::max<std::size_t>(1, (rays.size() + kRaysPerDispatch - 1) / kRaysPerDispatch);
-    // The work queue's words for each dispatch (types.h), zeroed at the start of each pass.
+    // The work queue's words for each dispatch (types.h), zeroed at the start
+    // of each pass; bound (the shader declares them) but unused without the queue.
     const VkDeviceSize workBytes = dispatches * kQueueWords * sizeof(std::uint32_t);
     vk::Buffer workBuf(ctx_, workBytes,
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -67,10 +68,12 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
     for (int r = 0; r < std::max(1, reps); ++r) {
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
-        vkCmdFillBuffer(cmd, workBuf.handle(), 0, VK_WHOLE_SIZE, 0u);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        if (workQueue_) {
+            vkCmdFillBuffer(cmd, workBuf.handle(), 0, VK_WHOLE_SIZE, 0u);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                              VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        }
         for (std::size_t first = 0, slot = 0; first < rays.size(); first += kRaysPerDispatch, ++slot) {
             TraceParams p{};
             p.count = static_cast<std::uint32_t>(std::min(kRaysPerDispatch, rays.size() - first));

@@ -135,18 +135,20 @@ void Kernel::bind(std::uint32_t binding, const TexelView& view) {
     vkUpdateDescriptorSets(ctx_.device, 1, &write, 0, nullptr);
 }
 
-void Kernel::dispatch(VkCommandBuffer cmd, const void* push, std::uint32_t gx, std::uint32_t gy,
-                      std::uint32_t gz) const {
+void Kernel::record(VkCommandBuffer cmd, const void* push) const {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
     if (pushBytes_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_, push);
+}
+
+void Kernel::dispatch(VkCommandBuffer cmd, const void* push, std::uint32_t gx, std::uint32_t gy,
+                      std::uint32_t gz) const {
+    record(cmd, push);
     vkCmdDispatch(cmd, gx, gy, gz);
 }
 
 void Kernel::dispatchIndirect(VkCommandBuffer cmd, const void* push, const Buffer& args, VkDeviceSize offset) const {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-    if (pushBytes_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_, push);
+    record(cmd, push);
     vkCmdDispatchIndirect(cmd, args.handle(), offset);
 }
 

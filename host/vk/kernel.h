@@ -64,6 +64,7 @@ public:
 
 private:
     VkDescriptorType typeOf(std::uint32_t binding) const;
+    void record(VkCommandBuffer cmd, const void* push) const;  // binds pipeline and set, pushes
     const Context& ctx_;
     std::vector<BindingDesc> bindings_;
     std::uint32_t pushBytes_ = 0;
