@@ -50,7 +50,7 @@ const float kBvhFloatMax = 3.402823466e38;
 // many traversals in one invocation (trace.comp's work queue) must stop in
 // time. Each pass of a traversal loop adds 2 (itself and the leaf loop
 // inside it, whose body lavapipe runs at least once) and each leaf visit its
-// triangles; the 8 lanes' sum bounds what the subgroup spent, since a loop
+// triangles; the sum over a subgroup's lanes bounds what it spent, since a loop
 // runs as long as its longest lane. Kernels that do not read it compile it out.
 uint gBvhTicks = 0u;
 
