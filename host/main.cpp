@@ -45,7 +45,7 @@ constexpr const char* kUsage =
     "       strata bench SCENE [--width W] [--height H] [--spp N] [--reference REF.exr] [--seed S]\n"
     "                    [--max-depth D] [--reps R] [--camera I] [--device I] [--quick] [--only traversal]\n"
     "                    [--bvh 2|4] [--bvh-stack auto|registers|memory] [--traversal auto|texel|storage]\n"
-    "                    [--json FILE]\n"
+    "                    [--env ... (as render)] [--json FILE]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
     "  SCENE.png in the current directory. --max-depth counts scattering events (pbrt):\n"
@@ -319,6 +319,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         else if (a == "--seed") cmd.seed = parseUnsigned(a, value(), 0, 0xffffffffu);
         else if (a == "--max-depth") cmd.maxDepth = parseUnsigned(a, value(), 0, 1024);
         else if (a == "--reference") cmd.reference = value();
+        else if (parseEnvFlag(a, value, cmd.env)) continue;
         else if (a == "--quick") cmd.quick = true;
         else if (a == "--bvh") cmd.bvhWidth = parseBvhWidth(value());
         else if (a == "--traversal") cmd.traversal = parseTraversal(value());
@@ -336,6 +337,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         else badFlag("unexpected argument '" + a + "'");
     }
     if (cmd.scene.empty()) badFlag("bench needs a scene file");
+    checkEnvFlags(args, cmd.env);
     return strata::runBench(cmd);
 }
 

@@ -211,6 +211,38 @@ TEST_CASE("bench relMSE: zero against a reference of the same seed, positive aga
     }
 }
 
+TEST_CASE("bench takes render's environment flags: its image is the reference's, and black without them") {
+    TempDir d;
+    const std::string board = std::string(STRATA_SOURCE_DIR) + "/scenes/materials-board-env.gltf";
+    const std::string sky = std::string(STRATA_SOURCE_DIR) + "/scenes/env/sky.hdr";
+    const std::string env = " --env " + sky + " --env-intensity 2 --env-rotate 30";
+    const std::string size = " --width 32 --height 24 --spp 2 --seed 0";
+    Run r = run("reference " + board + size + env + " --quiet -o " + (d / "ref.exr"));
+    CAPTURE(r.output);
+    REQUIRE(r.status == 0);
+    // The board's only light is the environment.
+    r = run("bench " + board + size + env + " --quick --reps 1 --reference " + (d / "ref.exr") + " --json " +
+            (d / "b.json"));
+    CAPTURE(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(r.output.find("environment " + sky) != std::string::npos);
+    nlohmann::json j = readJson(d / "b.json");
+    CHECK(j["environment"] == sky);
+    const auto& features = j["features"];
+    CHECK(std::find(features.begin(), features.end(), "environment-map") != features.end());
+    CHECK(j["path_tracing"]["relmse"].get<double>() == 0.0);  // the same render, bit for bit
+    CHECK(j["path_tracing"]["shadow_rays"].get<double>() > 0.0);
+    // Without the flags nothing lights the board: no shadow rays, a black image.
+    r = run("bench " + board + size + " --quick --reps 1 --reference " + (d / "ref.exr") + " --json " +
+            (d / "b.json"));
+    CAPTURE(r.output);
+    REQUIRE(r.status == 0);
+    j = readJson(d / "b.json");
+    CHECK_FALSE(j.contains("environment"));
+    CHECK(j["path_tracing"]["shadow_rays"].get<double>() == 0.0);
+    CHECK(j["path_tracing"]["relmse"].get<double>() > 0.1);
+}
+
 TEST_CASE("bench --traversal chooses the read mode; texel views and storage buffers find the same hits") {
     TempDir d;
     std::vector<nlohmann::json> rays;
@@ -240,7 +272,10 @@ TEST_CASE("bench rejects bad flags and a mismatched reference with one line and 
              "bench " + kBox + " --quick --reference " + (d / "r.exr"),  // 1024x768 against 16x8
              "bench " + kBox + " --quick --width 16 --height 16 --reference " + (d / "r.exr"),
              "bench " + kBox + " --quick --width 16 --height 8 --reference " + (d / "none.exr"),
-             "bench " + kBox + " --quick --json " + (d / "b.txt")}) {
+             "bench " + kBox + " --quick --json " + (d / "b.txt"),
+             "bench " + kBox + " --quick --env-rotate 30",  // needs --env or --env-color
+             "bench " + kBox + " --quick --env-color 1,1,1 --env " + (d / "r.exr"),
+             "bench " + kBox + " --quick --env " + (d / "none.hdr")}) {
         checkRejected(args);
     }
     CHECK_FALSE(fs::exists(d / "b.txt"));

@@ -175,7 +175,9 @@ std::string benchText(const nlohmann::ordered_json& j) {
                 j["triangles"].get<std::size_t>(), j["device"].get<std::string>().c_str(),
                 j["driver"].get<std::string>().c_str());
     o += "features: " + (features.empty() ? std::string("none") : features) + "; camera: " +
-         j["camera"].get<std::string>() + "\n";
+         j["camera"].get<std::string>() +
+         (j.contains("environment") ? "; environment " + j["environment"].get<std::string>() : std::string()) +
+         "\n";
     const auto& su = j["startup"];
     o += "start-up: " + startupText(su);
     if (!su.contains("pipeline_ms"))
@@ -282,8 +284,11 @@ int runBench(const BenchCommand& cmd) {
     LoadOptions options;
     options.requireCamera = false;   // auto-framed like the peer
     options.requireEmitter = false;  // traversal needs no light
+    options.externalLight = cmd.env.given();
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadGltf(cmd.scene, options);
+    scene.environment = makeEnvironment(cmd.env);
+    const std::string environmentSource = scene.environment.enabled ? scene.environment.source : "";
     const double loadMs = msSince(t0);
     if (scene.triangles.empty()) fail(cmd.scene, "no triangles to trace");
     const Framing fr = frame(scene, cmd);
@@ -310,6 +315,7 @@ int runBench(const BenchCommand& cmd) {
     j["triangles"] = gpu.triangleCount;
     j["camera"] = fr.description;
     j["features"] = gpu.features.names();
+    if (cmd.env.given()) j["environment"] = environmentSource;
     auto finish = [&] {
         j["bvh"] = bvhJson(gpu, packMs);
         j["traversal"] = traversal;

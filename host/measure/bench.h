@@ -18,6 +18,7 @@
 #include <string>
 
 #include "render/device_scene.h"
+#include "scene/environment.h"
 
 namespace strata {
 
@@ -31,6 +32,7 @@ struct BenchCommand {
     std::uint32_t seed = 0;
     std::uint32_t maxDepth = 16;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
+    EnvironmentOptions env;           // --env / --env-color, --env-intensity, --env-rotate (as render)
     bool quick = false;               // small dispatch section, for tests
     int bvhWidth = 4;                 // --bvh: 4 (four-wide where it fits) or 2
     Traversal traversal = Traversal::Auto;  // --traversal: texel views or storage buffers
