@@ -284,11 +284,9 @@ int runBench(const BenchCommand& cmd) {
     LoadOptions options;
     options.requireCamera = false;   // auto-framed like the peer
     options.requireEmitter = false;  // traversal needs no light
-    options.externalLight = cmd.env.given();
     auto t0 = std::chrono::steady_clock::now();
-    Scene scene = loadGltf(cmd.scene, options);
-    scene.environment = makeEnvironment(cmd.env);
-    const std::string environmentSource = scene.environment.enabled ? scene.environment.source : "";
+    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, options);
+    const std::string environment = scene.environment.enabled ? scene.environment.source : "";
     const double loadMs = msSince(t0);
     if (scene.triangles.empty()) fail(cmd.scene, "no triangles to trace");
     const Framing fr = frame(scene, cmd);
@@ -315,7 +313,7 @@ int runBench(const BenchCommand& cmd) {
     j["triangles"] = gpu.triangleCount;
     j["camera"] = fr.description;
     j["features"] = gpu.features.names();
-    if (cmd.env.given()) j["environment"] = environmentSource;
+    if (!environment.empty()) j["environment"] = environment;
     auto finish = [&] {
         j["bvh"] = bvhJson(gpu, packMs);
         j["traversal"] = traversal;

@@ -40,8 +40,7 @@ Environment makeEnvironment(const EnvironmentOptions& o) {
     return env;
 }
 
-Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options) {
-    LoadOptions load;
+Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options, LoadOptions load) {
     load.externalLight = options.given();
     Scene scene = loadGltf(path, load);
     scene.environment = makeEnvironment(options);

@@ -23,8 +23,8 @@ struct EnvironmentOptions {
 // not all black. Throws strata::Error ("<file>: error: ...") on bad input.
 Environment makeEnvironment(const EnvironmentOptions& options);
 
-// loadGltf plus the command line's environment: a scene lit only by the
-// environment is valid. The scene is checked before the map is read.
-Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options);
+// loadGltf with `load` plus the command line's environment: a scene lit only
+// by the environment is valid. The scene is checked before the map is read.
+Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options, LoadOptions load = {});
 
 }  // namespace strata
