@@ -280,6 +280,7 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
         {"index-out-of-range.gltf", "mesh 1 (\"Light\") primitive 0: index 7 "},
         {"nan-position.gltf",
          "accessor 4 (mesh 2 (\"Bad\") primitive 0 POSITION): vertex 1 has a NaN"},
+        {"attribute-not-an-index.gltf", "invalid glTF: 'attributes' value is not an integer type."},
         {"no-camera.gltf", "no camera"},
         {"no-emitter.gltf", "no light: no triangle has an emissive material"},
         {"unsupported-required-extension.gltf",

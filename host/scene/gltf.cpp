@@ -187,7 +187,12 @@ tinygltf::Model parseModel(const std::string& path) {
         const std::string why = gltf::oneLine(err);
         fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
     }
-    const std::string notes = gltf::oneLine(err.empty() ? warnings : err + "\n" + warnings);
+    // tinygltf reports some malformed required properties in err and loads
+    // on without them (a primitive's 'attributes' that are not accessor
+    // indices are dropped, and its mesh with them): an error here, not a
+    // warning before a misleading one later.
+    if (!gltf::oneLine(err).empty()) fail(path, "invalid glTF: " + gltf::oneLine(err));
+    const std::string notes = gltf::oneLine(warnings);
     if (!notes.empty()) warn(path, notes);
     return model;
 }

@@ -85,6 +85,12 @@ def main():
     roots.append(w.add_node("Bad", mesh=mesh))
     write("nan-position.gltf", w, roots)
 
+    # The lamp's POSITION attribute is not an accessor index (tinygltf drops
+    # the attribute and loads on).
+    w, roots = scene()
+    w.doc["meshes"][1]["primitives"][0]["attributes"]["POSITION"] = "0"
+    write("attribute-not-an-index.gltf", w, roots)
+
     w, roots = scene(camera=False)
     write("no-camera.gltf", w, roots)
 
