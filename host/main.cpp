@@ -87,12 +87,19 @@ strata::BvhStack parseBvhStack(const std::string& v) {
     badFlag("--bvh-stack expects auto, registers or memory, got '" + v + "'");
 }
 
+// 16, 1000000000, 1e+30: integers as integers up to 1e15, the rest as %g.
+std::string numberText(double v) {
+    if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
 double parsePositive(const std::string& flag, const std::string& value, double max, const char* what) {
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
     if (value.empty() || *end != '\0' || !(v > 0.0) || v > max)
-        badFlag(flag + " expects " + what + " in (0, " + std::to_string(static_cast<long long>(max)) + "], got '" +
-                value + "'");
+        badFlag(flag + " expects " + what + " in (0, " + numberText(max) + "], got '" + value + "'");
     return v;
 }
 

@@ -78,6 +78,40 @@ TEST_CASE("bad flags are one-line errors with exit 2 and write nothing") {
     }
 }
 
+TEST_CASE("an output that cannot be written fails before any work, and nothing is written") {
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    TempDir out;
+    fs::create_directories(out.path / "d.exr");
+    const std::string missing = (out.path / "missing").string();
+    struct Case {
+        std::string args, path, phrase;
+    };
+    // Without --quiet: work would print the device line (or the bench's
+    // header) before the error.
+    const std::string small = " --width 8 --height 8 --spp 1";
+    const std::vector<Case> cases = {
+        {"render " + scene + small + " -o " + out / "a.exr" + " --stats-json " + missing + "/s.json",
+         missing + "/s.json", "directory '" + missing + "' does not exist"},
+        {"render " + scene + small + " -o " + out / "a.exr" + " -o " + missing + "/a.png", missing + "/a.png",
+         "directory '" + missing + "' does not exist"},
+        {"render " + scene + small + " -o " + out / "d.exr", out / "d.exr", "it is a directory"},
+        {"bench " + scene + small + " --quick --json " + missing + "/b.json", missing + "/b.json",
+         "directory '" + missing + "' does not exist"},
+        {"edges --spp 4 -o " + out / "t.csv" + " --plot " + missing + "/p.png", missing + "/p.png",
+         "directory '" + missing + "' does not exist"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.args);
+        const Run r = run(c.args);
+        CAPTURE(r.output);
+        CHECK(r.status == 2);
+        CHECK(lines(r.output) == 1);
+        CHECK(r.output.rfind(c.path + ": error: cannot write the file: " + c.phrase, 0) == 0);
+        CHECK(!fs::exists(out.path / "a.exr"));
+        CHECK(!fs::exists(out.path / "t.csv"));
+    }
+}
+
 TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
     TempDir out;
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";

@@ -55,6 +55,8 @@ TEST_CASE("lights cli: bad environment input is one line, exit 2, no output") {
         expectError(sphere + " --env-color '" + std::string(bad) + "'", "strata: error: --env-color ");
     expectError(sphere + " --env-color 1,1,1 --env-intensity 0", "strata: error: --env-intensity ");
     expectError(sphere + " --env-color 1,1,1 --env-intensity -2", "strata: error: --env-intensity ");
+    expectError(sphere + " --env-color 1,1,1 --env-intensity inf",
+                "strata: error: --env-intensity expects a factor in (0, 1e+30], got 'inf'");
     expectError(sphere + " --env-color 1,1,1 --env-rotate ten", "strata: error: --env-rotate ");
     expectError(sphere + " --env-color 1,1,1 --env-rotate inf", "strata: error: --env-rotate ");
     expectError(sphere + " --env-rotate 10", "strata: error: --env-rotate needs --env or --env-color");

@@ -173,6 +173,8 @@ int runConverge(const ConvergeCommand& cmd) {
     const std::string ext = lowerExtension(cmd.report);
     if (ext != ".csv" && ext != ".json") fail(cmd.report, "converge report must be .csv or .json");
     if (!cmd.plot.empty()) outputFormat(cmd.plot);
+    checkOutputPath(cmd.report);
+    if (!cmd.plot.empty()) checkOutputPath(cmd.plot);
     std::vector<std::uint32_t> kinds;
     if (cmd.allSamplers) {
         for (const auto& info : samplers()) {

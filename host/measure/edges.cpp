@@ -380,6 +380,8 @@ std::vector<std::string> edgesSummary(const EdgeReport& r) {
 int runEdges(const EdgesCommand& cmd) {
     if (!cmd.table.empty() && lowerExtension(cmd.table) != ".csv") fail(cmd.table, "edges table must be .csv");
     if (!cmd.plot.empty()) outputFormat(cmd.plot);
+    if (!cmd.table.empty()) checkOutputPath(cmd.table);
+    if (!cmd.plot.empty()) checkOutputPath(cmd.plot);
     std::vector<std::string> skipped;
     selectSamplers(cmd.settings, skipped);  // bad settings fail before the device starts
     vk::Context ctx({cmd.device, cmd.validation});

@@ -26,6 +26,8 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 int runRender(const RenderCommand& cmd) {
     for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
+    for (const auto& out : cmd.outputs) checkOutputPath(out);
+    if (!cmd.statsJson.empty()) checkOutputPath(cmd.statsJson);
     checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
                          cmd.settings.height);
 
@@ -57,13 +59,20 @@ int runRender(const RenderCommand& cmd) {
         throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
                               " Vulkan validation message(s) during the render");
 
-    if (cmd.variance) {
-        const std::vector<float> var = result.film.varianceOfMean();
-        writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), &var);
-    } else {
-        writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
-    }
+    // The statistics first, taken back if an image cannot be written: all
+    // outputs or none.
     if (!cmd.statsJson.empty()) writeTextAtomically(cmd.statsJson, stats.dump(2) + "\n");
+    try {
+        if (cmd.variance) {
+            const std::vector<float> var = result.film.varianceOfMean();
+            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), &var);
+        } else {
+            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
+        }
+    } catch (...) {
+        if (!cmd.statsJson.empty()) std::remove(cmd.statsJson.c_str());
+        throw;
+    }
     if (cmd.stats) std::fputs(statsText(stats).c_str(), stdout);
     if (!cmd.quiet)
         for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());

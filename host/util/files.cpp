@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "util/error.h"
 
 namespace strata {
@@ -13,6 +15,18 @@ std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
+}
+
+void checkOutputPath(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) fail(path, "cannot write the file: it is a directory");
+    const fs::path parent = fs::path(path).parent_path();
+    const fs::path dir = parent.empty() ? fs::path(".") : parent;
+    if (!fs::is_directory(dir, ec))
+        fail(path, "cannot write the file: directory '" + dir.string() + "' does not exist");
+    if (::access(dir.c_str(), W_OK) != 0)
+        fail(path, "cannot write the file: directory '" + dir.string() + "' is not writable");
 }
 
 void writeTextAtomically(const std::string& path, const std::string& text) {

@@ -11,4 +11,10 @@ std::string lowerExtension(const std::string& path);
 // directory, then a rename. Throws strata::Error naming `path` on failure.
 void writeTextAtomically(const std::string& path, const std::string& text);
 
+// Fails (strata::Error naming `path`) unless `path` can be written as a new
+// or replaced file: its directory exists and is writable, and `path` is not
+// a directory. The commands check every output before any work, so a long
+// run does not end in a failed write.
+void checkOutputPath(const std::string& path);
+
 }  // namespace strata
