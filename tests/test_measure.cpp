@@ -72,6 +72,7 @@ TEST_CASE("measurement commands reject bad input with one line and exit 2") {
     for (const std::string& args : std::vector<std::string>{
              "compare " + (d / "a.exr") + " " + (d / "b.exr"), "compare " + (d / "a.exr"),
           "compare " + (d / "junk.exr") + " " + (d / "a.exr"), "compare " + (d / "a.exr") + " " + (d / "none.exr"),
+          "compare " + (d / "a.exr") + " " + (d / "a.exr") + " --json " + (d / "m.txt"),
           "reference " + kBox + " -o " + (d / "r.exr"), "reference " + kBox + " --spp 4 -o " + (d / "r.png"),
           "converge " + kBox + " -o " + (d / "c.csv"),
           "converge " + kBox + " --reference " + (d / "a.exr") + " -o " + (d / "c.txt"),
@@ -80,6 +81,7 @@ TEST_CASE("measurement commands reject bad input with one line and exit 2") {
     }
     CHECK_FALSE(fs::exists(d / "r.exr"));
     CHECK_FALSE(fs::exists(d / "c.csv"));
+    CHECK_FALSE(fs::exists(d / "m.txt"));
 }
 
 namespace {

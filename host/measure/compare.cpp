@@ -26,6 +26,8 @@ ErrorMetrics compareFiles(const std::string& image, const std::string& reference
 }
 
 int runCompare(const std::string& image, const std::string& reference, const std::string& json) {
+    if (!json.empty() && lowerExtension(json) != ".json") fail(json, "compare report must be .json");
+    if (!json.empty()) checkOutputPath(json);
     const ErrorMetrics m = compareFiles(image, reference);
     if (!json.empty()) writeTextAtomically(json, metricsJson(m).dump(2) + "\n");
     std::fputs(metricsText(m).c_str(), stdout);
