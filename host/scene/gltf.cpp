@@ -178,20 +178,17 @@ tinygltf::Model parseModel(const std::string& path) {
     }
     if (!imageContext.failure.empty()) fail(path, imageContext.failure);
     // tinygltf only warns about a missing image file; strata fails on it.
-    if (!ok || !fsContext.missing.empty()) {
-        if (!fsContext.missing.empty()) {
-            const std::string& file = fsContext.missing.front();
-            fail(path, "missing file: uri " + quoted(file.substr(fsContext.prefix.size())) +
-                           " refers to " + file + ", which does not exist");
-        }
-        const std::string why = gltf::oneLine(err);
-        fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
+    if (!fsContext.missing.empty()) {
+        const std::string& file = fsContext.missing.front();
+        fail(path, "missing file: uri " + quoted(file.substr(fsContext.prefix.size())) + " refers to " + file +
+                       ", which does not exist");
     }
-    // tinygltf reports some malformed required properties in err and loads
-    // on without them (a primitive's 'attributes' that are not accessor
-    // indices are dropped, and its mesh with them): an error here, not a
-    // warning before a misleading one later.
-    if (!gltf::oneLine(err).empty()) fail(path, "invalid glTF: " + gltf::oneLine(err));
+    // Anything in err fails, also when tinygltf loads on: it reports some
+    // malformed required properties there and drops them (a primitive's
+    // 'attributes' that are not accessor indices, and its mesh with them),
+    // which would otherwise surface as a misleading error later.
+    const std::string why = gltf::oneLine(err);
+    if (!ok || !why.empty()) fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
     const std::string notes = gltf::oneLine(warnings);
     if (!notes.empty()) warn(path, notes);
     return model;
