@@ -63,7 +63,10 @@ void main() {
     if (i >= params.count) return;
     vec4 out4 = vec4(0.0);
     if (params.routine == kSamplePixel) {
-        Sampler ps = samplerInit(uvec2(params.pixelX, params.pixelY), params.width, i, params.spp, params.seed);
+        uint columns = max(params.blockWidth, 1u);
+        uint p = i / params.spp;
+        uvec2 pixel = uvec2(params.pixelX + p % columns, params.pixelY + p / columns);
+        Sampler ps = samplerInit(pixel, params.width, i % params.spp, params.spp, params.seed);
         out4.xy = sample2D(ps);
         samplerSetDim(ps, 2u);  // the first path vertex's light choice pair
         out4.zw = sample2D(ps);

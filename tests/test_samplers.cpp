@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <set>
+#include <stdexcept>
 
 #include "../shaders/shared/types.h"
 #include "render/sample_dump.h"
@@ -57,6 +58,34 @@ TEST_CASE("Sobol and bluenoise: the first 2^m samples of the pixel pair and of t
     std::vector<glm::vec2> pts;
     for (const auto& v : s) pts.emplace_back(v.x, v.y);
     CHECK_FALSE(isZeroMTwoNet(pts, 6));
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("a block of pixels drawn in one dispatch holds each pixel's own samples; a block off the image is refused") {
+    // strata edges draws whole rows of its block at once; each pixel's
+    // samples must be the ones a draw of that pixel alone gives.
+    for (std::uint32_t kind : {gpu::kSamplerIndependent, gpu::kSamplerStratified, gpu::kSamplerSobol,
+                               gpu::kSamplerBlueNoise}) {
+        CAPTURE(samplerByKind(kind).name);
+        const std::uint32_t spp = 16;
+        PixelSampleRequest block{kind, spp, 5u, 3u, 60u, 64u, 64u};
+        block.blockWidth = 3;
+        block.blockHeight = 2;
+        const auto all = drawPixelSamples(context(), block);
+        REQUIRE(all.size() == std::size_t(6) * spp);
+        for (std::uint32_t y = 0; y < 2; ++y)
+            for (std::uint32_t x = 0; x < 3; ++x) {
+                const auto one = drawPixelSamples(context(), {kind, spp, 5u, 3u + x, 60u + y, 64u, 64u});
+                CHECK(std::memcmp(one.data(), all.data() + (y * 3 + x) * spp, spp * sizeof(glm::vec4)) == 0);
+            }
+        // Neighbouring pixels differ (a block that repeated one pixel would not).
+        CHECK(std::memcmp(all.data(), all.data() + spp, spp * sizeof(glm::vec4)) != 0);
+    }
+    PixelSampleRequest off{gpu::kSamplerIndependent, 4u, 1u, 62u, 0u, 64u, 64u};
+    off.blockWidth = 3;  // columns 62..64 of a 64-wide image
+    CHECK_THROWS_AS(drawPixelSamples(context(), off), std::invalid_argument);
+    off.blockWidth = 0;
+    CHECK_THROWS_AS(drawPixelSamples(context(), off), std::invalid_argument);
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -270,12 +270,24 @@ EdgeReport measureEdges(const vk::Context& ctx, const EdgeSettings& s) {
         const std::size_t angles = geometry.size();
         std::vector<double> mseSum(angles, 0.0), mseSqSum(angles, 0.0), shadesSum(angles, 0.0), maxAbs(angles, 0.0);
         std::vector<std::uint32_t> shadesMin(angles, ~0u), shadesMax(angles, 0u);
+        // Whole rows of the block per dispatch (one pipeline each), as many
+        // as kMaxPixelSamples allows.
+        const std::uint32_t rowsPerDraw = static_cast<std::uint32_t>(
+            std::clamp<std::uint64_t>(kMaxPixelSamples / (std::uint64_t(s.spp) * side), 1, side));
+        std::vector<glm::vec4> drawn;
+        std::vector<glm::vec2> samples;
         for (std::uint32_t py = 0; py < side; ++py)
             for (std::uint32_t px = 0; px < side; ++px) {
-                const std::vector<glm::vec4> drawn =
-                    drawPixelSamples(ctx, {info->kind, s.spp, s.seed, px, py, s.imageSide, s.imageSide});
-                std::vector<glm::vec2> samples;
-                for (const auto& d : drawn) samples.emplace_back(d.x, d.y);
+                const std::uint32_t firstRow = py - py % rowsPerDraw;
+                if (px == 0 && py == firstRow) {
+                    PixelSampleRequest req{info->kind, s.spp, s.seed, 0, firstRow, s.imageSide, s.imageSide};
+                    req.blockWidth = side;
+                    req.blockHeight = std::min(rowsPerDraw, side - firstRow);
+                    drawn = drawPixelSamples(ctx, req);
+                }
+                const std::size_t first = (std::size_t(py - firstRow) * side + px) * s.spp;
+                samples.clear();
+                for (std::size_t k = first; k < first + s.spp; ++k) samples.emplace_back(drawn[k].x, drawn[k].y);
                 for (std::size_t a = 0; a < angles; ++a) {
                     const EdgeGeometry& g = geometry[a];
                     const std::uint32_t shades = estimateCoverage(g, samples, projection, estimate);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include <strata_spirv.h>
 
@@ -65,8 +66,14 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
 std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampleRequest& req) {
     checkSamplerSettings(samplerByKind(req.sampler), req.spp, static_cast<int>(req.width),
                          static_cast<int>(req.height));
+    const std::uint64_t w = req.blockWidth, h = req.blockHeight;
+    if (w == 0 || h == 0 || req.pixelX + w > req.width || req.pixelY + h > req.height)
+        throw std::invalid_argument("drawPixelSamples: the pixel block is empty or leaves the image");
+    const std::uint64_t count = std::uint64_t(req.spp) * w * h;
+    if (count > kMaxPixelSamples) throw std::invalid_argument("drawPixelSamples: too many samples for one dispatch");
     gpu::SampleTestParams p{};
-    p.count = req.spp;
+    p.count = static_cast<std::uint32_t>(count);
+    p.blockWidth = req.blockWidth;
     p.routine = gpu::kSamplePixel;
     p.seed = req.seed;
     p.pixelX = req.pixelX;

@@ -1,6 +1,7 @@
-// Draws the samples of one pixel from the GLSL samplers (sample_test.comp,
-// routine kSamplePixel): for sample i, the pixel pair (x, y in [0,1)^2 within
-// the pixel) and the first path vertex's light-choice pair (z, w).
+// Draws the samples of one pixel, or of a block of pixels, from the
+// GLSL samplers (sample_test.comp, routine kSamplePixel): for sample i, the
+// pixel pair (x, y in [0,1)^2 within the pixel) and the first path vertex's
+// light-choice pair (z, w).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -20,9 +21,18 @@ struct PixelSampleRequest {
     std::uint32_t seed = 0;
     std::uint32_t pixelX = 0, pixelY = 0;
     std::uint32_t width = 1, height = 1;  // the image the pixel belongs to
+    // Pixels [pixelX, pixelX + blockWidth) x [pixelY, pixelY + blockHeight),
+    // all drawn by one dispatch: spp samples of each, pixel by pixel, row by
+    // row (at most kMaxPixelSamples in all).
+    std::uint32_t blockWidth = 1, blockHeight = 1;
 };
 
-// Throws strata::Error when spp does not suit the sampler (sampler_kind.h).
+// The most samples one drawPixelSamples call draws (32 MiB of output).
+inline constexpr std::uint64_t kMaxPixelSamples = std::uint64_t(1) << 21;
+
+// Throws strata::Error when spp does not suit the sampler (sampler_kind.h),
+// and std::invalid_argument when the block is empty, leaves the image or
+// holds more than kMaxPixelSamples samples.
 std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampleRequest& request);
 
 // Runs sample_test.comp once: params.count samples of routine params.routine

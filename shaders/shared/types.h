@@ -307,7 +307,9 @@ STRATA_CONST(uint, kSampleTriangle, 1u);          // out: barycentrics (b1, b2)
 STRATA_CONST(uint, kSampleEmitterChoice, 2u);     // out: x = chosen emitter index
 STRATA_CONST(uint, kSampleFilter, 4u);            // out: filter offset (x, y) in pixels
 STRATA_CONST(uint, kSamplePixel, 3u);             // out: the pixel pair and the first light
-                                                  // pair of sample i of pixel (pixelX, pixelY)
+                                                  // pair of sample i % spp of pixel i / spp of
+                                                  // the block of blockWidth columns from
+                                                  // (pixelX, pixelY), row by row
 // BSDF routines (lib/bsdf.glsl) for the material in `bsdf0/bsdf1` seen from
 // wo = (sin t, 0, cos t) in the shading frame, t the incidence angle:
 STRATA_CONST(uint, kSampleBsdf, 5u);              // out: wi xyz, w = 1 if the sample is valid
@@ -329,10 +331,14 @@ struct SampleTestParams {
     uint routine;       // kSample*
     uint seed;
     uint emitterCount;  // for kSampleEmitterChoice
-    uint pixelX;        // for kSamplePixel: the pixel, image width and spp
-    uint pixelY;
+    uint pixelX;        // for kSamplePixel: the block's first pixel, image width, spp
+    uint pixelY;        // and the block's width in pixels (0 counts as 1)
     uint width;
     uint spp;
+    uint blockWidth;
+    uint pad0;
+    uint pad1;
+    uint pad2;
     vec4 bsdf0;         // BSDF routines: cos(incidence), roughness, metallic, transmission
     vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
 };
@@ -367,7 +373,7 @@ static_assert(sizeof(RenderCounters) == 32);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
-static_assert(sizeof(SampleTestParams) == 64);
+static_assert(sizeof(SampleTestParams) == 80);
 }  // namespace strata::gpu
 #endif
 
