@@ -143,6 +143,32 @@ TEST_CASE("texel and storage traversal render the same image") {
     CHECK(vk::validationMessageCount() == 0);
 }
 
+TEST_CASE("renders share a compiled pipeline when asked, with the same image") {
+    const Scene scene = loadGltf(sourcePath("scenes/cornell-box.gltf"));
+    const GpuScene gpu = packScene(scene);
+    RenderSettings s = small(4, 3, 77);
+    s.width = 24;
+    s.height = 16;
+    s.reusePipeline = false;
+    const RenderResult own = render(context(), gpu, scene.cameras.at(0), s);
+    CHECK_FALSE(own.pipelineReused);
+    CHECK(own.pipelineMs > 0.0);
+    s.reusePipeline = true;
+    const RenderResult first = render(context(), gpu, scene.cameras.at(0), s);
+    const RenderResult second = render(context(), gpu, scene.cameras.at(0), s);
+    CHECK(second.pipelineReused);
+    CHECK(second.pipelineMs == 0.0);
+    // Without reuse a render compiles its own, though one is cached.
+    s.reusePipeline = false;
+    const RenderResult third = render(context(), gpu, scene.cameras.at(0), s);
+    CHECK_FALSE(third.pipelineReused);
+    const auto a = own.film.mean(), b = first.film.mean(), c = second.film.mean(), d = third.film.mean();
+    CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(a.data(), c.data(), a.size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(a.data(), d.data(), a.size() * sizeof(float)) == 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("an image larger than one dispatch tile is covered in full") {
     RenderSettings s = small(1, 0, 3);
     s.width = 37;

@@ -28,6 +28,7 @@ RenderSettings settingsFor(const BenchCommand& cmd, int width, int height, std::
     s.traversal = cmd.traversal;
     s.bvhStack = cmd.bvhStack;
     s.warmUp = true;
+    s.reusePipeline = false;  // every render's pipeline creation is timed (start-up)
     return s;
 }
 

@@ -107,7 +107,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
     spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, s.workQueue) ? 1u : 0u;
     vk::Kernel kernel(ctx, traversalShader(dev, true),
-                      std::move(bindings), sizeof(DispatchParams), spec);
+                      std::move(bindings), sizeof(DispatchParams), spec, s.reusePipeline);
     kernel.bind(BINDING_FRAME, frame);
     bindTraversal(kernel, dev);
     bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
@@ -126,6 +126,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     result.sceneBytes = dev.packedBytes;
     result.sceneDeviceBytes = dev.deviceBytes;
     result.pipelineMs = kernel.pipelineMs();
+    result.pipelineReused = kernel.reusedProgram();
     vk::OneShot submit(ctx);
     vk::DeviceTimer timer(ctx);
     if (s.warmUp) {  // first-use costs of the pipeline, measured apart; the clear below undoes it

@@ -43,6 +43,9 @@ struct RenderSettings {
                                         // (render/device_scene.h; on for CPU devices)
     SceneLimits limits;                 // lower device limits to plan the scene against (0: the
                                         // device's; render/device_scene.h)
+    bool reusePipeline = true;          // share the compiled pipeline of an earlier render with the
+                                        // same shader and constants (vk::Kernel's reuse; bench
+                                        // turns it off to time pipeline creation)
 };
 
 struct RenderResult;
@@ -69,7 +72,8 @@ struct RenderResult {
     std::uint64_t closestRays = 0;      // counted on the device when settings.countRays
     std::uint64_t shadowRays = 0;
     double uploadMs = 0.0;              // scene upload (host wall time)
-    double pipelineMs = 0.0;            // vkCreateComputePipelines for pathtrace.comp
+    double pipelineMs = 0.0;            // vkCreateComputePipelines for pathtrace.comp (0 when reused)
+    bool pipelineReused = false;        // an earlier render's pipeline was shared (reusePipeline)
     double warmUpDeviceSeconds = 0.0;   // the warm-up dispatch (settings.warmUp), timestamps
     double warmUpHostSeconds = 0.0;     // its submission, recording to end of wait
     std::uint32_t warmUpPixels = 0;

@@ -219,6 +219,7 @@ Context::~Context() { release(); }
 void Context::release() {
     if (device) {
         vkDeviceWaitIdle(device);
+        programs.clear();
         if (commandPool) vkDestroyCommandPool(device, commandPool, nullptr);
         vkDestroyDevice(device, nullptr);
         device = VK_NULL_HANDLE;

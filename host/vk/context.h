@@ -3,7 +3,11 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <list>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -37,6 +41,12 @@ struct Context {
     VkPhysicalDeviceMemoryProperties memory{};
     DeviceInfo info;
     bool validation = false;
+    // Compiled pipelines that Kernels built with reuse share (vk/kernel.h),
+    // most recently used first, at most kMaxReusedPrograms; released before
+    // the device.
+    static constexpr std::size_t kMaxReusedPrograms = 8;
+    mutable std::list<std::pair<std::string, std::shared_ptr<void>>> programs;
+    mutable std::mutex programsMutex;
 
     explicit Context(const ContextOptions& options);
     ~Context();

@@ -1,6 +1,9 @@
 #include "vk/kernel.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <string>
 #include <map>
 #include <utility>
 
@@ -30,39 +33,46 @@ TexelView& TexelView::operator=(TexelView&& o) noexcept {
     return *this;
 }
 
-Kernel::Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
-               std::vector<BindingDesc> bindings, std::uint32_t pushConstantBytes,
-               std::vector<std::uint32_t> specConstants)
-    : ctx_(ctx), bindings_(std::move(bindings)), pushBytes_(pushConstantBytes) {
-    VkDevice dev = ctx.device;
+Program::~Program() {
+    if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
+    if (layout) vkDestroyPipelineLayout(device, layout, nullptr);
+    if (setLayout) vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
+    if (module) vkDestroyShaderModule(device, module, nullptr);
+}
+
+namespace {
+
+std::shared_ptr<Program> compileProgram(VkDevice dev, std::span<const std::uint32_t> spirv,
+                                        const std::vector<BindingDesc>& bindings, std::uint32_t pushBytes,
+                                        const std::vector<std::uint32_t>& specConstants) {
+    auto p = std::make_shared<Program>();
+    p->device = dev;
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     moduleInfo.codeSize = spirv.size_bytes();
     moduleInfo.pCode = spirv.data();
-    VK_CHECK(vkCreateShaderModule(dev, &moduleInfo, nullptr, &module_));
+    VK_CHECK(vkCreateShaderModule(dev, &moduleInfo, nullptr, &p->module));
 
     std::vector<VkDescriptorSetLayoutBinding> layoutBindings;
-    std::map<VkDescriptorType, std::uint32_t> typeCounts;
-    for (const auto& b : bindings_) {
+    for (const auto& b : bindings) {
         VkDescriptorSetLayoutBinding lb{};
         lb.binding = b.binding;
         lb.descriptorType = b.type;
         lb.descriptorCount = 1;
         lb.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
         layoutBindings.push_back(lb);
-        ++typeCounts[b.type];
     }
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.bindingCount = static_cast<std::uint32_t>(layoutBindings.size());
     setInfo.pBindings = layoutBindings.data();
-    VK_CHECK(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_));
+    VK_CHECK(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &p->setLayout));
 
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_};
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &setLayout_;
-    layoutInfo.pushConstantRangeCount = pushBytes_ ? 1 : 0;
+    layoutInfo.pSetLayouts = &p->setLayout;
+    layoutInfo.pushConstantRangeCount = pushBytes ? 1 : 0;
     layoutInfo.pPushConstantRanges = &range;
-    VK_CHECK(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_));
+    VK_CHECK(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &p->layout));
 
     std::vector<VkSpecializationMapEntry> entries;
     for (std::uint32_t i = 0; i < specConstants.size(); ++i)
@@ -76,14 +86,57 @@ Kernel::Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
     VkComputePipelineCreateInfo pipeInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     pipeInfo.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     pipeInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    pipeInfo.stage.module = module_;
+    pipeInfo.stage.module = p->module;
     pipeInfo.stage.pName = "main";
     pipeInfo.stage.pSpecializationInfo = specConstants.empty() ? nullptr : &spec;
-    pipeInfo.layout = layout_;
+    pipeInfo.layout = p->layout;
     const auto t0 = std::chrono::steady_clock::now();
-    VK_CHECK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &pipeInfo, nullptr, &pipeline_));
-    pipelineMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    VK_CHECK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &pipeInfo, nullptr, &p->pipeline));
+    p->pipelineMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return p;
+}
 
+// Everything a Program depends on: the words' address and length (the
+// shaders are static arrays), the bindings, the push-constant size and the
+// constants.
+std::string programKey(std::span<const std::uint32_t> spirv, const std::vector<BindingDesc>& bindings,
+                       std::uint32_t pushBytes, const std::vector<std::uint32_t>& specConstants) {
+    std::string key = std::to_string(reinterpret_cast<std::uintptr_t>(spirv.data())) + ":" +
+                      std::to_string(spirv.size()) + ":" + std::to_string(pushBytes) + ":";
+    for (const auto& b : bindings) key += std::to_string(b.binding) + "/" + std::to_string(int(b.type)) + ",";
+    key += ":";
+    for (std::uint32_t v : specConstants) key += std::to_string(v) + ",";
+    return key;
+}
+
+}  // namespace
+
+Kernel::Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
+               std::vector<BindingDesc> bindings, std::uint32_t pushConstantBytes,
+               std::vector<std::uint32_t> specConstants, bool reuse)
+    : ctx_(ctx), bindings_(std::move(bindings)), pushBytes_(pushConstantBytes) {
+    VkDevice dev = ctx.device;
+    if (reuse) {
+        const std::string key = programKey(spirv, bindings_, pushBytes_, specConstants);
+        std::lock_guard<std::mutex> lock(ctx.programsMutex);
+        auto& list = ctx.programs;
+        const auto hit = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == key; });
+        if (hit != list.end()) {
+            list.splice(list.begin(), list, hit);  // most recently used first
+            program_ = std::static_pointer_cast<Program>(list.front().second);
+            reused_ = true;
+        } else {
+            program_ = compileProgram(dev, spirv, bindings_, pushBytes_, specConstants);
+            list.emplace_front(key, program_);
+            if (list.size() > Context::kMaxReusedPrograms) list.pop_back();
+        }
+    } else {
+        program_ = compileProgram(dev, spirv, bindings_, pushBytes_, specConstants);
+    }
+    pipelineMs_ = reused_ ? 0.0 : program_->pipelineMs;
+
+    std::map<VkDescriptorType, std::uint32_t> typeCounts;
+    for (const auto& b : bindings_) ++typeCounts[b.type];
     std::vector<VkDescriptorPoolSize> sizes;
     for (auto [type, count] : typeCounts) sizes.push_back({type, count});
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -94,17 +147,12 @@ Kernel::Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = pool_;
     alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &setLayout_;
+    alloc.pSetLayouts = &program_->setLayout;
     VK_CHECK(vkAllocateDescriptorSets(dev, &alloc, &set_));
 }
 
 Kernel::~Kernel() {
-    VkDevice dev = ctx_.device;
-    if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
-    if (pipeline_) vkDestroyPipeline(dev, pipeline_, nullptr);
-    if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
-    if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
-    if (module_) vkDestroyShaderModule(dev, module_, nullptr);
+    if (pool_) vkDestroyDescriptorPool(ctx_.device, pool_, nullptr);
 }
 
 VkDescriptorType Kernel::typeOf(std::uint32_t binding) const {
@@ -136,9 +184,9 @@ void Kernel::bind(std::uint32_t binding, const TexelView& view) {
 }
 
 void Kernel::record(VkCommandBuffer cmd, const void* push) const {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-    if (pushBytes_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_, push);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program_->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, program_->layout, 0, 1, &set_, 0, nullptr);
+    if (pushBytes_) vkCmdPushConstants(cmd, program_->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes_, push);
 }
 
 void Kernel::dispatch(VkCommandBuffer cmd, const void* push, std::uint32_t gx, std::uint32_t gy,

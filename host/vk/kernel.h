@@ -3,6 +3,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -37,13 +38,31 @@ private:
     VkBufferView view_ = VK_NULL_HANDLE;
 };
 
+// What a Kernel compiles: shader module, set and pipeline layouts, pipeline.
+struct Program {
+    VkDevice device = VK_NULL_HANDLE;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    double pipelineMs = 0.0;  // host milliseconds vkCreateComputePipelines took
+    Program() = default;
+    ~Program();
+    Program(const Program&) = delete;
+    Program& operator=(const Program&) = delete;
+};
+
 class Kernel {
 public:
     // `spirv` is the module's words; specialization constant i gets value
-    // specConstants[i] (all 32-bit).
+    // specConstants[i] (all 32-bit). With `reuse`, a Program compiled for a
+    // Kernel of the same words (the same array), bindings, push-constant
+    // size and constants is shared instead of compiled again (lavapipe's
+    // pipeline cache keeps nothing, and a compile takes ~0.4 s there); each
+    // Kernel still has its own descriptor set.
     Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
            std::vector<BindingDesc> bindings, std::uint32_t pushConstantBytes,
-           std::vector<std::uint32_t> specConstants);
+           std::vector<std::uint32_t> specConstants, bool reuse = false);
     ~Kernel();
     Kernel(const Kernel&) = delete;
     Kernel& operator=(const Kernel&) = delete;
@@ -59,8 +78,10 @@ public:
     // (VkDispatchIndirectCommand, written by an earlier dispatch).
     void dispatchIndirect(VkCommandBuffer cmd, const void* push, const Buffer& args, VkDeviceSize offset) const;
 
-    // Host milliseconds vkCreateComputePipelines took for this kernel.
+    // Host milliseconds vkCreateComputePipelines took for this kernel (0
+    // when it reused a Program).
     double pipelineMs() const { return pipelineMs_; }
+    bool reusedProgram() const { return reused_; }
 
 private:
     VkDescriptorType typeOf(std::uint32_t binding) const;
@@ -69,10 +90,8 @@ private:
     std::vector<BindingDesc> bindings_;
     std::uint32_t pushBytes_ = 0;
     double pipelineMs_ = 0.0;
-    VkShaderModule module_ = VK_NULL_HANDLE;
-    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    bool reused_ = false;
+    std::shared_ptr<Program> program_;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
