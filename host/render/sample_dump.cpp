@@ -45,7 +45,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
                        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
                        {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                      sizeof(SampleTestParams), spec);
+                      sizeof(SampleTestParams), spec, /*reuse=*/true);
     kernel.bind(BINDING_FRAME, frame);
     kernel.bind(BINDING_ENV_TEXELS, env.envTexelView);
     kernel.bind(BINDING_ENV_CDF, env.envTables);
