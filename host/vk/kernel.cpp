@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <string>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "vk/check.h"
@@ -96,16 +96,16 @@ std::shared_ptr<Program> compileProgram(VkDevice dev, std::span<const std::uint3
     return p;
 }
 
-// Everything a Program depends on: the words' address and length (the
-// shaders are static arrays), the bindings, the push-constant size and the
-// constants.
+// Everything a Program depends on: the bindings, the push-constant size,
+// the constants and the module's words themselves.
 std::string programKey(std::span<const std::uint32_t> spirv, const std::vector<BindingDesc>& bindings,
                        std::uint32_t pushBytes, const std::vector<std::uint32_t>& specConstants) {
-    std::string key = std::to_string(reinterpret_cast<std::uintptr_t>(spirv.data())) + ":" +
-                      std::to_string(spirv.size()) + ":" + std::to_string(pushBytes) + ":";
+    std::string key = std::to_string(pushBytes) + ":";
     for (const auto& b : bindings) key += std::to_string(b.binding) + "/" + std::to_string(int(b.type)) + ",";
     key += ":";
     for (std::uint32_t v : specConstants) key += std::to_string(v) + ",";
+    key += ":";
+    key.append(reinterpret_cast<const char*>(spirv.data()), spirv.size_bytes());
     return key;
 }
 

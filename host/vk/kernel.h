@@ -56,8 +56,8 @@ class Kernel {
 public:
     // `spirv` is the module's words; specialization constant i gets value
     // specConstants[i] (all 32-bit). With `reuse`, a Program compiled for a
-    // Kernel of the same words (the same array), bindings, push-constant
-    // size and constants is shared instead of compiled again (lavapipe's
+    // Kernel of the same words, bindings, push-constant size and constants
+    // is shared instead of compiled again (lavapipe's
     // pipeline cache keeps nothing, and a compile takes ~0.4 s there); each
     // Kernel still has its own descriptor set.
     Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
