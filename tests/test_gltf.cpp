@@ -290,6 +290,8 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
          "mesh 2 (\"Cube\") primitive 0: mode 1 (LINES) is not supported; only TRIANGLES"},
         {"orthographic-camera.gltf", "camera 0 (\"Ortho\") is orthographic"},
         {"no-scenes.gltf", "no scenes"},
+        {"empty.gltf", "empty file"},
+        {"not-json.gltf", "not a glTF file: neither a JSON object"},
         {"does-not-exist.gltf", "cannot open file: "},
     };
     for (const Case& c : cases) {

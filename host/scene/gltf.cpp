@@ -149,6 +149,15 @@ tinygltf::Model parseModel(const std::string& path) {
         checkGlbHeader(path, bytes);
     } else if (hasGlbExtension(path)) {
         fail(path, "not a binary glTF file: it does not start with the 'glTF' magic");
+    } else {
+        // JSON glTF is a UTF-8 object: '{' after any whitespace (and a byte
+        // order mark, which the spec forbids but some writers emit).
+        std::size_t i = bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF ? 3 : 0;
+        while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r')) ++i;
+        if (bytes.empty()) fail(path, "empty file");
+        if (i == bytes.size() || bytes[i] != '{')
+            fail(path, "not a glTF file: neither a JSON object (it does not start with '{') nor binary glTF "
+                       "(no 'glTF' magic)");
     }
     std::string baseDir = std::filesystem::path(path).parent_path().string();
     if (baseDir.empty()) baseDir = ".";

@@ -60,6 +60,10 @@ def main():
         f.write(glb[: len(glb) // 2])
     with open(os.path.join(OUT, "not-binary.glb"), "w", encoding="utf-8") as f:
         f.write(text)
+    # Not glTF at all: an empty file, and a Radiance HDR header under a .gltf name.
+    open(os.path.join(OUT, "empty.gltf"), "wb").close()
+    with open(os.path.join(OUT, "not-json.gltf"), "wb") as f:
+        f.write(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n\x80\x80\x80\x80")
 
     # The buffer names a .bin file that is not there.
     w, roots = scene()
