@@ -82,6 +82,14 @@ TEST_CASE("measurement commands reject bad input with one line and exit 2") {
     CHECK_FALSE(fs::exists(d / "r.exr"));
     CHECK_FALSE(fs::exists(d / "c.csv"));
     CHECK_FALSE(fs::exists(d / "m.txt"));
+    // An empty file and a directory are named as such, not in the image
+    // library's words.
+    std::ofstream(d / "empty.exr").close();
+    fs::create_directory(d / "dir.exr");
+    const Run empty = run("compare " + (d / "empty.exr") + " " + (d / "a.exr"));
+    CHECK(empty.output == (d / "empty.exr") + ": error: cannot read image: empty file\n");
+    const Run dir = run("compare " + (d / "a.exr") + " " + (d / "dir.exr"));
+    CHECK(dir.output == (d / "dir.exr") + ": error: cannot read image: is a directory\n");
 }
 
 namespace {
