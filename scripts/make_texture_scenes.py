@@ -226,6 +226,9 @@ def broken_scenes(out):
         f.write(b"\x89PNG\r\n\x1a\n" + b"this is not a PNG stream" * 4)
     direct_scene(os.path.join(out, "missing-image.gltf"), "does-not-exist.png")
     direct_scene(os.path.join(out, "corrupt-image.gltf"), "corrupt.png")
+    open(os.path.join(out, "empty.png"), "wb").close()
+    direct_scene(os.path.join(out, "empty-image.gltf"), "empty.png")
+    direct_scene(os.path.join(out, "directory-image.gltf"), ".")  # the folder itself
     direct_scene(os.path.join(out, "missing-texcoord.gltf"), "checker.png", tex_coord=1)
     direct_scene(os.path.join(out, "bad-texture-index.gltf"), "checker.png", index=3)  # of 1
 

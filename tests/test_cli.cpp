@@ -168,11 +168,13 @@ TEST_CASE("--time stops early and records the spp actually reached") {
     CHECK(spp < 1000000);
 }
 
-TEST_CASE("texture errors: missing or corrupt image, bad texture index, missing TEXCOORD set") {
+TEST_CASE("texture errors: missing, corrupt or empty image, a directory as image, bad texture index, missing TEXCOORD set") {
     const std::string dir = std::string(STRATA_SOURCE_DIR) + "/tests/data/textures/broken/";
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"missing-image.gltf", "does-not-exist.png"},
         {"corrupt-image.gltf", "image 0 (\"corrupt.png\"): cannot decode"},
+        {"empty-image.gltf", "unreadable file: uri \"empty.png\" refers to " + dir + "empty.png, which is an empty file"},
+        {"directory-image.gltf", "unreadable file: uri \".\" refers to " + dir + "., which is a directory"},
         {"bad-texture-index.gltf", "emissiveTexture: texture 3 does not exist (1 textures)"},
         {"missing-texcoord.gltf", "reads TEXCOORD_1, which the primitive does not have"}};
     for (const auto& [name, what] : cases) {

@@ -291,6 +291,8 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
         {"orthographic-camera.gltf", "camera 0 (\"Ortho\") is orthographic"},
         {"no-scenes.gltf", "no scenes"},
         {"empty.gltf", "empty file"},
+        {"buffer-uri-directory.gltf", "unreadable file: uri \".\" refers to "},
+        {"buffer-uri-empty.gltf", "unreadable file: uri \"empty.gltf\" refers to "},
         {"not-json.gltf", "not a glTF file: neither a JSON object"},
         {"does-not-exist.gltf", "cannot open file: "},
     };

@@ -80,6 +80,7 @@ bool hasGlbExtension(const std::string& path) {
 struct FsContext {
     std::string prefix;                // base directory ending in '/'
     std::vector<std::string> missing;  // paths looked up and not found
+    std::string unreadable;            // the first uri that names a directory or an empty file
 };
 
 bool fileExists(const std::string& file, void* user) {
@@ -91,6 +92,27 @@ bool fileExists(const std::string& file, void* user) {
 }
 
 std::string keepPath(const std::string& file, void*) { return file; }
+
+// tinygltf's reader, but a directory or an empty file is refused with a
+// message of ours (a directory made tinygltf allocate its bogus size and
+// fail with std::bad_alloc; an empty image was a warning, then an error).
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+    auto* context = static_cast<FsContext*>(user);
+    std::error_code ec;
+    const char* what = std::filesystem::is_directory(file, ec) ? "a directory"
+                       : std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 && !ec
+                           ? "an empty file"
+                           : nullptr;
+    if (what) {
+        if (context->unreadable.empty()) {
+            const std::string uri = file.rfind(context->prefix, 0) == 0 ? file.substr(context->prefix.size()) : file;
+            context->unreadable = "unreadable file: uri " + gltf::quoted(uri) + " refers to " + file + ", which is " + what;
+        }
+        if (err) *err += context->unreadable + "\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, file, nullptr);
+}
 
 // tinygltf's stb_image loader (RGBA, 8 or 16 bits), with the failure kept
 // as one message naming the image instead of tinygltf's multi-line text.
@@ -166,7 +188,7 @@ tinygltf::Model parseModel(const std::string& path) {
     fsContext.prefix = baseDir.back() == '/' ? baseDir : baseDir + "/";
     tinygltf::TinyGLTF context;
     context.SetFsCallbacks(
-        {&fileExists, &keepPath, &tinygltf::ReadWholeFile, &tinygltf::WriteWholeFile, &fsContext});
+        {&fileExists, &keepPath, &readWholeFile, &tinygltf::WriteWholeFile, &fsContext});
     ImageContext imageContext;
     context.SetImageLoader(&decodeImage, &imageContext);
     tinygltf::Model model;
@@ -185,6 +207,7 @@ tinygltf::Model parseModel(const std::string& path) {
     } catch (const std::exception& e) {
         fail(path, std::string("invalid glTF: ") + gltf::oneLine(e.what()));
     }
+    if (!fsContext.unreadable.empty()) fail(path, fsContext.unreadable);
     if (!imageContext.failure.empty()) fail(path, imageContext.failure);
     // tinygltf only warns about a missing image file; strata fails on it.
     if (!fsContext.missing.empty()) {

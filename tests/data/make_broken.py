@@ -70,6 +70,11 @@ def main():
     w.set_scene(roots)
     with open(os.path.join(OUT, "missing-bin.gltf"), "w", encoding="utf-8", newline="\n") as f:
         f.write(w.gltf_text(bin_uri="missing-bin.bin"))
+    # The buffer names a directory (this one), or an empty file.
+    with open(os.path.join(OUT, "buffer-uri-directory.gltf"), "w", encoding="utf-8", newline="\n") as f:
+        f.write(w.gltf_text(bin_uri="."))
+    with open(os.path.join(OUT, "buffer-uri-empty.gltf"), "w", encoding="utf-8", newline="\n") as f:
+        f.write(w.gltf_text(bin_uri="empty.gltf"))
 
     # Accessor reads past the end of its bufferView.
     w, roots = scene()
