@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,30 @@ TEST_CASE("measurement commands reject bad input with one line and exit 2") {
     CHECK(empty.output == (d / "empty.exr") + ": error: cannot read image: empty file\n");
     const Run dir = run("compare " + (d / "a.exr") + " " + (d / "dir.exr"));
     CHECK(dir.output == (d / "dir.exr") + ": error: cannot read image: is a directory\n");
+    // A reference with a NaN: compare counts and excludes it, but converge and
+    // bench, whose error figures would leave it out unsaid, refuse it.
+    {
+        std::ofstream f(d / "nan.pfm", std::ios::binary);
+        f << "PF\n8 8\n-1.0\n";
+        for (int i = 0; i < 8 * 8 * 3; ++i) {
+            const float v = i == 100 ? std::numeric_limits<float>::quiet_NaN() : 0.25f;
+            f.write(reinterpret_cast<const char*>(&v), sizeof v);
+        }
+    }
+    const Run counted = run("compare " + (d / "a.exr") + " " + (d / "nan.pfm"));
+    CHECK(counted.status == 0);
+    CHECK(counted.output.find("1 non-finite (excluded)") != std::string::npos);
+    for (const std::string& args :
+         {"converge " + kBox + " --reference " + (d / "nan.pfm") + " --spp 1,2 -o " + (d / "n.csv"),
+          "bench " + kBox + " --reference " + (d / "nan.pfm") + " --width 8 --height 8 --spp 1 --quick"}) {
+        checkRejected(args);
+        CHECK(run(args).output.find("has a non-finite value (NaN or Inf)") != std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(d / "n.csv"));
+    // A truncated image, for which OpenImageIO gives no reason, still gets one.
+    std::ofstream(d / "cut.pfm", std::ios::binary) << "PF\n8 8\n-1.0\n0123456789";
+    const Run cut = run("compare " + (d / "a.exr") + " " + (d / "cut.pfm"));
+    CHECK(cut.output == (d / "cut.pfm") + ": error: cannot read image: the file is truncated or corrupt\n");
 }
 
 namespace {

@@ -128,6 +128,17 @@ Image readImage(const std::string& path) {
     return img;
 }
 
+RgbImage readReference(const std::string& path) {
+    RgbImage img = readRgb(path);
+    for (std::size_t i = 0; i < img.rgb.size(); ++i) {
+        if (std::isfinite(img.rgb[i])) continue;
+        const std::size_t pixel = i / 3;
+        fail(path, "reference pixel (" + std::to_string(pixel % std::size_t(img.width)) + ", " +
+                       std::to_string(pixel / std::size_t(img.width)) + ") has a non-finite value (NaN or Inf)");
+    }
+    return img;
+}
+
 RgbImage readRgb(const std::string& path) {
     const Image img = readImage(path);
     auto channel = [&](const std::string& name) {

@@ -46,6 +46,11 @@ struct RgbImage {
 // without R, G and B is an error naming it.
 RgbImage readRgb(const std::string& path);
 
+// readRgb for an image that measurements are made against (converge, bench
+// --reference): a NaN or Inf in R, G or B is an error naming the first such
+// pixel, since every error figure would silently leave it out.
+RgbImage readReference(const std::string& path);
+
 // Reads any image OpenImageIO can read, as float. Throws strata::Error.
 Image readImage(const std::string& path);
 

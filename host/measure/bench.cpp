@@ -275,7 +275,7 @@ int runBench(const BenchCommand& cmd) {
     // The reference first: a mismatch is an error before any work.
     RgbImage reference;
     if (!cmd.reference.empty()) {
-        reference = readRgb(cmd.reference);
+        reference = readReference(cmd.reference);
         if (reference.width != cmd.width || reference.height != cmd.height)
             fail(cmd.reference, "reference is " + std::to_string(reference.width) + "x" +
                                     std::to_string(reference.height) + ", bench renders " +

@@ -90,7 +90,7 @@ nlohmann::json ConvergeReport::toJson() const {
 
 ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
-    const RgbImage ref = readRgb(cmd.reference);
+    const RgbImage ref = readReference(cmd.reference);
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
     if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
         fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist");

@@ -49,9 +49,15 @@ std::string writePng(const std::string& path, const std::string& tmp, int w, int
     return write(path, tmp, spec, OIIO::TypeDesc::UINT8, rgb);
 }
 
+// "cannot read image: " and OpenImageIO's reason, or ours when it gives none
+// (a truncated PFM reads as a failure with an empty message).
+std::string readFailure(const std::string& why) {
+    return "cannot read image: " + (why.empty() ? std::string("the file is truncated or corrupt") : why);
+}
+
 std::string read(const std::string& path, Image& img) {
     auto in = OIIO::ImageInput::open(path);
-    if (!in) return "cannot read image: " + oneLine(OIIO::geterror());
+    if (!in) return readFailure(oneLine(OIIO::geterror()));
     const OIIO::ImageSpec& spec = in->spec();
     img.width = spec.width;
     img.height = spec.height;
@@ -59,7 +65,7 @@ std::string read(const std::string& path, Image& img) {
     img.channelNames = spec.channelnames;
     img.pixels.resize(static_cast<std::size_t>(img.width) * img.height * img.channels);
     if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-        return "cannot read image: " + oneLine(in->geterror());
+        return readFailure(oneLine(in->geterror()));
     in->close();
     return "";
 }
