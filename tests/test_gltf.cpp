@@ -290,6 +290,8 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
          "mesh 2 (\"Cube\") primitive 0: mode 1 (LINES) is not supported; only TRIANGLES"},
         {"orthographic-camera.gltf", "camera 0 (\"Ortho\") is orthographic"},
         {"no-scenes.gltf", "no scenes"},
+        {"node-two-parents.gltf",
+         "node 1 (\"Light\") is reached twice from scene 0 (a node may have one parent, and a root none)"},
         {"empty.gltf", "empty file"},
         {"buffer-uri-directory.gltf", "unreadable file: uri \".\" refers to "},
         {"buffer-uri-empty.gltf", "unreadable file: uri \"empty.gltf\" refers to "},

@@ -321,7 +321,7 @@ public:
     // nodes are listed first, so the triangles are allocated once.
     void walk(int sceneIndex) {
         const tinygltf::Scene& s = model_.scenes[static_cast<std::size_t>(sceneIndex)];
-        std::vector<char> onPath(model_.nodes.size(), 0);
+        std::vector<char> onPath(model_.nodes.size(), 0), entered(model_.nodes.size(), 0);
         struct Frame {
             int node;
             glm::dmat4 world;
@@ -333,6 +333,14 @@ public:
                 fail(path_, nodeLabel(model_, node) +
                                 " is its own ancestor (cycle in the node hierarchy)");
             }
+            // The hierarchy is a set of disjoint trees: a node reached twice
+            // has two parents (or is a root and a child), and such a graph can
+            // multiply the instances exponentially.
+            if (entered[static_cast<std::size_t>(node)]) {
+                fail(path_, nodeLabel(model_, node) + " is reached twice from scene " + std::to_string(sceneIndex) +
+                                " (a node may have one parent, and a root none)");
+            }
+            entered[static_cast<std::size_t>(node)] = 1;
             const glm::dmat4 world = parent * localTransform(path_, model_, node);
             visits.push_back({node, world, 0});
             onPath[static_cast<std::size_t>(node)] = 1;

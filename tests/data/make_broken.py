@@ -128,6 +128,12 @@ def main():
     roots.append(w.add_node("Cube", mesh=cube))
     write("lines-mode.gltf", w, roots)
 
+    # Node 1 ("Light") is a root and also the child of a "Group" root: two
+    # parents (chains of such nodes multiply the instances exponentially).
+    w, roots = scene()
+    roots.append(w.add_node("Group", children=[roots[1]]))
+    write("node-two-parents.gltf", w, roots)
+
     w, roots = scene(camera=False)
     cam = w.add_orthographic("Ortho")
     roots.append(w.add_node("Ortho", camera=cam, translation=[0, 0.5, 3]))
