@@ -133,7 +133,7 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
         label += " (" + gltf::quoted(image->name) + ")";
     }
     context->failure = label + ": cannot decode " + std::to_string(size) +
-                       " bytes: corrupt, or not a PNG/JPEG that stb_image reads";
+                       " bytes: corrupt, too large, or not a PNG/JPEG that stb_image reads";
     if (err) *err += context->failure + "\n";
     return false;
 }
