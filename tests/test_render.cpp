@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "test_util.h"
+#include "util/error.h"
 
 using namespace strata;
 using namespace strata::test;
@@ -166,6 +167,22 @@ TEST_CASE("renders share a compiled pipeline when asked, with the same image") {
     CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
     CHECK(std::memcmp(a.data(), c.data(), a.size() * sizeof(float)) == 0);
     CHECK(std::memcmp(a.data(), d.data(), a.size() * sizeof(float)) == 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("an image whose sample sums exceed the device's largest allocation is one error before any work") {
+    // 24 x 16 pixels need 24 * 16 * 32 = 12288 bytes of sums; a device
+    // allowing 12287 bytes per allocation (the limit lowered) cannot hold them.
+    RenderSettings s = small(1, 0, 1);
+    s.width = 24;
+    s.height = 16;
+    s.limits.allocation = 12287;
+    CHECK_THROWS_WITH_AS(renderFile("scenes/furnace.gltf", s),
+                         "strata: error: a 24x16 image needs 12288 bytes for its sample sums, more than the device's "
+                         "maxMemoryAllocationSize (12287 bytes); render a smaller image",
+                         strata::Error);
+    s.limits.allocation = 12288;
+    CHECK(renderFile("scenes/furnace.gltf", s).result.spp == 1);
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -41,14 +41,6 @@ std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
             {"environment map texels", s.envTexels.size() * sizeof(glm::vec4), false, sizeof(glm::vec4)}};
 }
 
-std::string sizeText(std::uint64_t bytes) {
-    if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
-    const bool gib = bytes >= (std::uint64_t(1) << 30);
-    char buf[32];
-    std::snprintf(buf, sizeof buf, gib ? "%.2f GiB" : "%.1f MiB",
-                  static_cast<double>(bytes) / static_cast<double>(gib ? 1u << 30 : 1u << 20));
-    return buf;
-}
 
 bool fitsStorage(const ArrayUse& a, const SceneLimits& l) { return a.storage && a.bytes <= l.storageRange; }
 bool fitsTexel(const ArrayUse& a, const SceneLimits& l) {
@@ -126,6 +118,15 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
 }
 
 }  // namespace
+
+std::string sizeText(std::uint64_t bytes) {
+    if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
+    const bool gib = bytes >= (std::uint64_t(1) << 30);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, gib ? "%.2f GiB" : "%.1f MiB",
+                  static_cast<double>(bytes) / static_cast<double>(gib ? 1u << 30 : 1u << 20));
+    return buf;
+}
 
 SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides) {
     VkPhysicalDeviceMaintenance3Properties m3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};

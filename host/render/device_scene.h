@@ -8,6 +8,7 @@
 #pragma once
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "../../shaders/shared/bindings.h"
@@ -36,6 +37,9 @@ struct SceneLimits {
 };
 
 SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {});
+
+// "812 bytes", "3.5 MiB" or "2.00 GiB".
+std::string sizeText(std::uint64_t bytes);
 
 // SPEC_TEXEL_FETCH for `scene` (kReads*). Auto: every array through texel
 // views on CPU devices (lavapipe; the BVH alone where another array does not

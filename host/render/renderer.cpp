@@ -13,6 +13,7 @@
 #include "render/sampler_kind.h"
 #include "vk/check.h"
 #include "vk/kernel.h"
+#include "util/error.h"
 #include "vk/timer.h"
 
 namespace strata {
@@ -74,6 +75,12 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
     const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
+    // The sample sums are one device buffer (and one readback buffer).
+    const std::uint64_t largest = sceneLimits(ctx, s.limits).allocation;
+    if (accumBytes > largest)
+        throw Error("strata: error: a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
+                    sizeText(accumBytes) + " for its sample sums, more than the device's maxMemoryAllocationSize (" +
+                    sizeText(largest) + "); render a smaller image");
 
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
     const FrameUniforms fu = frameUniforms(dev, scene, camera, s);
