@@ -92,6 +92,15 @@ TEST_CASE("lights cli: a scene lit only by the environment renders with render, 
     r = run("render " + sphere + " --env " + lights("sky.hdr") + " --stats -o " + out / "m.exr" + kSmall);
     CHECK(r.status == 0);
     CHECK(r.output.find("environment, environment-map") != std::string::npos);
+    // Whole turns change nothing, bit for bit, however many (before, 370
+    // degrees was carried as such and rounded differently from 10).
+    const std::string map = " --env " + lights("sky.hdr") + " --quiet";
+    REQUIRE(run("render " + sphere + map + " --env-rotate 10 -o " + out / "t1.exr" + kSmall).status == 0);
+    for (const char* turns : {"370", "3600010", "-350"}) {
+        CAPTURE(turns);
+        REQUIRE(run("render " + sphere + map + " --env-rotate " + turns + " -o " + out / "t2.exr" + kSmall).status == 0);
+        CHECK(strata::readRgb(out / "t1.exr").rgb == strata::readRgb(out / "t2.exr").rgb);
+    }
 }
 
 TEST_CASE("lights cli: a light's range is ignored with one warning") {
