@@ -111,7 +111,7 @@ double parseFinite(const std::string& flag, const std::string& value) {
     return v;
 }
 
-// --env-color R,G,B: three finite numbers >= 0, not all 0.
+// --env-color R,G,B: three numbers in [0, 1e30], not all 0.
 glm::vec3 parseColor(const std::string& flag, const std::string& value) {
     double c[3];
     std::size_t start = 0;
@@ -121,8 +121,8 @@ glm::vec3 parseColor(const std::string& flag, const std::string& value) {
         const std::string item = value.substr(start, k < 2 ? comma - start : std::string::npos);
         char* end = nullptr;
         c[k] = std::strtod(item.c_str(), &end);
-        if (item.empty() || *end != '\0' || !std::isfinite(c[k]) || c[k] < 0.0)
-            badFlag(flag + " expects R,G,B, three finite numbers >= 0, got '" + value + "'");
+        if (item.empty() || *end != '\0' || !std::isfinite(c[k]) || c[k] < 0.0 || c[k] > 1e30)
+            badFlag(flag + " expects R,G,B, three numbers in [0, 1e+30], got '" + value + "'");
         start = comma + 1;
     }
     if (c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0)

@@ -190,3 +190,25 @@ TEST_CASE("texture errors: missing, corrupt or empty image, a directory as image
         CHECK(out.empty());
     }
 }
+
+TEST_CASE("samples whose float sums overflow are left out with one warning, and the image stays finite") {
+    // The Cornell box with its lamp 1e38 times as bright: 64 samples of a
+    // lamp pixel sum past the float range on the device.
+    std::ifstream in(std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string key = "\"emissiveStrength\": 15.0";
+    const auto at = text.find(key);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, key.size(), "\"emissiveStrength\": 1e38");
+    TempDir d;
+    const std::string scene = (d.path / "hot.gltf").string();
+    std::ofstream(scene) << text;
+    const Run r = run("render " + scene + " --spp 64 --width 16 --height 16 --quiet -o " + (d.path / "hot.exr").string());
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    CHECK(lines(r.output) == 1);
+    CHECK(r.output.rfind(scene + ": warning: ", 0) == 0);
+    CHECK(r.output.find(" of 16384 samples were NaN or Inf and were left out of the image") != std::string::npos);
+    const Run c = run("compare " + (d.path / "hot.exr").string() + " " + (d.path / "hot.exr").string());
+    CHECK(c.output.find(", 0 non-finite (excluded)") != std::string::npos);
+}

@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "image/film.h"
@@ -24,6 +25,25 @@ TEST_CASE("film folds device batches and reports mean and variance of the mean")
     const auto v = f.varianceOfMean();
     CHECK(v[0] == doctest::Approx(4.0 / 3.0));  // sample variance 4, over 3 samples
     CHECK(v[3] == 0.0f);                        // one sample: unknown, reported 0
+}
+
+TEST_CASE("film leaves out a batch whose float sum overflowed, and counts its samples") {
+    Film f(2, 1);
+    const float inf = std::numeric_limits<float>::infinity();
+    // Pixel 0: samples {1, 3}; pixel 1: 64 finite samples whose float sum overflowed.
+    const float b1[16] = {4, 4, 4, 2, 10, 10, 10, 0, inf, 1, 1, 64, inf, 1, 1, 0};
+    // Pixel 0: a sample of 3e19, whose square is beyond float: kept (the mean
+    // is right; the variance reads infinite). Pixel 1: sample {2}.
+    const float b2[16] = {3e19f, 3e19f, 3e19f, 1, inf, inf, inf, 0, 2, 2, 2, 1, 4, 4, 4, 0};
+    f.fold(b1);
+    f.fold(b2);
+    CHECK(f.overflowed == 64);
+    CHECK(f.count[0] == 3);
+    CHECK(f.count[1] == 1);
+    const auto m = f.mean();
+    CHECK(m[0] == doctest::Approx((4.0 + 3e19) / 3.0));
+    CHECK(m[3] == doctest::Approx(2.0));
+    CHECK(std::isinf(f.varianceOfMean()[0]));
 }
 
 TEST_CASE("alias table selects each emitter with its share of the weight") {

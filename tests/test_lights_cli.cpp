@@ -57,6 +57,11 @@ TEST_CASE("lights cli: bad environment input is one line, exit 2, no output") {
     expectError(sphere + " --env-color 1,1,1 --env-intensity -2", "strata: error: --env-intensity ");
     expectError(sphere + " --env-color 1,1,1 --env-intensity inf",
                 "strata: error: --env-intensity expects a factor in (0, 1e+30], got 'inf'");
+    // Radiance beyond float would make every sample that sees it Inf.
+    expectError(sphere + " --env-color 1e39,1,1",
+                "strata: error: --env-color expects R,G,B, three numbers in [0, 1e+30], got '1e39,1,1'");
+    expectError(sphere + " --env-color 3e29,1,1 --env-intensity 1e10",
+                "strata: error: --env-color times --env-intensity is 3e+39, beyond the float range (3.4e+38)");
     expectError(sphere + " --env-color 1,1,1 --env-rotate ten", "strata: error: --env-rotate ");
     expectError(sphere + " --env-color 1,1,1 --env-rotate inf", "strata: error: --env-rotate ");
     expectError(sphere + " --env-rotate 10", "strata: error: --env-rotate needs --env or --env-color");
@@ -75,6 +80,11 @@ TEST_CASE("lights cli: bad environment input is one line, exit 2, no output") {
         strata::writeImages({path}, 2, 2, rgb);
         expectError(sphere + " --env " + path, path + ": error: environment map ");
     }
+    // A map whose brightest texel, scaled, passes the float range.
+    const std::string bright = maps / "bright.exr";
+    strata::writeImages({bright}, 2, 2, {1, 1, 1, 1e30f, 1, 1, 1, 1, 1, 1, 1, 1});
+    expectError(sphere + " --env " + bright + " --env-intensity 1e9",
+                bright + ": error: the brightest texel times --env-intensity is 1e+39, beyond the float range (3.4e+38)");
 }
 
 TEST_CASE("lights cli: a scene lit only by the environment renders with render, reference and a map") {

@@ -1,5 +1,7 @@
 #include "image/film.h"
 
+#include <cmath>
+
 namespace strata {
 
 Film::Film(int w, int h)
@@ -9,6 +11,10 @@ void Film::fold(const float* batch) {
     const std::size_t n = pixels();
     for (std::size_t i = 0; i < n; ++i) {
         const float* p = batch + i * 8;
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+            overflowed += static_cast<std::uint64_t>(p[3]);
+            continue;
+        }
         for (int c = 0; c < 3; ++c) {
             sum[i * 3 + c] += p[c];
             sumSq[i * 3 + c] += p[4 + c];

@@ -14,13 +14,18 @@ struct Film {
     std::vector<double> sum;          // rgb per pixel
     std::vector<double> sumSq;        // rgb per pixel: sum of squared samples
     std::vector<std::uint64_t> count; // finite samples per pixel
+    // Samples of batches whose float32 sum overflowed (each sample finite,
+    // their sum not): left out, like non-finite samples.
+    std::uint64_t overflowed = 0;
 
     Film() = default;
     Film(int w, int h);
     std::size_t pixels() const { return static_cast<std::size_t>(width) * height; }
 
     // Adds a device batch: per pixel two vec4 (sum rgb + count, sumSq rgb + 0),
-    // the layout of gpu::kAccumVec4PerPixel.
+    // the layout of gpu::kAccumVec4PerPixel. A pixel whose batch sum is not
+    // finite keeps none of that batch (counted in `overflowed`); a square sum
+    // beyond float is kept, so its variance reads as infinite.
     void fold(const float* batch);
 
     // Per-pixel mean rgb (float, row-major, row 0 at the top); 0 where a pixel

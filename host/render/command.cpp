@@ -74,6 +74,10 @@ int runRender(const RenderCommand& cmd) {
         throw;
     }
     if (cmd.stats) std::fputs(statsText(stats).c_str(), stdout);
+    if (result.nonFinite > 0)
+        warn(cmd.scene, std::to_string(result.nonFinite) + " of " +
+                            std::to_string(std::uint64_t(result.spp) * cmd.settings.width * cmd.settings.height) +
+                            " samples were NaN or Inf and were left out of the image");
     if (!cmd.quiet)
         for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());
     return 0;

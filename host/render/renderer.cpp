@@ -268,7 +268,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         countersBack.invalidate();
         RenderCounters c;
         std::memcpy(&c, countersBack.mapped(), sizeof c);
-        result.nonFinite = c.nonFinite;
+        result.nonFinite = c.nonFinite + result.film.overflowed;
         result.closestRays = (static_cast<std::uint64_t>(c.closestHi) << 32) | c.closestLo;
         result.shadowRays = (static_cast<std::uint64_t>(c.shadowHi) << 32) | c.shadowLo;
     }

@@ -64,7 +64,8 @@ struct RenderResult {
     double deviceSeconds = 0.0;         // device time of the path-tracing dispatches (timestamps),
                                         // excluding upload and the readback of each batch;
                                         // equals `seconds` where the queue has no timestamps
-    std::uint64_t nonFinite = 0;        // samples dropped as NaN/Inf
+    std::uint64_t nonFinite = 0;        // samples dropped as NaN/Inf, or in a batch whose
+                                        // float32 sum overflowed (Film::overflowed)
     std::uint32_t submissions = 0;
     std::uint64_t dispatches = 0;       // path-tracing dispatches recorded in the loop
     double hostSubmitSeconds = 0.0;     // host wall time of the loop's submissions, from the

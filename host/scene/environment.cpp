@@ -1,6 +1,9 @@
 #include "scene/environment.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "image/image_io.h"
@@ -13,9 +16,20 @@ Environment makeEnvironment(const EnvironmentOptions& o) {
     if (!o.given()) return env;
     env.enabled = true;
     env.rotation = static_cast<float>(static_cast<double>(o.rotateDegrees) * std::numbers::pi / 180.0);
+    // Radiance past the float range would make every sample that sees it
+    // Inf and be dropped: a black image.
+    auto requireFloat = [](double radiance, const std::string& file, const std::string& what) {
+        if (!(radiance <= double(std::numeric_limits<float>::max()))) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%g", radiance);
+            fail(file, what + " is " + text + ", beyond the float range (3.4e+38)");
+        }
+    };
     if (o.hasColor) {
         env.source = "--env-color";
         env.scale = o.color * o.intensity;
+        const double brightest = std::max({double(o.color.r), double(o.color.g), double(o.color.b)});
+        requireFloat(brightest * double(o.intensity), "strata", "--env-color times --env-intensity");
         return env;
     }
     env.source = o.file;
@@ -34,6 +48,8 @@ Environment makeEnvironment(const EnvironmentOptions& o) {
         anyLight |= v > 0.0f;
     }
     if (!anyLight) fail(o.file, "environment map is black (every texel is 0); omit --env for no environment");
+    requireFloat(double(*std::max_element(img.rgb.begin(), img.rgb.end())) * double(o.intensity), o.file,
+                 "the brightest texel times --env-intensity");
     env.width = img.width;
     env.height = img.height;
     env.rgb = std::move(img.rgb);
