@@ -14,6 +14,7 @@
 
 #include "oiio/module.h"
 #include "util/error.h"
+#include "util/files.h"
 
 namespace strata {
 namespace fs = std::filesystem;
@@ -118,10 +119,8 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
 Image readImage(const std::string& path) {
     // Named here rather than in the image library's words ("could not find a
     // format reader", "RGBE read error -- early end of file").
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) fail(path, "cannot read image: is a directory");
-    if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 && !ec)
-        fail(path, "cannot read image: empty file");
+    if (const Unusable u = unusableInput(path); u != Unusable::No)
+        fail(path, u == Unusable::Directory ? "cannot read image: is a directory" : "cannot read image: empty file");
     Image img;
     const std::string error = imageModule(path).read(path, img);
     if (!error.empty()) fail(path, error);

@@ -19,6 +19,7 @@
 #include "scene/scene.h"
 #include "scene/tangents.h"
 #include "util/error.h"
+#include "util/files.h"
 #include "util/memory.h"
 
 namespace strata {
@@ -98,12 +99,8 @@ std::string keepPath(const std::string& file, void*) { return file; }
 // fail with std::bad_alloc; an empty image was a warning, then an error).
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
     auto* context = static_cast<FsContext*>(user);
-    std::error_code ec;
-    const char* what = std::filesystem::is_directory(file, ec) ? "a directory"
-                       : std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) == 0 && !ec
-                           ? "an empty file"
-                           : nullptr;
-    if (what) {
+    if (const Unusable u = unusableInput(file); u != Unusable::No) {
+        const char* what = u == Unusable::Directory ? "a directory" : "an empty file";
         if (context->unreadable.empty()) {
             const std::string uri = file.rfind(context->prefix, 0) == 0 ? file.substr(context->prefix.size()) : file;
             context->unreadable = "unreadable file: uri " + gltf::quoted(uri) + " refers to " + file + ", which is " + what;
@@ -171,12 +168,13 @@ tinygltf::Model parseModel(const std::string& path) {
         checkGlbHeader(path, bytes);
     } else if (hasGlbExtension(path)) {
         fail(path, "not a binary glTF file: it does not start with the 'glTF' magic");
+    } else if (bytes.empty()) {
+        fail(path, "empty file");
     } else {
         // JSON glTF is a UTF-8 object: '{' after any whitespace (and a byte
         // order mark, which the spec forbids but some writers emit).
         std::size_t i = bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF ? 3 : 0;
         while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r')) ++i;
-        if (bytes.empty()) fail(path, "empty file");
         if (i == bytes.size() || bytes[i] != '{')
             fail(path, "not a glTF file: neither a JSON object (it does not start with '{') nor binary glTF "
                        "(no 'glTF' magic)");

@@ -17,6 +17,14 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
+Unusable unusableInput(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) return Unusable::Directory;
+    if (fs::is_regular_file(path, ec) && fs::file_size(path, ec) == 0 && !ec) return Unusable::EmptyFile;
+    return Unusable::No;
+}
+
 void checkOutputPath(const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code ec;

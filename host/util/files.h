@@ -11,6 +11,11 @@ std::string lowerExtension(const std::string& path);
 // directory, then a rename. Throws strata::Error naming `path` on failure.
 void writeTextAtomically(const std::string& path, const std::string& text);
 
+// An input no reader can use, named by the callers in their own words (the
+// libraries' words for these mislead: "bad_alloc", "RGBE read error").
+enum class Unusable { No, Directory, EmptyFile };
+Unusable unusableInput(const std::string& path);
+
 // Fails (strata::Error naming `path`) unless `path` can be written as a new
 // or replaced file: its directory exists and is writable, and `path` is not
 // a directory. The commands check every output before any work, so a long
