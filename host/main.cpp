@@ -137,12 +137,7 @@ bool parseEnvFlag(const std::string& a, Value&& value, strata::EnvironmentOption
     if (a == "--env") env.file = value();
     else if (a == "--env-color") env.color = parseColor(a, value()), env.hasColor = true;
     else if (a == "--env-intensity") env.intensity = static_cast<float>(parsePositive(a, value(), 1e30, "a factor"));
-    // Reduced to [0, 360) in double, so whole turns change nothing and a
-    // large angle is not rounded to a float (1e39 became inf).
-    else if (a == "--env-rotate") {
-        const double turn = std::fmod(parseFinite(a, value()), 360.0);
-        env.rotateDegrees = static_cast<float>(turn < 0.0 ? turn + 360.0 : turn);
-    }
+    else if (a == "--env-rotate") env.rotateDegrees = parseFinite(a, value());
     else return false;
     return true;
 }

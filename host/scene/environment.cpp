@@ -15,7 +15,10 @@ Environment makeEnvironment(const EnvironmentOptions& o) {
     Environment env;
     if (!o.given()) return env;
     env.enabled = true;
-    env.rotation = static_cast<float>(static_cast<double>(o.rotateDegrees) * std::numbers::pi / 180.0);
+    // Reduced to [0, 360) in double first, so whole turns change nothing and
+    // a large angle is not carried to the float (1e39 would be inf).
+    const double turn = std::fmod(o.rotateDegrees, 360.0);
+    env.rotation = static_cast<float>((turn < 0.0 ? turn + 360.0 : turn) * std::numbers::pi / 180.0);
     // Radiance past the float range would make every sample that sees it
     // Inf and be dropped: a black image.
     auto requireFloat = [](double radiance, const std::string& file, const std::string& what) {

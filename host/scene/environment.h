@@ -15,7 +15,7 @@ struct EnvironmentOptions {
     bool hasColor = false;       // --env-color given
     glm::vec3 color{0.0f};       // constant radiance, components >= 0, not all 0
     float intensity = 1.0f;      // --env-intensity, > 0
-    float rotateDegrees = 0.0f;  // --env-rotate, about +Y
+    double rotateDegrees = 0.0;  // --env-rotate, about +Y (any finite angle)
     bool given() const { return !file.empty() || hasColor; }
 };
 
