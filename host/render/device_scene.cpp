@@ -41,7 +41,6 @@ std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
             {"environment map texels", s.envTexels.size() * sizeof(glm::vec4), false, sizeof(glm::vec4)}};
 }
 
-
 bool fitsStorage(const ArrayUse& a, const SceneLimits& l) { return a.storage && a.bytes <= l.storageRange; }
 bool fitsTexel(const ArrayUse& a, const SceneLimits& l) {
     return a.texelBytes > 0 && (a.bytes + a.texelBytes - 1) / a.texelBytes <= l.texelElements;

@@ -11,9 +11,9 @@
 
 #include "../../shaders/shared/bindings.h"
 #include "render/sampler_kind.h"
+#include "util/error.h"
 #include "vk/check.h"
 #include "vk/kernel.h"
-#include "util/error.h"
 #include "vk/timer.h"
 
 namespace strata {
@@ -62,9 +62,20 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 
 }  // namespace
 
+void checkImageFits(const vk::Context& ctx, const RenderSettings& s) {
+    // The sample sums are one device buffer (and one readback buffer).
+    const std::uint64_t bytes = std::uint64_t(s.width) * std::uint64_t(s.height) * gpu::kAccumVec4PerPixel * 16;
+    const std::uint64_t largest = sceneLimits(ctx, s.limits).allocation;
+    if (bytes > largest)
+        throw Error("strata: error: a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
+                    sizeText(bytes) + " for its sample sums, more than the device's maxMemoryAllocationSize (" +
+                    sizeText(largest) + "); render a smaller image");
+}
+
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                     const RenderSettings& s, const Checkpoints& checkpoints) {
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
+    checkImageFits(ctx, s);
     const DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth, s.bvhStack, s.limits);
     return render(ctx, dev, scene, camera, s, checkpoints);
 }
@@ -75,12 +86,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
     const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
-    // The sample sums are one device buffer (and one readback buffer).
-    const std::uint64_t largest = sceneLimits(ctx, s.limits).allocation;
-    if (accumBytes > largest)
-        throw Error("strata: error: a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
-                    sizeText(accumBytes) + " for its sample sums, more than the device's maxMemoryAllocationSize (" +
-                    sizeText(largest) + "); render a smaller image");
+    checkImageFits(ctx, s);
 
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
     const FrameUniforms fu = frameUniforms(dev, scene, camera, s);

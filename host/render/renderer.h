@@ -90,6 +90,10 @@ struct RenderResult {
     }
 };
 
+// Throws strata::Error when the image's sample sums (32 bytes a pixel, one
+// buffer) exceed the device's maxMemoryAllocationSize (or s.limits').
+void checkImageFits(const vk::Context& ctx, const RenderSettings& settings);
+
 // Uploads `scene` (render/device_scene.h) and renders it.
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                     const RenderSettings& settings, const Checkpoints& checkpoints = {});
