@@ -49,7 +49,6 @@ int runRender(const RenderCommand& cmd) {
         std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
                      ctx.info.type.c_str(), ctx.info.driver.c_str());
 
-    checkImageFits(ctx, cmd.settings);  // before the upload
     const DeviceScene dev = uploadAndRelease(ctx, gpu, cmd.settings.traversal, cmd.settings.bvhWidth,
                                              cmd.settings.bvhStack, cmd.settings.limits);
     RenderResult result = render(ctx, dev, gpu, scene.cameras[cmd.camera], cmd.settings);

@@ -75,7 +75,6 @@ void checkImageFits(const vk::Context& ctx, const RenderSettings& s) {
 RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                     const RenderSettings& s, const Checkpoints& checkpoints) {
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
-    checkImageFits(ctx, s);
     const DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth, s.bvhStack, s.limits);
     return render(ctx, dev, scene, camera, s, checkpoints);
 }

@@ -91,7 +91,9 @@ struct RenderResult {
 };
 
 // Throws strata::Error when the image's sample sums (32 bytes a pixel, one
-// buffer) exceed the device's maxMemoryAllocationSize (or s.limits').
+// buffer) exceed the device's maxMemoryAllocationSize (or s.limits'). render
+// checks it after the scene's own limits (a scene that does not fit is named
+// first).
 void checkImageFits(const vk::Context& ctx, const RenderSettings& settings);
 
 // Uploads `scene` (render/device_scene.h) and renders it.
