@@ -83,7 +83,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         vec3 ng = normalize(cross(e1, e2));
         bool front = dot(dir, ng) < 0.0;
         TriShading sh = sceneShading(hit.triangle);
-        Material mat = materials[sh.material];
+        Material mat = sceneMaterial(sh.material);
 
         // Emission found by the previous vertex's BSDF sample (or directly).
         if (kHasEmitters != 0u && sh.light != kNoLight) {

@@ -118,10 +118,19 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
                          Error);
 
     l = {16384, 1u << 20, 1u << 30};
-    g.materials.resize(300);  // 24000 bytes, read only as storage
+    g.tris.resize(100);
+    g.shading.resize(100);
+    g.materials.resize(300);  // 24000 bytes: past the storage range, read through a texel view
+    CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsTexelAll);
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Storage, false, false),
+                         "big.glb: error: --traversal storage: the materials need 24000 bytes, more than the "
+                         "device's maxStorageBufferRange (16384 bytes)",
+                         Error);
+    g.materials.resize(1);
+    g.envTables.resize(5000);  // 20000 bytes, read only as storage
     CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Auto, false, true),
-                         "big.glb: error: the materials need 24000 bytes, more than the device's "
-                         "maxStorageBufferRange (16384 bytes)",
+                         "big.glb: error: the environment sampling tables need 20000 bytes, more than the "
+                         "device's maxStorageBufferRange (16384 bytes)",
                          Error);
 }
 

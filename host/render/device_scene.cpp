@@ -34,8 +34,8 @@ std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
             {"texture coordinates", s.texcoords.size() * sizeof(gpu::TriTexcoords), true, kTexel},
             {"tangents", s.tangents.size() * sizeof(gpu::TriTangents), true, kTexel},
             {"emitters", s.emitters.size() * sizeof(gpu::Emitter), true, kTexel},
-            {"materials", s.materials.size() * sizeof(gpu::Material), true, 0},
-            {"texture references", s.textureRefs.size() * sizeof(gpu::TextureRef), true, 0},
+            {"materials", s.materials.size() * sizeof(gpu::Material), true, kTexel},
+            {"texture references", s.textureRefs.size() * sizeof(gpu::TextureRef), true, kTexel},
             {"environment sampling tables", s.envTables.size() * sizeof(float), true, 0},
             {"texture texels", s.texels.size() * sizeof(std::uint32_t), false, sizeof(std::uint32_t)},
             {"environment map texels", s.envTexels.size() * sizeof(glm::vec4), false, sizeof(glm::vec4)}};
@@ -73,7 +73,6 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     if (!wide && scene.nodes.empty())
         throw std::logic_error("uploadScene: the scene was packed without its BVH2 (packSceneAndRelease, bvhWidth 4)");
     constexpr bool consume = !std::is_const_v<G>;  // each array released as it is copied
-    constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     DeviceScene d;
     d.reads = chooseReads(limits, scene, mode, wide, cpu);
@@ -101,16 +100,17 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     put(d.texcoords, scene.texcoords);
     put(d.tangents, scene.tangents);
     d.emitters = uploadArray(ctx, scene.emitters, limits);
-    d.materials = vk::uploadVector(ctx, scene.materials, storage);
-    d.textureRefs = vk::uploadVector(ctx, scene.textureRefs, storage);
+    d.materials = uploadArray(ctx, scene.materials, limits);
+    d.textureRefs = uploadArray(ctx, scene.textureRefs, limits);
     d.texels = vk::uploadVector(ctx, scene.texels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     d.texelsView = vk::TexelView(ctx, d.texels, VK_FORMAT_R32_UINT);
     release(scene.texels);
     uploadEnvironment(ctx, scene, d);
     release(scene.envTexels);
-    for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.emitters})
+    for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.emitters, &d.materials,
+                                  &d.textureRefs})
         d.deviceBytes += a->buffer.allocationSize();
-    for (const vk::Buffer* b : {&d.materials, &d.textureRefs, &d.texels, &d.envTexels, &d.envTables})
+    for (const vk::Buffer* b : {&d.texels, &d.envTexels, &d.envTables})
         d.deviceBytes += b->allocationSize();
     d.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return d;
@@ -256,8 +256,8 @@ std::vector<vk::BindingDesc> sceneBindings() {
     return {{BINDING_NODES, storage},     {BINDING_NODES_TEXEL, texel},     {BINDING_TRIS, storage},
             {BINDING_TRIS_TEXEL, texel},  {BINDING_SHADING, storage},       {BINDING_SHADING_TEXEL, texel},
             {BINDING_TEXCOORDS, storage}, {BINDING_TEXCOORDS_TEXEL, texel}, {BINDING_TANGENTS, storage},
-            {BINDING_TANGENTS_TEXEL, texel}, {BINDING_MATERIALS, storage},  {BINDING_TEXREFS, storage},
-            {BINDING_TEXELS, texel}};
+            {BINDING_TANGENTS_TEXEL, texel}, {BINDING_MATERIALS, storage},  {BINDING_MATERIALS_TEXEL, texel},
+            {BINDING_TEXREFS, storage},   {BINDING_TEXREFS_TEXEL, texel},   {BINDING_TEXELS, texel}};
 }
 
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
@@ -267,8 +267,8 @@ void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
     bindArray(kernel, BINDING_SHADING, BINDING_SHADING_TEXEL, scene.shading);
     bindArray(kernel, BINDING_TEXCOORDS, BINDING_TEXCOORDS_TEXEL, scene.texcoords);
     bindArray(kernel, BINDING_TANGENTS, BINDING_TANGENTS_TEXEL, scene.tangents);
-    kernel.bind(BINDING_MATERIALS, scene.materials);
-    kernel.bind(BINDING_TEXREFS, scene.textureRefs);
+    bindArray(kernel, BINDING_MATERIALS, BINDING_MATERIALS_TEXEL, scene.materials);
+    bindArray(kernel, BINDING_TEXREFS, BINDING_TEXREFS_TEXEL, scene.textureRefs);
     kernel.bind(BINDING_TEXELS, scene.texelsView);
 }
 

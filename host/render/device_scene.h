@@ -87,8 +87,7 @@ DeviceArray uploadArray(const vk::Context& ctx, const std::vector<T>& v, const S
 void bindArray(vk::Kernel& kernel, std::uint32_t storageBinding, std::uint32_t texelBinding, const DeviceArray& a);
 
 struct DeviceScene {
-    DeviceArray nodes, tris, shading, texcoords, tangents, emitters;
-    vk::Buffer materials, textureRefs;
+    DeviceArray nodes, tris, shading, texcoords, tangents, emitters, materials, textureRefs;
     // Texturing inputs; a 16-byte zero buffer each when the scene has none
     // (every binding the shaders declare stays valid for the validation layers).
     vk::Buffer texels;

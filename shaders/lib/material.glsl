@@ -33,7 +33,7 @@ vec4 texcoordsAt(uint triangle, vec2 bary) {
 // Texture slot `ref` (an index into textureRefs[]) at interpolated texture
 // coordinates `uvs` (texcoordsAt).
 vec4 materialTexture(uint ref, vec4 uvs) {
-    TextureRef r = textureRefs[ref];
+    TextureRef r = textureRefAt(ref);
     return sampleTextureRef(r, (r.flags & kTexCoord1) != 0u ? uvs.zw : uvs.xy);
 }
 
@@ -103,7 +103,7 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
 // Emitted radiance of material `materialIndex` at a point of `triangle`
 // (next-event estimation on textured emitters).
 vec3 emissionAt(uint materialIndex, uint triangle, vec2 bary) {
-    Material mat = materials[materialIndex];
+    Material mat = sceneMaterial(materialIndex);
     if ((kFeatures & kFeatureTextures) == 0u || mat.emissiveTex == kNoTexture) return mat.emission;
     return mat.emission * materialTexture(mat.emissiveTex, texcoordsAt(triangle, bary)).rgb;
 }
@@ -121,9 +121,9 @@ uint alphaRayHash(vec3 origin, vec3 dir) {
 // baseColorFactor.a times the baseColor texture's alpha.
 bool alphaHole(uint triangle, vec2 bary, uint rayHash) {
     uint materialIndex = sceneShading(triangle).material;
-    uint flags = materials[materialIndex].flags;
+    uint flags = sceneMaterial(materialIndex).flags;
     if ((flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return false;
-    Material mat = materials[materialIndex];
+    Material mat = sceneMaterial(materialIndex);
     float alpha = mat.baseColor.a;
     if ((kFeatures & kFeatureTextures) != 0u && mat.baseColorTex != kNoTexture)
         alpha *= materialTexture(mat.baseColorTex, texcoordsAt(triangle, bary)).a;

@@ -19,6 +19,7 @@ layout(set = 0, binding = BINDING_TRIS_TEXEL) uniform usamplerBuffer trisTexel;
 layout(std430, set = 0, binding = BINDING_SHADING) readonly buffer ShadingBuffer { TriShading shading[]; };
 layout(set = 0, binding = BINDING_SHADING_TEXEL) uniform usamplerBuffer shadingTexel;
 layout(std430, set = 0, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { Material materials[]; };
+layout(set = 0, binding = BINDING_MATERIALS_TEXEL) uniform usamplerBuffer materialsTexel;
 layout(std430, set = 0, binding = BINDING_TEXCOORDS) readonly buffer TexcoordBuffer { TriTexcoords texcoords[]; };
 layout(set = 0, binding = BINDING_TEXCOORDS_TEXEL) uniform usamplerBuffer texcoordsTexel;
 layout(std430, set = 0, binding = BINDING_TANGENTS) readonly buffer TangentBuffer { TriTangents tangents[]; };
@@ -73,6 +74,20 @@ TriTangents sceneTangents(uint triangle) {
     uvec4 a, b, c;
     texels3(tangentsTexel, triangle, a, b, c);
     return TriTangents(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(c));
+}
+
+// materials[i], through its RGBA32UI texel view (five texels) with kTexelAll:
+// on lavapipe a storage-buffer load with a different index per lane is a
+// loop over the lanes for each of the struct's 20 words.
+Material sceneMaterial(uint i) {
+    if (!kTexelAll) return materials[i];
+    int base = int(5u * i);
+    uvec4 a = texelFetch(materialsTexel, base), b = texelFetch(materialsTexel, base + 1),
+          c = texelFetch(materialsTexel, base + 2), d = texelFetch(materialsTexel, base + 3),
+          e = texelFetch(materialsTexel, base + 4);
+    return Material(uintBitsToFloat(a), uintBitsToFloat(b.xyz), uintBitsToFloat(b.w), uintBitsToFloat(c.x),
+                    uintBitsToFloat(c.y), c.z, uintBitsToFloat(c.w), uintBitsToFloat(d.x), uintBitsToFloat(d.y),
+                    uintBitsToFloat(d.z), d.w, e.x, e.y, e.z, e.w);
 }
 
 #include "lib/sampling.glsl"

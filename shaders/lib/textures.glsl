@@ -10,8 +10,18 @@
 
 #include "shared/types.h"
 #include "shared/bindings.h"
+#include "lib/reads.glsl"
 
 layout(std430, set = 0, binding = BINDING_TEXREFS) readonly buffer TextureRefBuffer { TextureRef textureRefs[]; };
+layout(set = 0, binding = BINDING_TEXREFS_TEXEL) uniform usamplerBuffer textureRefsTexel;
+
+// textureRefs[i], through its RGBA32UI texel view (three texels) with kTexelAll.
+TextureRef textureRefAt(uint i) {
+    if (!kTexelAll) return textureRefs[i];
+    uvec4 a, b, c;
+    texels3(textureRefsTexel, i, a, b, c);
+    return TextureRef(a.x, a.y, a.z, a.w, uintBitsToFloat(b), uintBitsToFloat(c));
+}
 layout(set = 0, binding = BINDING_TEXELS) uniform usamplerBuffer texelWords;
 
 // The exact sRGB decoding curve (IEC 61966-2-1).

@@ -35,7 +35,9 @@ STRATA_BINDING(BINDING_TEXCOORDS_TEXEL, 21);  // usamplerBuffer over BINDING_TEX
 STRATA_BINDING(BINDING_TANGENTS_TEXEL, 22);   // usamplerBuffer over BINDING_TANGENTS (RGBA32UI)
 STRATA_BINDING(BINDING_EMITTERS_TEXEL, 23);   // usamplerBuffer over BINDING_EMITTERS (RGBA32UI)
 STRATA_BINDING(BINDING_WORK, 24);         // storage uint[]: work-queue counters (trace kernel, SPEC_WORK_QUEUE)
-STRATA_BINDING(BINDING_COUNT, 25);
+STRATA_BINDING(BINDING_MATERIALS_TEXEL, 25);  // usamplerBuffer over BINDING_MATERIALS (RGBA32UI)
+STRATA_BINDING(BINDING_TEXREFS_TEXEL, 26);    // usamplerBuffer over BINDING_TEXREFS (RGBA32UI)
+STRATA_BINDING(BINDING_COUNT, 27);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views
