@@ -36,7 +36,7 @@ std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
             {"emitters", s.emitters.size() * sizeof(gpu::Emitter), true, kTexel},
             {"materials", s.materials.size() * sizeof(gpu::Material), true, kTexel},
             {"texture references", s.textureRefs.size() * sizeof(gpu::TextureRef), true, kTexel},
-            {"environment sampling tables", s.envTables.size() * sizeof(float), true, 0},
+            {"environment sampling tables", s.envTables.size() * sizeof(float), true, kTexel},
             {"texture texels", s.texels.size() * sizeof(std::uint32_t), false, sizeof(std::uint32_t)},
             {"environment map texels", s.envTexels.size() * sizeof(glm::vec4), false, sizeof(glm::vec4)}};
 }
@@ -105,12 +105,12 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     d.texels = vk::uploadVector(ctx, scene.texels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     d.texelsView = vk::TexelView(ctx, d.texels, VK_FORMAT_R32_UINT);
     release(scene.texels);
-    uploadEnvironment(ctx, scene, d);
+    uploadEnvironment(ctx, scene, d, limits);
     release(scene.envTexels);
     for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.emitters, &d.materials,
-                                  &d.textureRefs})
+                                  &d.textureRefs, &d.envTables})
         d.deviceBytes += a->buffer.allocationSize();
-    for (const vk::Buffer* b : {&d.texels, &d.envTexels, &d.envTables})
+    for (const vk::Buffer* b : {&d.texels, &d.envTexels})
         d.deviceBytes += b->allocationSize();
     d.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return d;
@@ -243,10 +243,10 @@ std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pa
     return pathtrace ? Span(kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4) : Span(kSpirvPtr_trace, kSpirvSize_trace / 4);
 }
 
-void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& d) {
+void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& d, const SceneLimits& limits) {
     d.envTexels = vk::uploadVector(ctx, scene.envTexels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     d.envTexelView = vk::TexelView(ctx, d.envTexels, VK_FORMAT_R32G32B32A32_SFLOAT);
-    d.envTables = vk::uploadVector(ctx, scene.envTables, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    d.envTables = uploadArray(ctx, scene.envTables, limits);
 }
 
 std::vector<vk::BindingDesc> sceneBindings() {

@@ -92,7 +92,8 @@ struct DeviceScene {
     // (every binding the shaders declare stays valid for the validation layers).
     vk::Buffer texels;
     vk::TexelView texelsView;  // R32UI over `texels`
-    vk::Buffer envTexels, envTables;  // 16-byte placeholders without an environment map
+    vk::Buffer envTexels;             // a 16-byte placeholder without an environment map
+    DeviceArray envTables;            // sampling tables (16 bytes without a map)
     vk::TexelView envTexelView;       // RGBA32F over envTexels
     std::uint32_t reads = gpu::kReadsStorage;  // SPEC_TEXEL_FETCH
     bool wide = false;   // `nodes` holds GpuScene::wide, else the BVH2 (the *_bvh2 shaders)
@@ -143,7 +144,8 @@ const char* bvhStackName(const DeviceScene& scene);
 std::vector<vk::BindingDesc> sceneBindings();
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene);
 
-// Uploads the environment map's texels (with their RGBA32F view) and tables.
-void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& dev);
+// Uploads the environment map's texels (with their RGBA32F view) and tables
+// (storage range and RGBA32UI view as `limits` allow).
+void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& dev, const SceneLimits& limits);
 
 }  // namespace strata

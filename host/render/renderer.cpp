@@ -109,6 +109,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
     });
     std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1);
     setTraversalSpec(dev, spec);
@@ -127,7 +128,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     kernel.bind(BINDING_COUNTERS, counters);
     kernel.bind(BINDING_FILTER, filterTable);
     kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
-    kernel.bind(BINDING_ENV_CDF, dev.envTables);
+    bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
 
     RenderResult result;
     result.film = Film(s.width, s.height);

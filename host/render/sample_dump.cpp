@@ -28,7 +28,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
     std::memcpy(frame.mapped(), &fu, sizeof fu);
     DeviceScene env;
-    uploadEnvironment(ctx, scene, env);
+    uploadEnvironment(ctx, scene, env, sceneLimits(ctx));
     vk::Buffer table = vk::uploadVector(ctx, filterInverseCdf(filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const VkDeviceSize bytes = std::max<VkDeviceSize>(16, VkDeviceSize(params.count) * sizeof(glm::vec4));
     vk::Buffer out(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -44,11 +44,12 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
                        {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                       {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                       {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                       {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}},
                       sizeof(SampleTestParams), spec, /*reuse=*/true);
     kernel.bind(BINDING_FRAME, frame);
     kernel.bind(BINDING_ENV_TEXELS, env.envTexelView);
-    kernel.bind(BINDING_ENV_CDF, env.envTables);
+    bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, env.envTables);
     bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, em);
     kernel.bind(BINDING_SAMPLES, out);
     kernel.bind(BINDING_FILTER, table);

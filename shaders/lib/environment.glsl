@@ -14,9 +14,21 @@
 
 #include "lib/features.glsl"
 #include "lib/sampling.glsl"
+#include "lib/reads.glsl"
 
 layout(set = 0, binding = BINDING_ENV_TEXELS) uniform samplerBuffer envTexels;
 layout(std430, set = 0, binding = BINDING_ENV_CDF) readonly buffer EnvTableBuffer { float envTables[]; };
+layout(set = 0, binding = BINDING_ENV_CDF_TEXEL) uniform usamplerBuffer envTablesTexel;
+
+// envTables[i], through its RGBA32UI texel view with kTexelAll (the binary
+// searches below make a divergent read a step, a loop over the lanes each
+// on lavapipe when it is a storage load).
+float envTable(uint i) {
+    if (!kTexelAll) return envTables[i];
+    uvec4 t = texelFetch(envTablesTexel, int(i >> 2u));
+    uint k = i & 3u;
+    return uintBitsToFloat(k == 0u ? t.x : k == 1u ? t.y : k == 2u ? t.z : t.w);
+}
 
 // World direction -> the map's frame (R_y(-rotation)) and back (R_y(rotation)).
 vec3 envToMap(vec3 d) {
@@ -52,7 +64,7 @@ uint envFindInterval(uint base, uint n, float u) {
     uint lo = 0u, hi = n;
     while (hi - lo > 1u) {
         uint mid = (lo + hi) / 2u;
-        if (envTables[base + mid] <= u) lo = mid;
+        if (envTable(base + mid) <= u) lo = mid;
         else hi = mid;
     }
     return lo;
@@ -62,7 +74,7 @@ uint envFindInterval(uint base, uint n, float u) {
 // `sinTheta`: p(u, v) / (2 pi^2 sin theta), since dw = 2 pi^2 sin theta du dv.
 float envTexelPdf(uvec2 t, float sinTheta) {
     uint w = frame.envInfo.y, h = frame.envInfo.z;
-    float puv = envTables[t.y] * envTables[2u * h + 1u + t.y * w + t.x];
+    float puv = envTable(t.y) * envTable(2u * h + 1u + t.y * w + t.x);
     return sinTheta > 0.0 ? puv / (2.0 * kPi * kPi * sinTheta) : 0.0;
 }
 
@@ -85,10 +97,10 @@ vec3 sampleEnvironment(vec2 u, out float pdf) {
     uint w = frame.envInfo.y, h = frame.envInfo.z;
     uint rowCdf = h;
     uint y = envFindInterval(rowCdf, h, u.y);
-    float r0 = envTables[rowCdf + y], r1 = envTables[rowCdf + y + 1u];
+    float r0 = envTable(rowCdf + y), r1 = envTable(rowCdf + y + 1u);
     uint colCdf = 2u * h + 1u + h * w + y * (w + 1u);
     uint x = envFindInterval(colCdf, w, u.x);
-    float c0 = envTables[colCdf + x], c1 = envTables[colCdf + x + 1u];
+    float c0 = envTable(colCdf + x), c1 = envTable(colCdf + x + 1u);
     float v = (float(y) + clamp((u.y - r0) / (r1 - r0), 0.0, 1.0)) / float(h);
     float uu = (float(x) + clamp((u.x - c0) / (c1 - c0), 0.0, 1.0)) / float(w);
     float theta = kPi * v, phi = 2.0 * kPi * (uu - 0.5);

@@ -37,7 +37,8 @@ STRATA_BINDING(BINDING_EMITTERS_TEXEL, 23);   // usamplerBuffer over BINDING_EMI
 STRATA_BINDING(BINDING_WORK, 24);         // storage uint[]: work-queue counters (trace kernel, SPEC_WORK_QUEUE)
 STRATA_BINDING(BINDING_MATERIALS_TEXEL, 25);  // usamplerBuffer over BINDING_MATERIALS (RGBA32UI)
 STRATA_BINDING(BINDING_TEXREFS_TEXEL, 26);    // usamplerBuffer over BINDING_TEXREFS (RGBA32UI)
-STRATA_BINDING(BINDING_COUNT, 27);
+STRATA_BINDING(BINDING_ENV_CDF_TEXEL, 27);    // usamplerBuffer over BINDING_ENV_CDF (RGBA32UI)
+STRATA_BINDING(BINDING_COUNT, 28);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views

@@ -78,8 +78,9 @@ STRATA_CONST(uint, kNoLight, 0xffffffffu);
 STRATA_CONST(uint, kReadsStorage, 0u);   // storage buffers
 STRATA_CONST(uint, kReadsTexelBvh, 1u);  // BVH nodes and triangle vertices through RGBA32UI texel
                                          // views (faster on lavapipe, DESIGN.md), the rest storage
-STRATA_CONST(uint, kReadsTexelAll, 2u);  // also shading, texture coordinates, tangents and
-                                         // emitters: scenes whose arrays exceed maxStorageBufferRange
+STRATA_CONST(uint, kReadsTexelAll, 2u);  // every array: also shading, texture coordinates, tangents,
+                                         // emitters, materials, texture references and environment
+                                         // tables (CPU devices; scenes past maxStorageBufferRange)
 
 // Samplers (SPEC_SAMPLER; host/render/sampler_kind.h names them).
 STRATA_CONST(uint, kSamplerIndependent, 0u);
