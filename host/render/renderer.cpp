@@ -15,6 +15,8 @@
 #include "vk/check.h"
 #include "vk/kernel.h"
 #include "vk/timer.h"
+#include <cstdlib>
+#include <strata_spirv.h>
 
 namespace strata {
 namespace {
@@ -60,6 +62,218 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
     std::fflush(stderr);
 }
 
+
+// EXPERIMENT (branch exp/wavefront): the path tracer as stages driven from
+// the host, every traversal in the trace kernel (with its work queue) over a
+// compacted list of live rays, shading in shaders/wavefront.comp. The host
+// compacts the lists and adds the unoccluded shadow contributions; only the
+// device time of the dispatches is counted (deviceSeconds), which leaves out
+// the host's compaction and the copies a device-side queue would not need.
+RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene& dev, const GpuScene& scene,
+                                       const RenderSettings& s, const vk::Buffer& frame,
+                                       const vk::Buffer& filterTable) {
+    using namespace gpu;
+    const std::uint32_t n = static_cast<std::uint32_t>(s.width * s.height);
+    constexpr VkBufferUsageFlags st = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    auto hostBuf = [&](VkDeviceSize bytes) { return vk::Buffer(ctx, std::max<VkDeviceSize>(16, bytes), st, vk::MemoryUse::Readback); };
+    vk::Buffer stateBuf = hostBuf(VkDeviceSize(n) * 48), liveBuf = hostBuf(VkDeviceSize(n) * 4),
+               hitBuf = hostBuf(VkDeviceSize(n) * 16), nextBuf = hostBuf(VkDeviceSize(n) * 32),
+               shadowBuf = hostBuf(VkDeviceSize(n) * 32), contribBuf = hostBuf(VkDeviceSize(n) * 16),
+               inBuf = hostBuf(VkDeviceSize(n) * 32), shadowInBuf = hostBuf(VkDeviceSize(n) * 32),
+               shadowHitBuf = hostBuf(VkDeviceSize(n) * 16);
+    constexpr std::size_t kRaysPerDispatch = 1u << 18;
+    const std::size_t slots = (n + kRaysPerDispatch - 1) / kRaysPerDispatch;
+    vk::Buffer workBuf(ctx, std::max<VkDeviceSize>(16, slots * kQueueWords * 4),
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                       vk::MemoryUse::Device);
+    const bool queue = useWorkQueue(ctx, s.workQueue);
+
+    auto makeTrace = [&](std::uint32_t mode, const vk::Buffer& rays, const vk::Buffer& hits) {
+        std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
+        setTraversalSpec(dev, spec);
+        spec[SPEC_FEATURES] = scene.features.bits;
+        spec[SPEC_TRACE_MODE] = mode;
+        spec[SPEC_WORK_QUEUE] = queue ? 1u : 0u;
+        std::vector<vk::BindingDesc> b = sceneBindings();
+        b.insert(b.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {BINDING_WORK, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+        auto k = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, false), std::move(b), sizeof(TraceParams), spec);
+        bindTraversal(*k, dev);
+        k->bind(BINDING_RAYS, rays);
+        k->bind(BINDING_HITS, hits);
+        k->bind(BINDING_WORK, workBuf);
+        return k;
+    };
+    auto closest = makeTrace(kTraceClosest, inBuf, hitBuf);
+    auto anyHit = makeTrace(kTraceAny, shadowInBuf, shadowHitBuf);
+    auto makeStage = [&](std::uint32_t stage) {
+        std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
+        setTraversalSpec(dev, spec);
+        spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
+        spec[SPEC_SAMPLER] = s.sampler;
+        spec[SPEC_FEATURES] = scene.features.bits;
+        spec[SPEC_MIS] = s.mis;
+        spec[SPEC_TRACE_MODE] = stage;
+        std::vector<vk::BindingDesc> b = sceneBindings();
+        b.insert(b.end(), {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                           {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                           {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                           {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                           {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}});
+        for (std::uint32_t i = 28; i <= 34; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+        auto k = std::make_unique<vk::Kernel>(ctx, std::span<const std::uint32_t>(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4),
+                                              std::move(b), 16, spec);
+        bindTraversal(*k, dev);
+        k->bind(BINDING_FRAME, frame);
+        bindArray(*k, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
+        k->bind(BINDING_FILTER, filterTable);
+        k->bind(BINDING_ENV_TEXELS, dev.envTexelView);
+        bindArray(*k, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
+        k->bind(28, stateBuf);
+        k->bind(29, liveBuf);
+        k->bind(30, hitBuf);
+        k->bind(31, nextBuf);
+        k->bind(32, shadowBuf);
+        k->bind(33, contribBuf);
+        k->bind(34, inBuf);
+        return k;
+    };
+    auto camera = makeStage(0), shade = makeStage(1);
+
+    vk::OneShot submit(ctx);
+    vk::DeviceTimer timer(ctx);
+    double device = 0.0;
+    double part[4] = {0, 0, 0, 0};  // camera, closest, any, shade
+    int partIndex = 0;
+    const auto barrier = [](VkCommandBuffer cmd) {
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
+                              VK_PIPELINE_STAGE_HOST_BIT,
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                              VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+    };
+    auto run = [&](auto&& record) {
+        VkCommandBuffer cmd = submit.begin();
+        timer.begin(cmd);
+        record(cmd);
+        timer.end(cmd);
+        barrier(cmd);
+        submit.submitAndWait();
+        device += timer.seconds();
+        part[partIndex] += timer.seconds();
+    };
+    auto trace = [&](vk::Kernel& k, std::uint32_t count) {
+        run([&](VkCommandBuffer cmd) {
+            if (queue) {
+                vkCmdFillBuffer(cmd, workBuf.handle(), 0, VK_WHOLE_SIZE, 0u);
+                barrier(cmd);
+            }
+            for (std::size_t first = 0, slot = 0; first < count; first += kRaysPerDispatch, ++slot) {
+                TraceParams p{};
+                p.count = static_cast<std::uint32_t>(std::min<std::size_t>(kRaysPerDispatch, count - first));
+                p.first = static_cast<std::uint32_t>(first);
+                p.slot = static_cast<std::uint32_t>(slot);
+                if (!queue) {
+                    k.dispatch(cmd, &p, (p.count + 63) / 64);
+                    continue;
+                }
+                const std::uint64_t subgroups = (std::uint64_t{p.count} + kQueueRaysPerSubgroup - 1) / kQueueRaysPerSubgroup;
+                const std::uint64_t perGroup = std::max<std::uint32_t>(1, 64 / ctx.info.subgroupSize);
+                k.dispatch(cmd, &p, static_cast<std::uint32_t>((subgroups + perGroup - 1) / perGroup));
+                barrier(cmd);
+                p.pass = 1;
+                k.dispatchIndirect(cmd, &p, workBuf, (slot * kQueueWords + 2) * sizeof(std::uint32_t));
+            }
+        });
+    };
+    auto stage = [&](vk::Kernel& k, std::uint32_t count, std::uint32_t sampleIndex) {
+        run([&](VkCommandBuffer cmd) {
+            std::uint32_t p[4] = {count, sampleIndex, 0, 0};
+            k.dispatch(cmd, p, (count + 63) / 64);
+        });
+    };
+
+    RenderResult result;
+    result.film = Film(s.width, s.height);
+    result.reads = dev.reads;
+    result.bvhWidth = dev.wide ? 4 : 2;
+    result.bvhStack = bvhStackName(dev);
+    result.pipelineMs = shade->pipelineMs();
+    std::vector<float> sums(std::size_t(n) * kAccumVec4PerPixel * 4);
+    std::vector<glm::vec3> extra(n);
+    auto* live = static_cast<std::uint32_t*>(liveBuf.mapped());
+    auto* in = static_cast<TraceRay*>(inBuf.mapped());
+    auto* next = static_cast<const TraceRay*>(nextBuf.mapped());
+    auto* shadow = static_cast<const TraceRay*>(shadowBuf.mapped());
+    auto* shadowIn = static_cast<TraceRay*>(shadowInBuf.mapped());
+    auto* shadowHit = static_cast<const TraceHit*>(shadowHitBuf.mapped());
+    auto* contrib = static_cast<const glm::vec4*>(contribBuf.mapped());
+    const auto start = Clock::now();
+    for (std::uint32_t sample = 0; sample < s.spp; ++sample) {
+        std::fill(extra.begin(), extra.end(), glm::vec3(0.0f));
+        partIndex = 0;
+        stage(*camera, n, sample);
+        std::uint32_t count = n;
+        for (std::uint32_t k = 0; k < n; ++k) {
+            live[k] = k;
+            in[k] = next[k];
+        }
+        std::vector<std::uint32_t> shadowSlot;
+        while (count > 0) {
+            partIndex = 1;
+            trace(*closest, count);
+            result.closestRays += count;
+            partIndex = 3;
+            stage(*shade, count, sample);
+            shadowSlot.clear();
+            std::uint32_t m = 0;
+            for (std::uint32_t k = 0; k < count; ++k)
+                if (contrib[k].w != 0.0f) {
+                    shadowIn[m++] = shadow[k];
+                    shadowSlot.push_back(live[k]);
+                }
+            std::vector<glm::vec3> pending(m);
+            for (std::uint32_t k = 0, j = 0; k < count; ++k)
+                if (contrib[k].w != 0.0f) pending[j++] = glm::vec3(contrib[k]);
+            if (m > 0) {
+                partIndex = 2;
+                trace(*anyHit, m);
+                result.shadowRays += m;
+                for (std::uint32_t j = 0; j < m; ++j)
+                    if (shadowHit[j].triangle == kNoHit) extra[shadowSlot[j]] += pending[j];
+            }
+            std::uint32_t alive = 0;
+            for (std::uint32_t k = 0; k < count; ++k)
+                if (next[k].tmax > 0.0f) {
+                    live[alive] = live[k];
+                    in[alive] = next[k];
+                    ++alive;
+                }
+            count = alive;
+        }
+        const auto* stt = static_cast<const float*>(stateBuf.mapped());
+        for (std::uint32_t k = 0; k < n; ++k) {
+            const glm::vec3 L = glm::vec3(stt[12 * k + 4], stt[12 * k + 5], stt[12 * k + 6]) + extra[k];
+            float* a = &sums[std::size_t(k) * kAccumVec4PerPixel * 4];
+            a[0] = L.x; a[1] = L.y; a[2] = L.z; a[3] = 1.0f;
+            a[4] = L.x * L.x; a[5] = L.y * L.y; a[6] = L.z * L.z; a[7] = 0.0f;
+        }
+        result.film.fold(sums.data());
+        ++result.spp;
+    }
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.deviceSeconds = device;
+    std::fprintf(stderr, "wavefront: camera %.3f s, closest %.3f s (%llu rays), any %.3f s (%llu rays), shade %.3f s\n",
+                 part[0], part[1], (unsigned long long)result.closestRays, part[2],
+                 (unsigned long long)result.shadowRays, part[3]);
+    return result;
+}
 }  // namespace
 
 void checkImageFits(const vk::Context& ctx, const RenderSettings& s) {
@@ -129,6 +343,8 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     kernel.bind(BINDING_FILTER, filterTable);
     kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
     bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
+
+    if (std::getenv("STRATA_EXP_WAVEFRONT")) return renderWavefrontExperiment(ctx, dev, scene, s, frame, filterTable);
 
     RenderResult result;
     result.film = Film(s.width, s.height);

@@ -1,0 +1,194 @@
+#version 460
+// EXPERIMENT (branch exp/wavefront): the path tracer split into stages run
+// by the host, to measure what a wavefront integrator would gain on CPU
+// devices. Stage kStageCamera makes each pixel's camera ray and path state;
+// kStageShade takes one traced ray's hit per entry of the live list, adds
+// emission, makes the next-event shadow ray (its contribution kept apart, to
+// be added by the host when the trace kernel finds it unoccluded) and the
+// BSDF-sampled next ray. The arithmetic and the sampler dimensions are
+// pathtrace.comp's, vertex by vertex.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
+
+#include "lib/scene.glsl"
+#include "lib/sampler.glsl"
+
+layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
+layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;
+layout(constant_id = SPEC_TRACE_MODE) const uint kStage = 0u;  // 0 camera, 1 shade
+const uint kStageCamera = 0u;
+
+layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+
+struct PathState {
+    vec4 betaPdf;   // beta, prevBsdfPdf
+    vec4 lDelta;    // L, prevDelta (1 or 0)
+    uvec4 misc;     // pixelIndex, depth, alive
+};
+layout(std430, set = 0, binding = 28) buffer StateBuffer { PathState state[]; };
+layout(std430, set = 0, binding = 29) readonly buffer LiveBuffer { uint live[]; };
+layout(std430, set = 0, binding = 30) readonly buffer HitBuffer { TraceHit hits[]; };
+layout(std430, set = 0, binding = 31) writeonly buffer NextBuffer { TraceRay nextRays[]; };
+layout(std430, set = 0, binding = 32) writeonly buffer ShadowBuffer { TraceRay shadowRays[]; };
+layout(std430, set = 0, binding = 33) writeonly buffer ContribBuffer { vec4 shadowContrib[]; };
+layout(std430, set = 0, binding = 34) readonly buffer InBuffer { TraceRay inRays[]; };
+
+struct WaveParams {
+    uint count;
+    uint sampleIndex;
+    uint pad0;
+    uint pad1;
+};
+layout(push_constant) uniform Push { WaveParams params; };
+
+#include "lib/lights.glsl"
+#include "lib/filter.glsl"
+#include "lib/bsdf.glsl"
+
+const uint kDimsPerVertex = 8u;
+const float kRayMax = 3.0e38;
+const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
+
+float misWeightBsdf(bool prevDelta, float bsdfPdf, float lightPdf) {
+    if (prevDelta || kMis == kMisBsdf) return 1.0;
+    if (kMis == kMisLight) return 0.0;
+    return powerHeuristic(bsdfPdf, lightPdf);
+}
+
+vec3 cameraRay(vec2 pixel) {
+    vec2 ndc = vec2(2.0 * pixel.x / float(frame.image.x) - 1.0,
+                    1.0 - 2.0 * pixel.y / float(frame.image.y));
+    return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
+}
+
+void cameraStage(uint k) {
+    uvec2 pixel = uvec2(k % frame.image.x, k / frame.image.x);
+    Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
+    vec2 offset = sampleFilter(sample2D(smp));
+    vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
+    state[k] = PathState(vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0), uvec4(k, 0u, 1u, 0u));
+    nextRays[k] = TraceRay(frame.camOrigin.xyz, 0.0, dir, kRayMax);
+}
+
+void shadeStage(uint k) {
+    uint slot = live[k];
+    PathState st = state[slot];
+    TraceHit hit = hits[k];
+    TraceRay ray = inRays[k];
+    vec3 dir = ray.dir;
+    vec3 beta = st.betaPdf.xyz;
+    float prevBsdfPdf = st.betaPdf.w;
+    vec3 L = st.lDelta.xyz;
+    bool prevDelta = st.lDelta.w != 0.0;
+    uint depth = st.misc.y;
+    bool alive = false;
+    shadowContrib[k] = vec4(0.0);
+    nextRays[k] = TraceRay(vec3(0.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0);
+    shadowRays[k] = TraceRay(vec3(0.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0);
+    const uint maxDepth = frame.image.z;
+    const bool lightSampling = kHasEmitters != 0u && kMis != kMisBsdf;
+
+    if (hit.triangle == kNoHit) {
+        if (kHasEmitters != 0u && hasFeature(kFeatureEnvironment)) {
+            float w = misWeightBsdf(prevDelta, prevBsdfPdf, prevDelta ? 0.0 : lightPdfEnvironment(dir));
+            L += beta * w * environmentRadiance(dir);
+        }
+    } else {
+        TriVerts tv = bvhFetchTri(hit.triangle);
+        vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
+        vec3 ng = normalize(cross(e1, e2));
+        bool front = dot(dir, ng) < 0.0;
+        TriShading sh = sceneShading(hit.triangle);
+        Material mat = sceneMaterial(sh.material);
+        if (kHasEmitters != 0u && sh.light != kNoLight) {
+            if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
+                float lightPdf = prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
+                float w = misWeightBsdf(prevDelta, prevBsdfPdf, lightPdf);
+                L += beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
+            }
+        }
+        if (depth < maxDepth) {
+            uvec2 pixel = uvec2(st.misc.x % frame.image.x, st.misc.x / frame.image.x);
+            Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
+            vec3 n = front ? ng : -ng;
+            vec3 wo = -dir;
+            vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
+            if (dot(ns, n) < 0.0) ns = -ns;
+            SurfacePoint sp = surfacePoint(mat, hit.triangle, vec2(hit.u, hit.v), n, ns);
+            ns = sp.ns;
+            if (dot(ns, wo) <= 0.0) ns = n;
+            vec3 t, b;
+            basis(ns, t, b);
+            vec3 woL = vec3(dot(wo, t), dot(wo, b), dot(wo, ns));
+            Bsdf bsdf;
+            if (kLambertOnly) {
+                bsdf = makeLambert(sp.baseColor);
+            } else {
+                bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
+                                sp.specular, front, woL.z);
+            }
+            vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
+            samplerSetDim(smp, 2u + depth * kDimsPerVertex);
+            if (lightSampling) {
+                LightSample ls = sampleLight(p, sample2D(smp));
+                vec3 wiL = vec3(dot(ls.wi, t), dot(ls.wi, b), dot(ls.wi, ns));
+                float geoSide = dot(n, ls.wi);
+                if (ls.pdf > 0.0 && any(greaterThan(ls.Li, vec3(0.0))) && geoSide != 0.0 &&
+                    (geoSide > 0.0) == (wiL.z > 0.0)) {
+                    float bsdfPdf;
+                    vec3 f = evalBsdf(bsdf, woL, wiL, bsdfPdf);
+                    if (any(greaterThan(f, vec3(0.0)))) {
+                        vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
+                        vec3 shadowDir = ls.wi;
+                        float shadowMax = kRayMax;
+                        bool open = true;
+                        if (ls.dist < kLightFar) {
+                            vec3 seg = ls.target - from;
+                            float segLen = length(seg);
+                            open = segLen > 0.0;
+                            shadowDir = open ? seg / segLen : ls.wi;
+                            shadowMax = segLen;
+                        }
+                        if (open) {
+                            float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
+                            shadowRays[k] = TraceRay(from, 0.0, shadowDir, shadowMax);
+                            shadowContrib[k] = vec4(beta * f * ls.Li * (w / ls.pdf), 1.0);
+                        }
+                    }
+                }
+            }
+            samplerSetDim(smp, 2u + depth * kDimsPerVertex + 2u);
+            float uLobe = sample1D(smp);
+            BsdfSample bs = sampleBsdf(bsdf, woL, uLobe, sample2D(smp));
+            if (bs.valid) {
+                vec3 wi = bs.wi.x * t + bs.wi.y * b + bs.wi.z * ns;
+                float geoSide = dot(n, wi);
+                if (!(geoSide == 0.0 || (geoSide > 0.0) != (bs.wi.z > 0.0))) {
+                    beta *= bs.weight;
+                    prevBsdfPdf = bs.pdf;
+                    prevDelta = bs.delta;
+                    float u = sample1D(smp);
+                    alive = true;
+                    if (depth >= 3u) {
+                        float q = max(0.05, 1.0 - max(beta.r, max(beta.g, beta.b)));
+                        if (u < q) alive = false;
+                        else beta /= 1.0 - q;
+                    }
+                    if (alive)
+                        nextRays[k] = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n), 0.0, wi,
+                                               kRayMax);
+                }
+            }
+        }
+    }
+    state[slot] = PathState(vec4(beta, prevBsdfPdf), vec4(L, prevDelta ? 1.0 : 0.0),
+                            uvec4(st.misc.x, depth + 1u, alive ? 1u : 0u, 0u));
+}
+
+void main() {
+    uint k = gl_GlobalInvocationID.x;
+    if (k >= params.count) return;
+    if (kStage == kStageCamera) cameraStage(k);
+    else shadeStage(k);
+}
