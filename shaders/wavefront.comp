@@ -8,6 +8,8 @@
 // BSDF-sampled next ray. The arithmetic and the sampler dimensions are
 // pathtrace.comp's, vertex by vertex.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
@@ -16,8 +18,9 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;
-layout(constant_id = SPEC_TRACE_MODE) const uint kStage = 0u;  // 0 camera, 1 shade
+layout(constant_id = SPEC_TRACE_MODE) const uint kStage = 0u;  // 0 camera, 1 shade, 2 resolve
 const uint kStageCamera = 0u;
+const uint kStageResolve = 2u;
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 
@@ -31,8 +34,23 @@ layout(std430, set = 0, binding = 29) readonly buffer LiveBuffer { uint live[]; 
 layout(std430, set = 0, binding = 30) readonly buffer HitBuffer { TraceHit hits[]; };
 layout(std430, set = 0, binding = 31) writeonly buffer NextBuffer { TraceRay nextRays[]; };
 layout(std430, set = 0, binding = 32) writeonly buffer ShadowBuffer { TraceRay shadowRays[]; };
-layout(std430, set = 0, binding = 33) writeonly buffer ContribBuffer { vec4 shadowContrib[]; };
+layout(std430, set = 0, binding = 33) buffer ContribBuffer { vec4 shadowContrib[]; };
 layout(std430, set = 0, binding = 34) readonly buffer InBuffer { TraceRay inRays[]; };
+layout(std430, set = 0, binding = 35) writeonly buffer NextLiveBuffer { uint nextLive[]; };
+layout(std430, set = 0, binding = 36) buffer ShadowSlotBuffer { uint shadowSlot[]; };
+layout(std430, set = 0, binding = 37) buffer CountBuffer { uint counts[]; };  // next rays, shadow rays
+layout(std430, set = 0, binding = 38) readonly buffer ShadowHitBuffer { TraceHit shadowHits[]; };
+
+// This lane's place in a list that the subgroup's wanting lanes append to
+// together: one atomic per subgroup.
+uint appendIndex(uint word, bool want) {
+    uvec4 ballot = subgroupBallot(want);
+    uint total = subgroupBallotBitCount(ballot);
+    uint base = 0u;
+    if (subgroupElect() && total > 0u) base = atomicAdd(counts[word], total);
+    base = subgroupBroadcastFirst(base);
+    return base + subgroupBallotExclusiveBitCount(ballot);
+}
 
 struct WaveParams {
     uint count;
@@ -69,6 +87,7 @@ void cameraStage(uint k) {
     vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
     state[k] = PathState(vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0), uvec4(k, 0u, 1u, 0u));
     nextRays[k] = TraceRay(frame.camOrigin.xyz, 0.0, dir, kRayMax);
+    nextLive[k] = k;
 }
 
 void shadeStage(uint k) {
@@ -83,9 +102,9 @@ void shadeStage(uint k) {
     bool prevDelta = st.lDelta.w != 0.0;
     uint depth = st.misc.y;
     bool alive = false;
-    shadowContrib[k] = vec4(0.0);
-    nextRays[k] = TraceRay(vec3(0.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0);
-    shadowRays[k] = TraceRay(vec3(0.0), 0.0, vec3(0.0, 0.0, 1.0), 0.0);
+    bool hasShadow = false;
+    TraceRay next, shadow;
+    vec3 contrib = vec3(0.0);
     const uint maxDepth = frame.image.z;
     const bool lightSampling = kHasEmitters != 0u && kMis != kMisBsdf;
 
@@ -152,8 +171,9 @@ void shadeStage(uint k) {
                         }
                         if (open) {
                             float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
-                            shadowRays[k] = TraceRay(from, 0.0, shadowDir, shadowMax);
-                            shadowContrib[k] = vec4(beta * f * ls.Li * (w / ls.pdf), 1.0);
+                            shadow = TraceRay(from, 0.0, shadowDir, shadowMax);
+                            contrib = beta * f * ls.Li * (w / ls.pdf);
+                            hasShadow = true;
                         }
                     }
                 }
@@ -175,20 +195,37 @@ void shadeStage(uint k) {
                         if (u < q) alive = false;
                         else beta /= 1.0 - q;
                     }
-                    if (alive)
-                        nextRays[k] = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n), 0.0, wi,
-                                               kRayMax);
+                    next = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n), 0.0, wi, kRayMax);
                 }
             }
         }
     }
     state[slot] = PathState(vec4(beta, prevBsdfPdf), vec4(L, prevDelta ? 1.0 : 0.0),
                             uvec4(st.misc.x, depth + 1u, alive ? 1u : 0u, 0u));
+    uint ni = appendIndex(0u, alive);
+    if (alive) {
+        nextRays[ni] = next;
+        nextLive[ni] = slot;
+    }
+    uint si = appendIndex(1u, hasShadow);
+    if (hasShadow) {
+        shadowRays[si] = shadow;
+        shadowContrib[si] = vec4(contrib, 1.0);
+        shadowSlot[si] = slot;
+    }
+}
+
+// The unoccluded shadow rays' contributions, each to its path's L.
+void resolveStage(uint j) {
+    if (shadowHits[j].triangle != kNoHit) return;
+    uint slot = shadowSlot[j];
+    state[slot].lDelta.xyz += shadowContrib[j].xyz;
 }
 
 void main() {
     uint k = gl_GlobalInvocationID.x;
     if (k >= params.count) return;
     if (kStage == kStageCamera) cameraStage(k);
+    else if (kStage == kStageResolve) resolveStage(k);
     else shadeStage(k);
 }

@@ -63,12 +63,13 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 }
 
 
-// EXPERIMENT (branch exp/wavefront): the path tracer as stages driven from
-// the host, every traversal in the trace kernel (with its work queue) over a
-// compacted list of live rays, shading in shaders/wavefront.comp. The host
-// compacts the lists and adds the unoccluded shadow contributions; only the
-// device time of the dispatches is counted (deviceSeconds), which leaves out
-// the host's compaction and the copies a device-side queue would not need.
+// EXPERIMENT (branch exp/wavefront): the path tracer as stages, every
+// traversal in the trace kernel (with its work queue) over the live rays,
+// shading in shaders/wavefront.comp. The shade stage appends the live paths
+// and the shadow rays to lists on the device (an atomic per subgroup), a
+// resolve stage adds the unoccluded shadow rays' contributions; the host
+// reads the two counts after each shade stage to size the next dispatches.
+// deviceSeconds counts the dispatches only (not the submissions).
 RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene& dev, const GpuScene& scene,
                                        const RenderSettings& s, const vk::Buffer& frame,
                                        const vk::Buffer& filterTable) {
@@ -76,12 +77,16 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
     const std::uint32_t n = static_cast<std::uint32_t>(s.width * s.height);
     constexpr VkBufferUsageFlags st = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    auto hostBuf = [&](VkDeviceSize bytes) { return vk::Buffer(ctx, std::max<VkDeviceSize>(16, bytes), st, vk::MemoryUse::Readback); };
-    vk::Buffer stateBuf = hostBuf(VkDeviceSize(n) * 48), liveBuf = hostBuf(VkDeviceSize(n) * 4),
-               hitBuf = hostBuf(VkDeviceSize(n) * 16), nextBuf = hostBuf(VkDeviceSize(n) * 32),
-               shadowBuf = hostBuf(VkDeviceSize(n) * 32), contribBuf = hostBuf(VkDeviceSize(n) * 16),
-               inBuf = hostBuf(VkDeviceSize(n) * 32), shadowInBuf = hostBuf(VkDeviceSize(n) * 32),
-               shadowHitBuf = hostBuf(VkDeviceSize(n) * 16);
+    auto devBuf = [&](VkDeviceSize bytes) {
+        return vk::Buffer(ctx, std::max<VkDeviceSize>(16, bytes), st, vk::MemoryUse::Device);
+    };
+    vk::Buffer stateBuf = devBuf(VkDeviceSize(n) * 48), hitBuf = devBuf(VkDeviceSize(n) * 16),
+               shadowBuf = devBuf(VkDeviceSize(n) * 32), contribBuf = devBuf(VkDeviceSize(n) * 16),
+               shadowSlotBuf = devBuf(VkDeviceSize(n) * 4), shadowHitBuf = devBuf(VkDeviceSize(n) * 16);
+    vk::Buffer rays[2] = {devBuf(VkDeviceSize(n) * 32), devBuf(VkDeviceSize(n) * 32)};
+    vk::Buffer live[2] = {devBuf(VkDeviceSize(n) * 4), devBuf(VkDeviceSize(n) * 4)};
+    vk::Buffer counts(ctx, 16, st, vk::MemoryUse::Readback);
+    vk::Buffer stateBack(ctx, VkDeviceSize(n) * 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
     constexpr std::size_t kRaysPerDispatch = 1u << 18;
     const std::size_t slots = (n + kRaysPerDispatch - 1) / kRaysPerDispatch;
     vk::Buffer workBuf(ctx, std::max<VkDeviceSize>(16, slots * kQueueWords * 4),
@@ -90,7 +95,7 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
                        vk::MemoryUse::Device);
     const bool queue = useWorkQueue(ctx, s.workQueue);
 
-    auto makeTrace = [&](std::uint32_t mode, const vk::Buffer& rays, const vk::Buffer& hits) {
+    auto makeTrace = [&](std::uint32_t mode) {
         std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
         setTraversalSpec(dev, spec);
         spec[SPEC_FEATURES] = scene.features.bits;
@@ -102,13 +107,14 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
                            {BINDING_WORK, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
         auto k = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, false), std::move(b), sizeof(TraceParams), spec);
         bindTraversal(*k, dev);
-        k->bind(BINDING_RAYS, rays);
-        k->bind(BINDING_HITS, hits);
         k->bind(BINDING_WORK, workBuf);
         return k;
     };
-    auto closest = makeTrace(kTraceClosest, inBuf, hitBuf);
-    auto anyHit = makeTrace(kTraceAny, shadowInBuf, shadowHitBuf);
+    auto closest = makeTrace(kTraceClosest);
+    auto anyHit = makeTrace(kTraceAny);
+    anyHit->bind(BINDING_RAYS, shadowBuf);
+    anyHit->bind(BINDING_HITS, shadowHitBuf);
+    closest->bind(BINDING_HITS, hitBuf);
     auto makeStage = [&](std::uint32_t stage) {
         std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
         setTraversalSpec(dev, spec);
@@ -125,9 +131,9 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
                            {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
                            {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                            {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}});
-        for (std::uint32_t i = 28; i <= 34; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-        auto k = std::make_unique<vk::Kernel>(ctx, std::span<const std::uint32_t>(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4),
-                                              std::move(b), 16, spec);
+        for (std::uint32_t i = 28; i <= 38; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+        auto k = std::make_unique<vk::Kernel>(
+            ctx, std::span<const std::uint32_t>(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4), std::move(b), 16, spec);
         bindTraversal(*k, dev);
         k->bind(BINDING_FRAME, frame);
         bindArray(*k, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
@@ -135,30 +141,40 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
         k->bind(BINDING_ENV_TEXELS, dev.envTexelView);
         bindArray(*k, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
         k->bind(28, stateBuf);
-        k->bind(29, liveBuf);
         k->bind(30, hitBuf);
-        k->bind(31, nextBuf);
         k->bind(32, shadowBuf);
         k->bind(33, contribBuf);
-        k->bind(34, inBuf);
+        k->bind(36, shadowSlotBuf);
+        k->bind(37, counts);
+        k->bind(38, shadowHitBuf);
         return k;
     };
-    auto camera = makeStage(0), shade = makeStage(1);
+    auto camera = makeStage(0), shade = makeStage(1), resolve = makeStage(2);
+    // Path lists ping-pong between rays[0]/live[0] and rays[1]/live[1].
+    auto bindLists = [&](int cur) {
+        closest->bind(BINDING_RAYS, rays[cur]);
+        for (vk::Kernel* k : {camera.get(), shade.get(), resolve.get()}) {
+            k->bind(29, live[cur]);
+            k->bind(34, rays[cur]);
+            k->bind(31, rays[1 - cur]);
+            k->bind(35, live[1 - cur]);
+        }
+    };
 
     vk::OneShot submit(ctx);
     vk::DeviceTimer timer(ctx);
     double device = 0.0;
-    double part[4] = {0, 0, 0, 0};  // camera, closest, any, shade
-    int partIndex = 0;
+    double part[5] = {0, 0, 0, 0, 0};  // camera, closest, any, shade, resolve
     const auto barrier = [](VkCommandBuffer cmd) {
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
-                              VK_PIPELINE_STAGE_HOST_BIT,
+                              VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                              VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+                              VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_HOST_READ_BIT |
+                              VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
     };
-    auto run = [&](auto&& record) {
+    auto run = [&](int which, auto&& record) {
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
         record(cmd);
@@ -166,10 +182,10 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
         barrier(cmd);
         submit.submitAndWait();
         device += timer.seconds();
-        part[partIndex] += timer.seconds();
+        part[which] += timer.seconds();
     };
-    auto trace = [&](vk::Kernel& k, std::uint32_t count) {
-        run([&](VkCommandBuffer cmd) {
+    auto trace = [&](vk::Kernel& k, std::uint32_t count, int which) {
+        run(which, [&](VkCommandBuffer cmd) {
             if (queue) {
                 vkCmdFillBuffer(cmd, workBuf.handle(), 0, VK_WHOLE_SIZE, 0u);
                 barrier(cmd);
@@ -192,8 +208,12 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
             }
         });
     };
-    auto stage = [&](vk::Kernel& k, std::uint32_t count, std::uint32_t sampleIndex) {
-        run([&](VkCommandBuffer cmd) {
+    auto stage = [&](vk::Kernel& k, std::uint32_t count, std::uint32_t sampleIndex, int which, bool zeroCounts) {
+        run(which, [&](VkCommandBuffer cmd) {
+            if (zeroCounts) {
+                vkCmdFillBuffer(cmd, counts.handle(), 0, VK_WHOLE_SIZE, 0u);
+                barrier(cmd);
+            }
             std::uint32_t p[4] = {count, sampleIndex, 0, 0};
             k.dispatch(cmd, p, (count + 63) / 64);
         });
@@ -206,60 +226,40 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
     result.bvhStack = bvhStackName(dev);
     result.pipelineMs = shade->pipelineMs();
     std::vector<float> sums(std::size_t(n) * kAccumVec4PerPixel * 4);
-    std::vector<glm::vec3> extra(n);
-    auto* live = static_cast<std::uint32_t*>(liveBuf.mapped());
-    auto* in = static_cast<TraceRay*>(inBuf.mapped());
-    auto* next = static_cast<const TraceRay*>(nextBuf.mapped());
-    auto* shadow = static_cast<const TraceRay*>(shadowBuf.mapped());
-    auto* shadowIn = static_cast<TraceRay*>(shadowInBuf.mapped());
-    auto* shadowHit = static_cast<const TraceHit*>(shadowHitBuf.mapped());
-    auto* contrib = static_cast<const glm::vec4*>(contribBuf.mapped());
+    const auto* countWords = static_cast<const std::uint32_t*>(counts.mapped());
     const auto start = Clock::now();
     for (std::uint32_t sample = 0; sample < s.spp; ++sample) {
-        std::fill(extra.begin(), extra.end(), glm::vec3(0.0f));
-        partIndex = 0;
-        stage(*camera, n, sample);
+        int cur = 1;  // the camera stage writes its rays and list to rays[0], live[0]
+        bindLists(cur);
+        stage(*camera, n, sample, 0, false);
+        cur = 0;
         std::uint32_t count = n;
-        for (std::uint32_t k = 0; k < n; ++k) {
-            live[k] = k;
-            in[k] = next[k];
-        }
-        std::vector<std::uint32_t> shadowSlot;
         while (count > 0) {
-            partIndex = 1;
-            trace(*closest, count);
+            bindLists(cur);
+            trace(*closest, count, 1);
             result.closestRays += count;
-            partIndex = 3;
-            stage(*shade, count, sample);
-            shadowSlot.clear();
-            std::uint32_t m = 0;
-            for (std::uint32_t k = 0; k < count; ++k)
-                if (contrib[k].w != 0.0f) {
-                    shadowIn[m++] = shadow[k];
-                    shadowSlot.push_back(live[k]);
-                }
-            std::vector<glm::vec3> pending(m);
-            for (std::uint32_t k = 0, j = 0; k < count; ++k)
-                if (contrib[k].w != 0.0f) pending[j++] = glm::vec3(contrib[k]);
-            if (m > 0) {
-                partIndex = 2;
-                trace(*anyHit, m);
-                result.shadowRays += m;
-                for (std::uint32_t j = 0; j < m; ++j)
-                    if (shadowHit[j].triangle == kNoHit) extra[shadowSlot[j]] += pending[j];
+            stage(*shade, count, sample, 3, true);
+            counts.invalidate();
+            const std::uint32_t next = countWords[0], shadows = countWords[1];
+            if (shadows > 0) {
+                trace(*anyHit, shadows, 2);
+                result.shadowRays += shadows;
+                stage(*resolve, shadows, sample, 4, false);
             }
-            std::uint32_t alive = 0;
-            for (std::uint32_t k = 0; k < count; ++k)
-                if (next[k].tmax > 0.0f) {
-                    live[alive] = live[k];
-                    in[alive] = next[k];
-                    ++alive;
-                }
-            count = alive;
+            count = next;
+            cur = 1 - cur;
         }
-        const auto* stt = static_cast<const float*>(stateBuf.mapped());
+        {
+            VkCommandBuffer cmd = submit.begin();
+            VkBufferCopy region{0, 0, VkDeviceSize(n) * 48};
+            vkCmdCopyBuffer(cmd, stateBuf.handle(), stateBack.handle(), 1, &region);
+            barrier(cmd);
+            submit.submitAndWait();
+        }
+        stateBack.invalidate();
+        const auto* stt = static_cast<const float*>(stateBack.mapped());
         for (std::uint32_t k = 0; k < n; ++k) {
-            const glm::vec3 L = glm::vec3(stt[12 * k + 4], stt[12 * k + 5], stt[12 * k + 6]) + extra[k];
+            const glm::vec3 L(stt[12 * k + 4], stt[12 * k + 5], stt[12 * k + 6]);
             float* a = &sums[std::size_t(k) * kAccumVec4PerPixel * 4];
             a[0] = L.x; a[1] = L.y; a[2] = L.z; a[3] = 1.0f;
             a[4] = L.x * L.x; a[5] = L.y * L.y; a[6] = L.z * L.z; a[7] = 0.0f;
@@ -269,11 +269,14 @@ RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene
     }
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     result.deviceSeconds = device;
-    std::fprintf(stderr, "wavefront: camera %.3f s, closest %.3f s (%llu rays), any %.3f s (%llu rays), shade %.3f s\n",
+    std::fprintf(stderr,
+                 "wavefront: camera %.3f s, closest %.3f s (%llu rays), any %.3f s (%llu rays), shade %.3f s, "
+                 "resolve %.3f s\n",
                  part[0], part[1], (unsigned long long)result.closestRays, part[2],
-                 (unsigned long long)result.shadowRays, part[3]);
+                 (unsigned long long)result.shadowRays, part[3], part[4]);
     return result;
 }
+
 }  // namespace
 
 void checkImageFits(const vk::Context& ctx, const RenderSettings& s) {
