@@ -25,8 +25,9 @@ using namespace strata::test;
 
 namespace {
 
-// Renders `scene` as the device allows and again with the storage range
-// lowered below its shading array: the two images are the same bits.
+// Renders `scene` as the device allows and again with a storage range of 16
+// bytes, so that every array is read through its texel view: the two images
+// are the same bits.
 void checkLargePathMatches(const Scene& scene) {
     const GpuScene g = packScene(scene);
     RenderSettings s;
@@ -110,7 +111,7 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
                          Error);
 
     l = {16384, 1u << 20, 1u << 30};
-    g.tris.resize(100);
+    g.tris.resize(100);  // the per-triangle arrays fit the storage range again
     g.shading.resize(100);
     g.materials.resize(300);  // 24000 bytes: past the storage range, read through a texel view
     CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsTexelAll);

@@ -22,6 +22,7 @@ TextureRef textureRefAt(uint i) {
     texels3(textureRefsTexel, i, a, b, c);
     return TextureRef(a.x, a.y, a.z, a.w, uintBitsToFloat(b), uintBitsToFloat(c));
 }
+
 layout(set = 0, binding = BINDING_TEXELS) uniform usamplerBuffer texelWords;
 
 // The exact sRGB decoding curve (IEC 61966-2-1).
