@@ -29,7 +29,7 @@ constexpr const char* kUsage =
     "usage: strata render SCENE.gltf|.glb [-o OUT.exr|OUT.png]... [--spp N] [--seed S]\n"
     "                     [--max-depth D] [--width W] [--height H] [--camera I] [--device I]\n"
     "                     [--time SECONDS] [--traversal auto|texel|storage] [--bvh 2|4] [--quiet]\n"
-    "                     [--bvh-stack auto|registers|memory]\n"
+    "                     [--bvh-stack auto|registers|memory] [--integrator megakernel|wavefront]\n"
     "                     [--sampler independent|regular|rotated|stratified|sobol|bluenoise]\n"
     "                     [--filter box|tent|gaussian|blackman-harris] [--filter-radius PIXELS]\n"
     "                     [--mis power|bsdf|light]\n"
@@ -45,6 +45,7 @@ constexpr const char* kUsage =
     "       strata bench SCENE [--width W] [--height H] [--spp N] [--reference REF.exr] [--seed S]\n"
     "                    [--max-depth D] [--reps R] [--camera I] [--device I] [--quick] [--only traversal]\n"
     "                    [--bvh 2|4] [--bvh-stack auto|registers|memory] [--traversal auto|texel|storage]\n"
+    "                    [--integrator megakernel|wavefront]\n"
     "                    [--env ... (as render)] [--json FILE]\n"
     "       strata devices\n"
     "  -o may be given more than once (e.g. -o out.exr -o out.png); default: SCENE.exr and\n"
@@ -85,6 +86,12 @@ strata::BvhStack parseBvhStack(const std::string& v) {
     if (v == "registers") return strata::BvhStack::Registers;
     if (v == "memory") return strata::BvhStack::Memory;
     badFlag("--bvh-stack expects auto, registers or memory, got '" + v + "'");
+}
+
+strata::Integrator parseIntegrator(const std::string& v) {
+    if (v == "megakernel") return strata::Integrator::Megakernel;
+    if (v == "wavefront") return strata::Integrator::Wavefront;
+    badFlag("--integrator expects megakernel or wavefront, got '" + v + "'");
 }
 
 // 16, 1000000000, 1e+30: integers as integers up to 1e15, the rest as %g.
@@ -195,6 +202,8 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
             cmd.settings.traversal = parseTraversal(value());
         } else if (a == "--bvh-stack") {
             cmd.settings.bvhStack = parseBvhStack(value());
+        } else if (a == "--integrator") {
+            cmd.settings.integrator = parseIntegrator(value());
         } else if (!a.empty() && a[0] == '-') badFlag("unknown option '" + a + "' (see 'strata --help')");
         else if (cmd.scene.empty()) cmd.scene = a;
         else badFlag("unexpected argument '" + a + "' (one scene per render)");
@@ -331,6 +340,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         else if (a == "--bvh") cmd.bvhWidth = parseBvhWidth(value());
         else if (a == "--traversal") cmd.traversal = parseTraversal(value());
         else if (a == "--bvh-stack") cmd.bvhStack = parseBvhStack(value());
+        else if (a == "--integrator") cmd.integrator = parseIntegrator(value());
         else if (a == "--only") {
             cmd.only = value();
             if (cmd.only != "traversal") badFlag("--only takes 'traversal' (got '" + cmd.only + "')");

@@ -1,12 +1,16 @@
 #version 460
-// EXPERIMENT (branch exp/wavefront): the path tracer split into stages run
-// by the host, to measure what a wavefront integrator would gain on CPU
-// devices. Stage kStageCamera makes each pixel's camera ray and path state;
-// kStageShade takes one traced ray's hit per entry of the live list, adds
-// emission, makes the next-event shadow ray (its contribution kept apart, to
-// be added by the host when the trace kernel finds it unoccluded) and the
-// BSDF-sampled next ray. The arithmetic and the sampler dimensions are
-// pathtrace.comp's, vertex by vertex.
+// The wavefront integrator (`--integrator wavefront`; host/render/wavefront.cpp
+// drives it): pathtrace.comp's estimator split into stages, so that every
+// traversal runs in trace.comp over a list of live rays. One sample of a
+// tile: kStageCamera makes each pixel's camera ray and path state; then, per
+// bounce, trace.comp finds the closest hits, kStageShade adds the emission
+// found, appends the next-event shadow ray (with its contribution, held
+// apart) and the BSDF-sampled next ray to the lists of the next stages,
+// trace.comp tests the shadow rays, and kStageResolve adds the contributions
+// of the unoccluded ones; kStageAccumulate adds each path's radiance to the
+// film's sums. The arithmetic, its order and the sampler dimensions are
+// pathtrace.comp's, vertex by vertex, so the images agree to float rounding
+// (the film's sums are added in a different order).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -18,28 +22,21 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;
-layout(constant_id = SPEC_TRACE_MODE) const uint kStage = 0u;  // 0 camera, 1 shade, 2 resolve
-const uint kStageCamera = 0u;
-const uint kStageResolve = 2u;
+layout(constant_id = SPEC_TRACE_MODE) const uint kStage = 0u;  // kStage* (types.h)
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 
-struct PathState {
-    vec4 betaPdf;   // beta, prevBsdfPdf
-    vec4 lDelta;    // L, prevDelta (1 or 0)
-    uvec4 misc;     // pixelIndex, depth, alive
-};
-layout(std430, set = 0, binding = 28) buffer StateBuffer { PathState state[]; };
-layout(std430, set = 0, binding = 29) readonly buffer LiveBuffer { uint live[]; };
-layout(std430, set = 0, binding = 30) readonly buffer HitBuffer { TraceHit hits[]; };
-layout(std430, set = 0, binding = 31) writeonly buffer NextBuffer { TraceRay nextRays[]; };
-layout(std430, set = 0, binding = 32) writeonly buffer ShadowBuffer { TraceRay shadowRays[]; };
-layout(std430, set = 0, binding = 33) buffer ContribBuffer { vec4 shadowContrib[]; };
-layout(std430, set = 0, binding = 34) readonly buffer InBuffer { TraceRay inRays[]; };
-layout(std430, set = 0, binding = 35) writeonly buffer NextLiveBuffer { uint nextLive[]; };
-layout(std430, set = 0, binding = 36) buffer ShadowSlotBuffer { uint shadowSlot[]; };
-layout(std430, set = 0, binding = 37) buffer CountBuffer { uint counts[]; };  // next rays, shadow rays
-layout(std430, set = 0, binding = 38) readonly buffer ShadowHitBuffer { TraceHit shadowHits[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_STATE) buffer StateBuffer { PathState state[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_LIVE) readonly buffer LiveBuffer { uint live[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_HITS) readonly buffer HitBuffer { TraceHit hits[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_NEXT_RAYS) writeonly buffer NextBuffer { TraceRay nextRays[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_SHADOW_RAYS) writeonly buffer ShadowBuffer { TraceRay shadowRays[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_CONTRIB) buffer ContribBuffer { vec4 shadowContrib[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_RAYS) readonly buffer InBuffer { TraceRay inRays[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_NEXT_LIVE) writeonly buffer NextLiveBuffer { uint nextLive[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_SHADOW_SLOTS) buffer ShadowSlotBuffer { uint shadowSlot[]; };
+layout(std430, set = 0, binding = BINDING_WAVE_COUNTS) buffer CountBuffer { uint counts[]; };  // next rays, shadow rays
+layout(std430, set = 0, binding = BINDING_WAVE_SHADOW_HITS) readonly buffer ShadowHitBuffer { TraceHit shadowHits[]; };
 
 // This lane's place in a list that the subgroup's wanting lanes append to
 // together: one atomic per subgroup.
@@ -52,12 +49,8 @@ uint appendIndex(uint word, bool want) {
     return base + subgroupBallotExclusiveBitCount(ballot);
 }
 
-struct WaveParams {
-    uint count;
-    uint sampleIndex;
-    uint pad0;
-    uint pad1;
-};
+layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
+layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
 layout(push_constant) uniform Push { WaveParams params; };
 
 #include "lib/lights.glsl"
@@ -81,11 +74,12 @@ vec3 cameraRay(vec2 pixel) {
 }
 
 void cameraStage(uint k) {
-    uvec2 pixel = uvec2(k % frame.image.x, k / frame.image.x);
+    uvec2 pixel = uvec2(params.tileX + k % params.tileW, params.tileY + k / params.tileW);
     Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
     vec2 offset = sampleFilter(sample2D(smp));
     vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
-    state[k] = PathState(vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0), uvec4(k, 0u, 1u, 0u));
+    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
+    state[k] = PathState(vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0), uvec4(pixelIndex, 0u, 1u, 0u));
     nextRays[k] = TraceRay(frame.camOrigin.xyz, 0.0, dir, kRayMax);
     nextLive[k] = k;
 }
@@ -215,11 +209,24 @@ void shadeStage(uint k) {
     }
 }
 
-// The unoccluded shadow rays' contributions, each to its path's L.
+// The unoccluded shadow rays' contributions, each to its path's L (a path
+// has at most one shadow ray a bounce).
 void resolveStage(uint j) {
     if (shadowHits[j].triangle != kNoHit) return;
     uint slot = shadowSlot[j];
     state[slot].lDelta.xyz += shadowContrib[j].xyz;
+}
+
+// Path k's radiance into its pixel's sums, as pathtrace.comp's shadePixel.
+void accumulateStage(uint k) {
+    vec3 L = state[k].lDelta.xyz;
+    if (any(isnan(L)) || any(isinf(L))) {
+        atomicAdd(counters.nonFinite, 1u);
+        return;
+    }
+    uint base = state[k].misc.x * kAccumVec4PerPixel;
+    accum[base] += vec4(L, 1.0);
+    accum[base + 1u] += vec4(L * L, 0.0);
 }
 
 void main() {
@@ -227,5 +234,6 @@ void main() {
     if (k >= params.count) return;
     if (kStage == kStageCamera) cameraStage(k);
     else if (kStage == kStageResolve) resolveStage(k);
+    else if (kStage == kStageAccumulate) accumulateStage(k);
     else shadeStage(k);
 }

@@ -215,3 +215,48 @@ TEST_CASE("accumulation of 10^6 samples of a constant does not drift") {
     }
     CHECK(vk::validationMessageCount() == 0);
 }
+
+namespace {
+
+// Renders `scene` with the megakernel and with the wavefront integrator (in
+// tiles of 16 pixels, so that an image spans several) and checks that the
+// images are the same bits: the stages do pathtrace.comp's arithmetic in its
+// order, and each pixel's sums are added in sample order either way.
+void checkWavefrontMatches(const Scene& scene, RenderSettings s) {
+    const GpuScene gpu = packScene(scene);
+    s.tileSize = 16;
+    s.integrator = Integrator::Megakernel;
+    const RenderResult mega = render(context(), gpu, scene.cameras.at(0), s);
+    s.integrator = Integrator::Wavefront;
+    const RenderResult wave = render(context(), gpu, scene.cameras.at(0), s);
+    CHECK(wave.spp == s.spp);
+    CHECK(wave.nonFinite == mega.nonFinite);
+    CHECK(sameImage(mega.film, wave.film));
+    // The same paths: the same closest rays. The megakernel also counts a
+    // shadow ray whose light point coincides with its origin (not traced).
+    CHECK(wave.closestRays == mega.closestRays);
+    CHECK(wave.shadowRays <= mega.shadowRays);
+    CHECK(static_cast<double>(wave.shadowRays) >= 0.999 * static_cast<double>(mega.shadowRays));
+    CHECK(wave.closestRays > 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+}  // namespace
+
+TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit") {
+    RenderSettings s = small(3, 6, 5);
+    s.width = 40;
+    s.height = 28;
+    SUBCASE("Cornell box (area lights, Lambert)") { checkWavefrontMatches(loadGltf(sourcePath("scenes/cornell-box.gltf")), s); }
+    SUBCASE("Veach MIS (glossy, four lights)") { checkWavefrontMatches(loadGltf(sourcePath("scenes/veach-mis.gltf")), s); }
+    SUBCASE("materials board (textures, normal maps, transmission)") {
+        checkWavefrontMatches(loadGltf(sourcePath("scenes/materials-board.gltf")), s);
+    }
+    SUBCASE("alpha test") { checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/alpha-mask.gltf")), s); }
+    SUBCASE("environment map and a directional light, light sampling only") {
+        const Scene scene = envBoardWithSun();
+        checkWavefrontMatches(scene, s);
+        s.mis = gpu::kMisLight;
+        checkWavefrontMatches(scene, s);
+    }
+}

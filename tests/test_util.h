@@ -3,6 +3,7 @@
 // the statistics used to compare renders with known answers.
 #pragma once
 #include <cmath>
+#include <cstring>
 
 #include <doctest/doctest.h>
 #include <string>
@@ -53,6 +54,25 @@ inline Scene loadWithWhiteEnvironment(const std::string& path) {
     env.hasColor = true;
     env.color = glm::vec3(1.0f);
     return loadSceneWithEnvironment(path, env);
+}
+
+// The materials board under scenes/env/sky.hdr with a directional light
+// added: every kind of light the environment code has.
+inline Scene envBoardWithSun() {
+    EnvironmentOptions env;
+    env.file = sourcePath("scenes/env/sky.hdr");
+    Scene scene = loadSceneWithEnvironment(sourcePath("scenes/materials-board-env.gltf"), env);
+    PunctualLight sun;
+    sun.type = PunctualLight::Type::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.2f));
+    scene.lights.push_back(sun);
+    return scene;
+}
+
+// True when the two films' mean images are the same bits.
+inline bool sameImage(const Film& a, const Film& b) {
+    const auto x = a.mean(), y = b.mean();
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(float)) == 0;
 }
 
 // Mean over all pixels and channels of the image, and its estimated standard

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "render/device_scene.h"
+#include "render/renderer.h"
 #include "scene/environment.h"
 
 namespace strata {
@@ -37,6 +38,7 @@ struct BenchCommand {
     int bvhWidth = 4;                 // --bvh: 4 (four-wide where it fits) or 2
     Traversal traversal = Traversal::Auto;  // --traversal: texel views or storage buffers
     BvhStack bvhStack = BvhStack::Auto;     // --bvh-stack: the four-wide traversal's stack
+    Integrator integrator = Integrator::Megakernel;  // --integrator: path tracing's (render/renderer.h)
     std::string only;                 // "traversal": start-up, BVH and traversal sections only
     std::string json;
     bool validation = false;

@@ -27,6 +27,7 @@ RenderSettings settingsFor(const BenchCommand& cmd, int width, int height, std::
     s.bvhWidth = cmd.bvhWidth;
     s.traversal = cmd.traversal;
     s.bvhStack = cmd.bvhStack;
+    s.integrator = cmd.integrator;
     s.warmUp = true;
     s.reusePipeline = false;  // every render's pipeline creation is timed (start-up)
     return s;

@@ -11,12 +11,11 @@
 
 #include "../../shaders/shared/bindings.h"
 #include "render/sampler_kind.h"
+#include "render/wavefront.h"
 #include "util/error.h"
 #include "vk/check.h"
 #include "vk/kernel.h"
 #include "vk/timer.h"
-#include <cstdlib>
-#include <strata_spirv.h>
 
 namespace strata {
 namespace {
@@ -62,220 +61,6 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
     std::fflush(stderr);
 }
 
-
-// EXPERIMENT (branch exp/wavefront): the path tracer as stages, every
-// traversal in the trace kernel (with its work queue) over the live rays,
-// shading in shaders/wavefront.comp. The shade stage appends the live paths
-// and the shadow rays to lists on the device (an atomic per subgroup), a
-// resolve stage adds the unoccluded shadow rays' contributions; the host
-// reads the two counts after each shade stage to size the next dispatches.
-// deviceSeconds counts the dispatches only (not the submissions).
-RenderResult renderWavefrontExperiment(const vk::Context& ctx, const DeviceScene& dev, const GpuScene& scene,
-                                       const RenderSettings& s, const vk::Buffer& frame,
-                                       const vk::Buffer& filterTable) {
-    using namespace gpu;
-    const std::uint32_t n = static_cast<std::uint32_t>(s.width * s.height);
-    constexpr VkBufferUsageFlags st = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    auto devBuf = [&](VkDeviceSize bytes) {
-        return vk::Buffer(ctx, std::max<VkDeviceSize>(16, bytes), st, vk::MemoryUse::Device);
-    };
-    vk::Buffer stateBuf = devBuf(VkDeviceSize(n) * 48), hitBuf = devBuf(VkDeviceSize(n) * 16),
-               shadowBuf = devBuf(VkDeviceSize(n) * 32), contribBuf = devBuf(VkDeviceSize(n) * 16),
-               shadowSlotBuf = devBuf(VkDeviceSize(n) * 4), shadowHitBuf = devBuf(VkDeviceSize(n) * 16);
-    vk::Buffer rays[2] = {devBuf(VkDeviceSize(n) * 32), devBuf(VkDeviceSize(n) * 32)};
-    vk::Buffer live[2] = {devBuf(VkDeviceSize(n) * 4), devBuf(VkDeviceSize(n) * 4)};
-    vk::Buffer counts(ctx, 16, st, vk::MemoryUse::Readback);
-    vk::Buffer stateBack(ctx, VkDeviceSize(n) * 48, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
-    constexpr std::size_t kRaysPerDispatch = 1u << 18;
-    const std::size_t slots = (n + kRaysPerDispatch - 1) / kRaysPerDispatch;
-    vk::Buffer workBuf(ctx, std::max<VkDeviceSize>(16, slots * kQueueWords * 4),
-                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                       vk::MemoryUse::Device);
-    const bool queue = useWorkQueue(ctx, s.workQueue);
-
-    auto makeTrace = [&](std::uint32_t mode) {
-        std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
-        setTraversalSpec(dev, spec);
-        spec[SPEC_FEATURES] = scene.features.bits;
-        spec[SPEC_TRACE_MODE] = mode;
-        spec[SPEC_WORK_QUEUE] = queue ? 1u : 0u;
-        std::vector<vk::BindingDesc> b = sceneBindings();
-        b.insert(b.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_WORK, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-        auto k = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, false), std::move(b), sizeof(TraceParams), spec);
-        bindTraversal(*k, dev);
-        k->bind(BINDING_WORK, workBuf);
-        return k;
-    };
-    auto closest = makeTrace(kTraceClosest);
-    auto anyHit = makeTrace(kTraceAny);
-    anyHit->bind(BINDING_RAYS, shadowBuf);
-    anyHit->bind(BINDING_HITS, shadowHitBuf);
-    closest->bind(BINDING_HITS, hitBuf);
-    auto makeStage = [&](std::uint32_t stage) {
-        std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
-        setTraversalSpec(dev, spec);
-        spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
-        spec[SPEC_SAMPLER] = s.sampler;
-        spec[SPEC_FEATURES] = scene.features.bits;
-        spec[SPEC_MIS] = s.mis;
-        spec[SPEC_TRACE_MODE] = stage;
-        std::vector<vk::BindingDesc> b = sceneBindings();
-        b.insert(b.end(), {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                           {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                           {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                           {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}});
-        for (std::uint32_t i = 28; i <= 38; ++i) b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
-        auto k = std::make_unique<vk::Kernel>(
-            ctx, std::span<const std::uint32_t>(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4), std::move(b), 16, spec);
-        bindTraversal(*k, dev);
-        k->bind(BINDING_FRAME, frame);
-        bindArray(*k, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
-        k->bind(BINDING_FILTER, filterTable);
-        k->bind(BINDING_ENV_TEXELS, dev.envTexelView);
-        bindArray(*k, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
-        k->bind(28, stateBuf);
-        k->bind(30, hitBuf);
-        k->bind(32, shadowBuf);
-        k->bind(33, contribBuf);
-        k->bind(36, shadowSlotBuf);
-        k->bind(37, counts);
-        k->bind(38, shadowHitBuf);
-        return k;
-    };
-    auto camera = makeStage(0), shade = makeStage(1), resolve = makeStage(2);
-    // Path lists ping-pong between rays[0]/live[0] and rays[1]/live[1].
-    auto bindLists = [&](int cur) {
-        closest->bind(BINDING_RAYS, rays[cur]);
-        for (vk::Kernel* k : {camera.get(), shade.get(), resolve.get()}) {
-            k->bind(29, live[cur]);
-            k->bind(34, rays[cur]);
-            k->bind(31, rays[1 - cur]);
-            k->bind(35, live[1 - cur]);
-        }
-    };
-
-    vk::OneShot submit(ctx);
-    vk::DeviceTimer timer(ctx);
-    double device = 0.0;
-    double part[5] = {0, 0, 0, 0, 0};  // camera, closest, any, shade, resolve
-    const auto barrier = [](VkCommandBuffer cmd) {
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
-                              VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                              VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_HOST_READ_BIT |
-                              VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
-    };
-    auto run = [&](int which, auto&& record) {
-        VkCommandBuffer cmd = submit.begin();
-        timer.begin(cmd);
-        record(cmd);
-        timer.end(cmd);
-        barrier(cmd);
-        submit.submitAndWait();
-        device += timer.seconds();
-        part[which] += timer.seconds();
-    };
-    auto trace = [&](vk::Kernel& k, std::uint32_t count, int which) {
-        run(which, [&](VkCommandBuffer cmd) {
-            if (queue) {
-                vkCmdFillBuffer(cmd, workBuf.handle(), 0, VK_WHOLE_SIZE, 0u);
-                barrier(cmd);
-            }
-            for (std::size_t first = 0, slot = 0; first < count; first += kRaysPerDispatch, ++slot) {
-                TraceParams p{};
-                p.count = static_cast<std::uint32_t>(std::min<std::size_t>(kRaysPerDispatch, count - first));
-                p.first = static_cast<std::uint32_t>(first);
-                p.slot = static_cast<std::uint32_t>(slot);
-                if (!queue) {
-                    k.dispatch(cmd, &p, (p.count + 63) / 64);
-                    continue;
-                }
-                const std::uint64_t subgroups = (std::uint64_t{p.count} + kQueueRaysPerSubgroup - 1) / kQueueRaysPerSubgroup;
-                const std::uint64_t perGroup = std::max<std::uint32_t>(1, 64 / ctx.info.subgroupSize);
-                k.dispatch(cmd, &p, static_cast<std::uint32_t>((subgroups + perGroup - 1) / perGroup));
-                barrier(cmd);
-                p.pass = 1;
-                k.dispatchIndirect(cmd, &p, workBuf, (slot * kQueueWords + 2) * sizeof(std::uint32_t));
-            }
-        });
-    };
-    auto stage = [&](vk::Kernel& k, std::uint32_t count, std::uint32_t sampleIndex, int which, bool zeroCounts) {
-        run(which, [&](VkCommandBuffer cmd) {
-            if (zeroCounts) {
-                vkCmdFillBuffer(cmd, counts.handle(), 0, VK_WHOLE_SIZE, 0u);
-                barrier(cmd);
-            }
-            std::uint32_t p[4] = {count, sampleIndex, 0, 0};
-            k.dispatch(cmd, p, (count + 63) / 64);
-        });
-    };
-
-    RenderResult result;
-    result.film = Film(s.width, s.height);
-    result.reads = dev.reads;
-    result.bvhWidth = dev.wide ? 4 : 2;
-    result.bvhStack = bvhStackName(dev);
-    result.pipelineMs = shade->pipelineMs();
-    std::vector<float> sums(std::size_t(n) * kAccumVec4PerPixel * 4);
-    const auto* countWords = static_cast<const std::uint32_t*>(counts.mapped());
-    const auto start = Clock::now();
-    for (std::uint32_t sample = 0; sample < s.spp; ++sample) {
-        int cur = 1;  // the camera stage writes its rays and list to rays[0], live[0]
-        bindLists(cur);
-        stage(*camera, n, sample, 0, false);
-        cur = 0;
-        std::uint32_t count = n;
-        while (count > 0) {
-            bindLists(cur);
-            trace(*closest, count, 1);
-            result.closestRays += count;
-            stage(*shade, count, sample, 3, true);
-            counts.invalidate();
-            const std::uint32_t next = countWords[0], shadows = countWords[1];
-            if (shadows > 0) {
-                trace(*anyHit, shadows, 2);
-                result.shadowRays += shadows;
-                stage(*resolve, shadows, sample, 4, false);
-            }
-            count = next;
-            cur = 1 - cur;
-        }
-        {
-            VkCommandBuffer cmd = submit.begin();
-            VkBufferCopy region{0, 0, VkDeviceSize(n) * 48};
-            vkCmdCopyBuffer(cmd, stateBuf.handle(), stateBack.handle(), 1, &region);
-            barrier(cmd);
-            submit.submitAndWait();
-        }
-        stateBack.invalidate();
-        const auto* stt = static_cast<const float*>(stateBack.mapped());
-        for (std::uint32_t k = 0; k < n; ++k) {
-            const glm::vec3 L(stt[12 * k + 4], stt[12 * k + 5], stt[12 * k + 6]);
-            float* a = &sums[std::size_t(k) * kAccumVec4PerPixel * 4];
-            a[0] = L.x; a[1] = L.y; a[2] = L.z; a[3] = 1.0f;
-            a[4] = L.x * L.x; a[5] = L.y * L.y; a[6] = L.z * L.z; a[7] = 0.0f;
-        }
-        result.film.fold(sums.data());
-        ++result.spp;
-    }
-    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    result.deviceSeconds = device;
-    std::fprintf(stderr,
-                 "wavefront: camera %.3f s, closest %.3f s (%llu rays), any %.3f s (%llu rays), shade %.3f s, "
-                 "resolve %.3f s\n",
-                 part[0], part[1], (unsigned long long)result.closestRays, part[2],
-                 (unsigned long long)result.shadowRays, part[3], part[4]);
-    return result;
-}
 
 }  // namespace
 
@@ -336,18 +121,26 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     spec[SPEC_MIS] = s.mis;
     spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
     spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, s.workQueue) ? 1u : 0u;
-    vk::Kernel kernel(ctx, traversalShader(dev, true),
-                      std::move(bindings), sizeof(DispatchParams), spec, s.reusePipeline);
-    kernel.bind(BINDING_FRAME, frame);
-    bindTraversal(kernel, dev);
-    bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
-    kernel.bind(BINDING_ACCUM, accum);
-    kernel.bind(BINDING_COUNTERS, counters);
-    kernel.bind(BINDING_FILTER, filterTable);
-    kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
-    bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
-
-    if (std::getenv("STRATA_EXP_WAVEFRONT")) return renderWavefrontExperiment(ctx, dev, scene, s, frame, filterTable);
+    const std::uint32_t tile = std::max(8u, s.tileSize);
+    // The megakernel (pathtrace.comp), or the wavefront integrator's stages.
+    std::unique_ptr<vk::Kernel> mega;
+    std::unique_ptr<WavefrontIntegrator> wave;
+    if (s.integrator == Integrator::Wavefront) {
+        const std::uint32_t maxPaths = std::min<std::uint32_t>(tile, s.width) * std::min<std::uint32_t>(tile, s.height);
+        wave = std::make_unique<WavefrontIntegrator>(ctx, dev, scene, s, maxPaths, frame, filterTable, accum, counters);
+    } else {
+        mega = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true), std::move(bindings),
+                                            sizeof(DispatchParams), spec, s.reusePipeline);
+        vk::Kernel& kernel = *mega;
+        kernel.bind(BINDING_FRAME, frame);
+        bindTraversal(kernel, dev);
+        bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
+        kernel.bind(BINDING_ACCUM, accum);
+        kernel.bind(BINDING_COUNTERS, counters);
+        kernel.bind(BINDING_FILTER, filterTable);
+        kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
+        bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
+    }
 
     RenderResult result;
     result.film = Film(s.width, s.height);
@@ -357,8 +150,8 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     result.uploadMs = dev.uploadMs;
     result.sceneBytes = dev.packedBytes;
     result.sceneDeviceBytes = dev.deviceBytes;
-    result.pipelineMs = kernel.pipelineMs();
-    result.pipelineReused = kernel.reusedProgram();
+    result.pipelineMs = mega ? mega->pipelineMs() : wave->pipelineMs();
+    result.pipelineReused = mega ? mega->reusedProgram() : wave->reusedProgram();
     vk::OneShot submit(ctx);
     vk::DeviceTimer timer(ctx);
     if (s.warmUp) {  // first-use costs of the pipeline, measured apart; the clear below undoes it
@@ -367,13 +160,19 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         p.tileH = std::min(64u, static_cast<std::uint32_t>(s.height));
         p.blockStride = blockStride(p.tileW, p.tileH);
         const auto w0 = Clock::now();
-        VkCommandBuffer cmd = submit.begin();
-        timer.begin(cmd);
-        kernel.dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
-        timer.end(cmd);
-        submit.submitAndWait();
+        double device = 0.0;
+        if (wave) {
+            device = wave->sample(0, 0, p.tileW, p.tileH, 0);
+        } else {
+            VkCommandBuffer cmd = submit.begin();
+            timer.begin(cmd);
+            mega->dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
+            timer.end(cmd);
+            submit.submitAndWait();
+            device = timer.seconds();
+        }
         result.warmUpHostSeconds = std::chrono::duration<double>(Clock::now() - w0).count();
-        result.warmUpDeviceSeconds = timer.supported() ? timer.seconds() : result.warmUpHostSeconds;
+        result.warmUpDeviceSeconds = timer.supported() ? device : result.warmUpHostSeconds;
         result.warmUpPixels = p.tileW * p.tileH;
     }
     {
@@ -386,7 +185,6 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
-    const std::uint32_t tile = std::max(8u, s.tileSize);
     std::uint32_t batch = s.fixedBatch ? s.fixedBatch : 1u;  // samples in the next submission
     std::size_t nextCheckpoint = 0;
 
@@ -413,6 +211,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     };
     const std::uint32_t foldEvery = std::max(1u, s.maxBatch);
     std::uint32_t unfolded = 0;  // samples summed on the device since the last fold
+    double waveSeconds = 0.0;    // device time of the wavefront stages in this submission
 
     while (result.spp < s.spp) {
         while (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] <= result.spp)
@@ -438,7 +237,11 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
                     p.tileH = std::min<std::uint32_t>(tile, s.height - ty);
                     p.sampleIndex = result.spp + k;
                     p.blockStride = blockStride(p.tileW, p.tileH);
-                    kernel.dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
+                    if (wave) {  // submits its stages itself
+                        waveSeconds += wave->sample(p.tileX, p.tileY, p.tileW, p.tileH, p.sampleIndex);
+                        continue;
+                    }
+                    mega->dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
                     ++result.dispatches;
                 }
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -452,7 +255,8 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         submit.submitAndWait();
         const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         result.hostSubmitSeconds += secs;
-        result.deviceSeconds += timer.supported() ? timer.seconds() : secs;
+        result.deviceSeconds += timer.supported() ? timer.seconds() + waveSeconds : secs;
+        waveSeconds = 0.0;
         result.spp = after;
         unfolded += batch;
         ++result.submissions;
@@ -496,6 +300,11 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         result.nonFinite = c.nonFinite + result.film.overflowed;
         result.closestRays = (static_cast<std::uint64_t>(c.closestHi) << 32) | c.closestLo;
         result.shadowRays = (static_cast<std::uint64_t>(c.shadowHi) << 32) | c.shadowLo;
+    }
+    if (wave) {  // counted on the host, from the lists' lengths
+        result.closestRays = s.countRays ? wave->closestRays() : 0;
+        result.shadowRays = s.countRays ? wave->shadowRays() : 0;
+        result.dispatches = wave->dispatches();
     }
     result.peakDeviceBytes = vk::peakDeviceMemoryBytes();
     return result;

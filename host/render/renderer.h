@@ -14,6 +14,11 @@
 
 namespace strata {
 
+// How a sample is taken: pathtrace.comp, one invocation per path with both
+// traversals inlined (the megakernel), or the wavefront integrator's stages
+// with every traversal in the trace kernel (render/wavefront.h).
+enum class Integrator { Megakernel, Wavefront };
+
 struct RenderSettings {
     int width = 512;
     int height = 512;
@@ -43,6 +48,7 @@ struct RenderSettings {
                                         // (render/device_scene.h; on for CPU devices)
     SceneLimits limits;                 // lower device limits to plan the scene against (0: the
                                         // device's; render/device_scene.h)
+    Integrator integrator = Integrator::Megakernel;
     bool reusePipeline = true;          // share the compiled pipeline of an earlier render with the
                                         // same shader and constants (vk::Kernel's reuse; bench
                                         // turns it off to time pipeline creation)

@@ -38,7 +38,19 @@ STRATA_BINDING(BINDING_WORK, 24);         // storage uint[]: work-queue counters
 STRATA_BINDING(BINDING_MATERIALS_TEXEL, 25);  // usamplerBuffer over BINDING_MATERIALS (RGBA32UI)
 STRATA_BINDING(BINDING_TEXREFS_TEXEL, 26);    // usamplerBuffer over BINDING_TEXREFS (RGBA32UI)
 STRATA_BINDING(BINDING_ENV_CDF_TEXEL, 27);    // usamplerBuffer over BINDING_ENV_CDF (RGBA32UI)
-STRATA_BINDING(BINDING_COUNT, 28);
+// The wavefront integrator's lists (wavefront.comp, render/wavefront.cpp).
+STRATA_BINDING(BINDING_WAVE_STATE, 28);        // storage PathState[], one per path of the tile
+STRATA_BINDING(BINDING_WAVE_LIVE, 29);         // storage uint[]: the path of each ray traced
+STRATA_BINDING(BINDING_WAVE_HITS, 30);         // storage TraceHit[]: their closest hits
+STRATA_BINDING(BINDING_WAVE_NEXT_RAYS, 31);    // storage TraceRay[]: the next bounce's rays (appended)
+STRATA_BINDING(BINDING_WAVE_SHADOW_RAYS, 32);  // storage TraceRay[]: shadow rays (appended)
+STRATA_BINDING(BINDING_WAVE_CONTRIB, 33);      // storage vec4[]: each shadow ray's contribution
+STRATA_BINDING(BINDING_WAVE_RAYS, 34);         // storage TraceRay[]: the rays traced
+STRATA_BINDING(BINDING_WAVE_NEXT_LIVE, 35);    // storage uint[]: the path of each next ray
+STRATA_BINDING(BINDING_WAVE_SHADOW_SLOTS, 36); // storage uint[]: the path of each shadow ray
+STRATA_BINDING(BINDING_WAVE_COUNTS, 37);       // storage uint[2]: next rays, shadow rays appended
+STRATA_BINDING(BINDING_WAVE_SHADOW_HITS, 38);  // storage TraceHit[]: the shadow rays' results
+STRATA_BINDING(BINDING_COUNT, 39);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views

@@ -293,6 +293,31 @@ STRATA_CONST(uint, kQueueRaysPerSubgroup, 512u);
 // VkDispatchIndirectCommand (x, y, z).
 STRATA_CONST(uint, kQueueWords, 8u);
 
+// Wavefront integrator stages (wavefront.comp, SPEC_TRACE_MODE: one pipeline each).
+STRATA_CONST(uint, kStageCamera, 0u);
+STRATA_CONST(uint, kStageShade, 1u);
+STRATA_CONST(uint, kStageResolve, 2u);
+STRATA_CONST(uint, kStageAccumulate, 3u);
+
+// One path's state between the wavefront stages (BINDING_WAVE_STATE).
+struct PathState {
+    vec4 betaPdf;       // path throughput; w: the last BSDF sample's pdf
+    vec4 lDelta;        // radiance so far; w: 1 if the last sample was a delta lobe (or the camera)
+    uvec4 misc;         // x: pixel index (y * width + x), y: bounces so far, z: 1 while alive
+};
+
+// Wavefront stage push constants.
+struct WaveParams {
+    uint count;         // entries of this stage's list (paths, rays)
+    uint sampleIndex;   // index of the sample being taken
+    uint tileX;         // the tile (camera stage)
+    uint tileY;
+    uint tileW;
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
 // Trace kernel push constants.
 struct TraceParams {
     uint count;         // rays in this dispatch
@@ -374,6 +399,8 @@ static_assert(sizeof(RenderCounters) == 32);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
+static_assert(sizeof(PathState) == 48);
+static_assert(sizeof(WaveParams) == 32);
 static_assert(sizeof(SampleTestParams) == 80);
 }  // namespace strata::gpu
 #endif
