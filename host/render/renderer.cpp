@@ -61,7 +61,6 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
     std::fflush(stderr);
 }
 
-
 }  // namespace
 
 void checkImageFits(const vk::Context& ctx, const RenderSettings& s) {
@@ -163,6 +162,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         double device = 0.0;
         if (wave) {
             device = wave->sample(0, 0, p.tileW, p.tileH, 0);
+            wave->resetCounts();  // its rays are not the render's
         } else {
             VkCommandBuffer cmd = submit.begin();
             timer.begin(cmd);

@@ -35,6 +35,7 @@ public:
     std::uint64_t closestRays() const { return closestRays_; }
     std::uint64_t shadowRays() const { return shadowRays_; }
     std::uint64_t dispatches() const { return dispatches_; }
+    void resetCounts() { closestRays_ = shadowRays_ = dispatches_ = 0; }
     double pipelineMs() const;  // pipeline creation of its kernels (0 for those reused)
     bool reusedProgram() const;
 
