@@ -9,8 +9,8 @@
 // trace.comp tests the shadow rays, and kStageResolve adds the contributions
 // of the unoccluded ones; kStageAccumulate adds each path's radiance to the
 // film's sums. The arithmetic, its order and the sampler dimensions are
-// pathtrace.comp's, vertex by vertex, so the images agree to float rounding
-// (the film's sums are added in a different order).
+// pathtrace.comp's, vertex by vertex, and each pixel's sums are added in
+// sample order as there, so the images are the same bits.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
