@@ -63,6 +63,47 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 
 }  // namespace
 
+std::vector<vk::BindingDesc> pathBindings() {
+    using namespace gpu;
+    std::vector<vk::BindingDesc> bindings = sceneBindings();
+    bindings.insert(bindings.end(), {
+        {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+        {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+        {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+    });
+    return bindings;
+}
+
+void bindPathInputs(vk::Kernel& kernel, const DeviceScene& dev, const vk::Buffer& frame, const vk::Buffer& filterTable,
+                    const vk::Buffer& accum, const vk::Buffer& counters) {
+    using namespace gpu;
+    bindTraversal(kernel, dev);
+    kernel.bind(BINDING_FRAME, frame);
+    bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
+    kernel.bind(BINDING_ACCUM, accum);
+    kernel.bind(BINDING_COUNTERS, counters);
+    kernel.bind(BINDING_FILTER, filterTable);
+    kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
+    bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
+}
+
+std::vector<std::uint32_t> pathSpec(const DeviceScene& dev, const GpuScene& scene, const RenderSettings& s) {
+    using namespace gpu;
+    std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
+    setTraversalSpec(dev, spec);
+    spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
+    spec[SPEC_SAMPLER] = s.sampler;
+    spec[SPEC_FEATURES] = scene.features.bits;
+    spec[SPEC_MIS] = s.mis;
+    return spec;
+}
+
 void checkImageFits(const vk::Context& ctx, const RenderSettings& s) {
     // The sample sums are one device buffer (and one readback buffer).
     const std::uint64_t bytes = std::uint64_t(s.width) * std::uint64_t(s.height) * gpu::kAccumVec4PerPixel * 16;
@@ -100,26 +141,6 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
                             vk::MemoryUse::Readback);
     vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(s.filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
-    std::vector<vk::BindingDesc> bindings = sceneBindings();
-    bindings.insert(bindings.end(), {
-        {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-        {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-        {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-    });
-    std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1);
-    setTraversalSpec(dev, spec);
-    spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
-    spec[SPEC_SAMPLER] = s.sampler;
-    spec[SPEC_FEATURES] = scene.features.bits;
-    spec[SPEC_MIS] = s.mis;
-    spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
-    spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, s.workQueue) ? 1u : 0u;
     const std::uint32_t tile = std::max(8u, s.tileSize);
     // The megakernel (pathtrace.comp), or the wavefront integrator's stages.
     std::unique_ptr<vk::Kernel> mega;
@@ -128,17 +149,12 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         const std::uint32_t maxPaths = std::min<std::uint32_t>(tile, s.width) * std::min<std::uint32_t>(tile, s.height);
         wave = std::make_unique<WavefrontIntegrator>(ctx, dev, scene, s, maxPaths, frame, filterTable, accum, counters);
     } else {
-        mega = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true), std::move(bindings),
-                                            sizeof(DispatchParams), spec, s.reusePipeline);
-        vk::Kernel& kernel = *mega;
-        kernel.bind(BINDING_FRAME, frame);
-        bindTraversal(kernel, dev);
-        bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
-        kernel.bind(BINDING_ACCUM, accum);
-        kernel.bind(BINDING_COUNTERS, counters);
-        kernel.bind(BINDING_FILTER, filterTable);
-        kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
-        bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
+        std::vector<std::uint32_t> spec = pathSpec(dev, scene, s);
+        spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
+        spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, s.workQueue) ? 1u : 0u;
+        mega = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true), pathBindings(), sizeof(DispatchParams),
+                                            spec, s.reusePipeline);
+        bindPathInputs(*mega, dev, frame, filterTable, accum, counters);
     }
 
     RenderResult result;

@@ -11,6 +11,7 @@
 #include "render/gpu_scene.h"
 #include "scene/scene.h"
 #include "vk/context.h"
+#include "vk/kernel.h"
 
 namespace strata {
 
@@ -95,6 +96,17 @@ struct RenderResult {
         return seconds > 0 ? static_cast<double>(film.pixels()) * spp / seconds * 1e-6 : 0.0;
     }
 };
+
+// What the path-tracing shaders (pathtrace.comp and wavefront.comp's
+// stages) read and write besides the scene: the bindings of the frame, the
+// emitters, the sample sums and counters, the filter table and the
+// environment; binding those buffers; and the specialization constants
+// both take from the scene and the settings (SPEC_WORK_QUEUE and up are
+// left 0 for the caller).
+std::vector<vk::BindingDesc> pathBindings();
+void bindPathInputs(vk::Kernel& kernel, const DeviceScene& dev, const vk::Buffer& frame, const vk::Buffer& filterTable,
+                    const vk::Buffer& accum, const vk::Buffer& counters);
+std::vector<std::uint32_t> pathSpec(const DeviceScene& dev, const GpuScene& scene, const RenderSettings& s);
 
 // Throws strata::Error when the image's sample sums (32 bytes a pixel, one
 // buffer) exceed the device's maxMemoryAllocationSize (or s.limits'). render

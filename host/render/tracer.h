@@ -11,6 +11,24 @@
 
 namespace strata {
 
+// The trace kernel (shaders/trace.comp) for `dev` in `mode` (gpu::kTrace*),
+// with the scene bound; the caller binds BINDING_RAYS, BINDING_HITS and
+// BINDING_WORK. `queue`: SPEC_WORK_QUEUE (useWorkQueue).
+std::unique_ptr<vk::Kernel> makeTraceKernel(const vk::Context& ctx, const DeviceScene& dev, std::uint32_t features,
+                                            std::uint32_t mode, bool queue, bool reuse = false);
+
+// Rays one trace dispatch takes at most (bounds one dispatch's work queue;
+// even, for kTraceSpawn's pairs), and the work-queue words for `rays` rays.
+inline constexpr std::uint32_t kRaysPerTraceDispatch = 1u << 18;
+VkDeviceSize traceWorkBytes(std::uint64_t rays);
+
+// Records `kernel` over rays [0, count) of its bound ray buffer, in
+// dispatches of at most kRaysPerTraceDispatch rays; with `queue`, zeroes
+// `work` first and records each dispatch's two passes (the second sized by
+// the first's last subgroup). Returns the dispatches recorded.
+std::uint32_t recordTrace(VkCommandBuffer cmd, const vk::Context& ctx, vk::Kernel& kernel, const vk::Buffer& work,
+                          std::uint64_t count, bool queue);
+
 // The scene uploaded once and one kernel per mode, built on its first use
 // (the mode is a specialization constant); trace() may be called many times.
 class DeviceTracer {

@@ -7,6 +7,7 @@
 #include <strata_spirv.h>
 
 #include "../../shaders/shared/bindings.h"
+#include "render/tracer.h"
 
 namespace strata {
 
@@ -14,8 +15,6 @@ namespace {
 
 constexpr VkBufferUsageFlags kListUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-// Rays per trace dispatch (as DeviceTracer): bounds one dispatch's work queue.
-constexpr std::uint32_t kRaysPerDispatch = 1u << 18;
 
 void barrier(VkCommandBuffer cmd) {
     vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -72,25 +71,13 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     m.live[0] = list(4);
     m.live[1] = list(4);
     m.counts = vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Readback);
-    const VkDeviceSize slots = (n + kRaysPerDispatch - 1) / kRaysPerDispatch;
-    m.work = vk::Buffer(ctx, slots * kQueueWords * sizeof(std::uint32_t),
+    m.work = vk::Buffer(ctx, traceWorkBytes(n),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                             VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                         vk::MemoryUse::Device);
 
     auto trace = [&](std::uint32_t mode) {
-        std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
-        setTraversalSpec(dev, spec);
-        spec[SPEC_FEATURES] = scene.features.bits;
-        spec[SPEC_TRACE_MODE] = mode;
-        spec[SPEC_WORK_QUEUE] = m.queue ? 1u : 0u;
-        std::vector<vk::BindingDesc> b = sceneBindings();
-        b.insert(b.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_WORK, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
-        auto k = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, false), std::move(b), sizeof(TraceParams),
-                                              spec, s.reusePipeline);
-        bindTraversal(*k, dev);
+        auto k = makeTraceKernel(ctx, dev, scene.features.bits, mode, m.queue, s.reusePipeline);
         k->bind(BINDING_WORK, m.work);
         return k;
     };
@@ -101,36 +88,15 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     m.anyHit->bind(BINDING_HITS, m.shadowHits);
 
     for (std::uint32_t stage = kStageCamera; stage <= kStageAccumulate; ++stage) {
-        std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
-        setTraversalSpec(dev, spec);
-        spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
-        spec[SPEC_SAMPLER] = s.sampler;
-        spec[SPEC_FEATURES] = scene.features.bits;
-        spec[SPEC_MIS] = s.mis;
+        std::vector<std::uint32_t> spec = pathSpec(dev, scene, s);
         spec[SPEC_TRACE_MODE] = stage;
-        std::vector<vk::BindingDesc> b = sceneBindings();
-        b.insert(b.end(), {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                           {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                           {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                           {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-                           {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                           {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
+        std::vector<vk::BindingDesc> b = pathBindings();
         for (std::uint32_t i = BINDING_WAVE_STATE; i <= BINDING_WAVE_SHADOW_HITS; ++i)
             b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         auto k = std::make_unique<vk::Kernel>(
             ctx, std::span<const std::uint32_t>(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4), std::move(b),
             sizeof(WaveParams), spec, s.reusePipeline);
-        bindTraversal(*k, dev);
-        k->bind(BINDING_FRAME, frame);
-        bindArray(*k, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
-        k->bind(BINDING_FILTER, filterTable);
-        k->bind(BINDING_ENV_TEXELS, dev.envTexelView);
-        bindArray(*k, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
-        k->bind(BINDING_ACCUM, accum);
-        k->bind(BINDING_COUNTERS, counters);
+        bindPathInputs(*k, dev, frame, filterTable, accum, counters);
         k->bind(BINDING_WAVE_STATE, m.state);
         k->bind(BINDING_WAVE_HITS, m.hits);
         k->bind(BINDING_WAVE_SHADOW_RAYS, m.shadowRays);
@@ -180,29 +146,7 @@ double WavefrontIntegrator::sample(std::uint32_t x, std::uint32_t y, std::uint32
         ++dispatches_;
     };
     auto trace = [&](VkCommandBuffer cmd, vk::Kernel& k, std::uint32_t count) {
-        if (m.queue) {
-            vkCmdFillBuffer(cmd, m.work.handle(), 0, VK_WHOLE_SIZE, 0u);
-            barrier(cmd);
-        }
-        for (std::uint32_t first = 0, slot = 0; first < count; first += kRaysPerDispatch, ++slot) {
-            TraceParams p{};
-            p.count = std::min(kRaysPerDispatch, count - first);
-            p.first = first;
-            p.slot = slot;
-            ++dispatches_;
-            if (!m.queue) {
-                k.dispatch(cmd, &p, (p.count + 63) / 64);
-                continue;
-            }
-            // As DeviceTracer: a subgroup per kQueueRaysPerSubgroup rays, then
-            // the second pass its last subgroup sized.
-            const std::uint64_t subgroups = (std::uint64_t{p.count} + kQueueRaysPerSubgroup - 1) / kQueueRaysPerSubgroup;
-            const std::uint64_t perGroup = std::max<std::uint32_t>(1, 64 / m.ctx.info.subgroupSize);
-            k.dispatch(cmd, &p, static_cast<std::uint32_t>((subgroups + perGroup - 1) / perGroup));
-            barrier(cmd);
-            p.pass = 1;
-            k.dispatchIndirect(cmd, &p, m.work, (slot * kQueueWords + 2) * sizeof(std::uint32_t));
-        }
+        dispatches_ += recordTrace(cmd, m.ctx, k, m.work, count, m.queue);
     };
 
     bindLists(1);  // the camera stage writes the first bounce's lists, rays[0] and live[0]
