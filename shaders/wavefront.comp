@@ -8,9 +8,10 @@
 // apart) and the BSDF-sampled next ray to the lists of the next stages,
 // trace.comp tests the shadow rays, and kStageResolve adds the contributions
 // of the unoccluded ones; kStageAccumulate adds each path's radiance to the
-// film's sums. The arithmetic, its order and the sampler dimensions are
-// pathtrace.comp's, vertex by vertex, and each pixel's sums are added in
-// sample order as there, so the images are the same bits.
+// film's sums. A vertex is shaded by lib/path.glsl's pathShadeHit, as in
+// pathtrace.comp, the shadow ray's contribution is added after the
+// emission found there, as there, and each pixel's sums are added in
+// sample order, so the images are the same bits.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -56,22 +57,7 @@ layout(push_constant) uniform Push { WaveParams params; };
 #include "lib/lights.glsl"
 #include "lib/filter.glsl"
 #include "lib/bsdf.glsl"
-
-const uint kDimsPerVertex = 8u;
-const float kRayMax = 3.0e38;
-const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
-
-float misWeightBsdf(bool prevDelta, float bsdfPdf, float lightPdf) {
-    if (prevDelta || kMis == kMisBsdf) return 1.0;
-    if (kMis == kMisLight) return 0.0;
-    return powerHeuristic(bsdfPdf, lightPdf);
-}
-
-vec3 cameraRay(vec2 pixel) {
-    vec2 ndc = vec2(2.0 * pixel.x / float(frame.image.x) - 1.0,
-                    1.0 - 2.0 * pixel.y / float(frame.image.y));
-    return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
-}
+#include "lib/path.glsl"
 
 void cameraStage(uint k) {
     uvec2 pixel = uvec2(params.tileX + k % params.tileW, params.tileY + k / params.tileW);
@@ -87,124 +73,28 @@ void cameraStage(uint k) {
 void shadeStage(uint k) {
     uint slot = live[k];
     PathState st = state[slot];
-    TraceHit hit = hits[k];
-    TraceRay ray = inRays[k];
-    vec3 dir = ray.dir;
-    vec3 beta = st.betaPdf.xyz;
-    float prevBsdfPdf = st.betaPdf.w;
-    vec3 L = st.lDelta.xyz;
-    bool prevDelta = st.lDelta.w != 0.0;
+    vec3 dir = inRays[k].dir;
+    PathVertex v = PathVertex(st.betaPdf.xyz, st.lDelta.xyz, st.betaPdf.w, st.lDelta.w != 0.0);
     uint depth = st.misc.y;
-    bool alive = false;
-    bool hasShadow = false;
-    TraceRay next, shadow;
-    vec3 contrib = vec3(0.0);
-    const uint maxDepth = frame.image.z;
-    const bool lightSampling = kHasEmitters != 0u && kMis != kMisBsdf;
-
-    if (hit.triangle == kNoHit) {
-        if (kHasEmitters != 0u && hasFeature(kFeatureEnvironment)) {
-            float w = misWeightBsdf(prevDelta, prevBsdfPdf, prevDelta ? 0.0 : lightPdfEnvironment(dir));
-            L += beta * w * environmentRadiance(dir);
-        }
-    } else {
-        TriVerts tv = bvhFetchTri(hit.triangle);
-        vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
-        vec3 ng = normalize(cross(e1, e2));
-        bool front = dot(dir, ng) < 0.0;
-        TriShading sh = sceneShading(hit.triangle);
-        Material mat = sceneMaterial(sh.material);
-        if (kHasEmitters != 0u && sh.light != kNoLight) {
-            if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
-                float lightPdf = prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
-                float w = misWeightBsdf(prevDelta, prevBsdfPdf, lightPdf);
-                L += beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
-            }
-        }
-        if (depth < maxDepth) {
-            uvec2 pixel = uvec2(st.misc.x % frame.image.x, st.misc.x / frame.image.x);
-            Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
-            vec3 n = front ? ng : -ng;
-            vec3 wo = -dir;
-            vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
-            if (dot(ns, n) < 0.0) ns = -ns;
-            SurfacePoint sp = surfacePoint(mat, hit.triangle, vec2(hit.u, hit.v), n, ns);
-            ns = sp.ns;
-            if (dot(ns, wo) <= 0.0) ns = n;
-            vec3 t, b;
-            basis(ns, t, b);
-            vec3 woL = vec3(dot(wo, t), dot(wo, b), dot(wo, ns));
-            Bsdf bsdf;
-            if (kLambertOnly) {
-                bsdf = makeLambert(sp.baseColor);
-            } else {
-                bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
-                                sp.specular, front, woL.z);
-            }
-            vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
-            samplerSetDim(smp, 2u + depth * kDimsPerVertex);
-            if (lightSampling) {
-                LightSample ls = sampleLight(p, sample2D(smp));
-                vec3 wiL = vec3(dot(ls.wi, t), dot(ls.wi, b), dot(ls.wi, ns));
-                float geoSide = dot(n, ls.wi);
-                if (ls.pdf > 0.0 && any(greaterThan(ls.Li, vec3(0.0))) && geoSide != 0.0 &&
-                    (geoSide > 0.0) == (wiL.z > 0.0)) {
-                    float bsdfPdf;
-                    vec3 f = evalBsdf(bsdf, woL, wiL, bsdfPdf);
-                    if (any(greaterThan(f, vec3(0.0)))) {
-                        vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
-                        vec3 shadowDir = ls.wi;
-                        float shadowMax = kRayMax;
-                        bool open = true;
-                        if (ls.dist < kLightFar) {
-                            vec3 seg = ls.target - from;
-                            float segLen = length(seg);
-                            open = segLen > 0.0;
-                            shadowDir = open ? seg / segLen : ls.wi;
-                            shadowMax = segLen;
-                        }
-                        if (open) {
-                            float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
-                            shadow = TraceRay(from, 0.0, shadowDir, shadowMax);
-                            contrib = beta * f * ls.Li * (w / ls.pdf);
-                            hasShadow = true;
-                        }
-                    }
-                }
-            }
-            samplerSetDim(smp, 2u + depth * kDimsPerVertex + 2u);
-            float uLobe = sample1D(smp);
-            BsdfSample bs = sampleBsdf(bsdf, woL, uLobe, sample2D(smp));
-            if (bs.valid) {
-                vec3 wi = bs.wi.x * t + bs.wi.y * b + bs.wi.z * ns;
-                float geoSide = dot(n, wi);
-                if (!(geoSide == 0.0 || (geoSide > 0.0) != (bs.wi.z > 0.0))) {
-                    beta *= bs.weight;
-                    prevBsdfPdf = bs.pdf;
-                    prevDelta = bs.delta;
-                    float u = sample1D(smp);
-                    alive = true;
-                    if (depth >= 3u) {
-                        float q = max(0.05, 1.0 - max(beta.r, max(beta.g, beta.b)));
-                        if (u < q) alive = false;
-                        else beta /= 1.0 - q;
-                    }
-                    next = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n), 0.0, wi, kRayMax);
-                }
-            }
-        }
-    }
-    state[slot] = PathState(vec4(beta, prevBsdfPdf), vec4(L, prevDelta ? 1.0 : 0.0),
-                            uvec4(st.misc.x, depth + 1u, alive ? 1u : 0u, 0u));
-    uint ni = appendIndex(0u, alive);
-    if (alive) {
-        nextRays[ni] = next;
+    uvec2 pixel = uvec2(st.misc.x % frame.image.x, st.misc.x / frame.image.x);
+    Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
+    PathNext o;
+    o.shadowOpen = false;
+    o.alive = false;
+    TraceHit hit = hits[k];
+    if (hit.triangle == kNoHit) pathEscaped(v, dir);
+    else o = pathShadeHit(v, smp, dir, hit, depth);
+    state[slot] = PathState(vec4(v.beta, v.prevBsdfPdf), vec4(v.L, v.prevDelta ? 1.0 : 0.0),
+                            uvec4(st.misc.x, depth + 1u, o.alive ? 1u : 0u, 0u));
+    uint ni = appendIndex(0u, o.alive);
+    if (o.alive) {
+        nextRays[ni] = o.next;
         nextLive[ni] = slot;
     }
-    uint si = appendIndex(1u, hasShadow);
-    if (hasShadow) {
-        shadowRays[si] = shadow;
-        shadowContrib[si] = vec4(contrib, 1.0);
+    uint si = appendIndex(1u, o.shadowOpen);
+    if (o.shadowOpen) {
+        shadowRays[si] = o.shadow;
+        shadowContrib[si] = vec4(o.contrib, 1.0);
         shadowSlot[si] = slot;
     }
 }

@@ -1,0 +1,170 @@
+// What the two path tracers (pathtrace.comp, the megakernel, and
+// wavefront.comp's stages) share: the sampler's dimensions per vertex, the
+// camera ray, and the shading of a path's vertex (emission found, the
+// next-event shadow ray, the BSDF-sampled next ray); the traversals are the
+// callers'. Needs `frame` (FrameUniforms), kHasEmitters (SPEC_HAS_EMITTERS)
+// and kMis (SPEC_MIS) declared by the includer, after lib/scene.glsl,
+// lib/lights.glsl and lib/bsdf.glsl.
+#ifndef STRATA_LIB_PATH_GLSL
+#define STRATA_LIB_PATH_GLSL
+
+// Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
+// 2D pairs: light choice and point, BSDF lobe (1D in a pair), BSDF
+// direction, roulette (1D in a pair).
+const uint kDimsPerVertex = 8u;
+const float kRayMax = 3.0e38;
+
+// Lambert only: no material of the scene has a specular or transmission lobe.
+const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
+
+vec3 cameraRay(vec2 pixel) {
+    vec2 ndc = vec2(2.0 * pixel.x / float(frame.image.x) - 1.0,
+                    1.0 - 2.0 * pixel.y / float(frame.image.y));
+    return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
+}
+
+// MIS weight of a light found by BSDF sampling with density bsdfPdf, which
+// light sampling finds with density lightPdf.
+float misWeightBsdf(bool prevDelta, float bsdfPdf, float lightPdf) {
+    if (prevDelta || kMis == kMisBsdf) return 1.0;
+    if (kMis == kMisLight) return 0.0;
+    return powerHeuristic(bsdfPdf, lightPdf);
+}
+
+// A path between two vertices: its throughput, the radiance it has
+// gathered, and how its last direction was sampled (for the MIS weight of
+// the emission that direction finds).
+struct PathVertex {
+    vec3 beta;
+    vec3 L;
+    float prevBsdfPdf;
+    bool prevDelta;  // the camera ray or a delta lobe: emission found gets weight 1
+};
+
+PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true); }
+
+// What shading a hit asks for next.
+struct PathNext {
+    bool shadowTried;  // a light sample the BSDF passes (SPEC_COUNT_RAYS counts a shadow ray)
+    bool shadowOpen;   // ... with a segment to test: L += contrib if `shadow` is unoccluded
+    TraceRay shadow;
+    vec3 contrib;
+    bool alive;        // the path goes on along `next`
+    TraceRay next;
+};
+
+// The ray along `dir` escaped: the environment, weighted against light sampling.
+void pathEscaped(inout PathVertex v, vec3 dir) {
+    if (kHasEmitters != 0u && hasFeature(kFeatureEnvironment)) {
+        float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, v.prevDelta ? 0.0 : lightPdfEnvironment(dir));
+        v.L += v.beta * w * environmentRadiance(dir);
+    }
+}
+
+// The ray along `dir` hit `hit` at bounce `depth` (maxDepth counts
+// scattering events, pbrt's convention): the emission found there, then,
+// below maxDepth, next-event estimation's shadow ray (one light sample) and
+// the BSDF-sampled next ray, with Russian roulette after depth 3. `smp` is
+// the path's sampler; its dimensions are set here.
+PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit hit, uint depth) {
+    const uint maxDepth = frame.image.z;
+    const bool lightSampling = kHasEmitters != 0u && kMis != kMisBsdf;
+    PathNext o;
+    o.shadowTried = false;
+    o.shadowOpen = false;
+    o.alive = false;
+
+    TriVerts tv = bvhFetchTri(hit.triangle);
+    vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
+    vec3 ng = normalize(cross(e1, e2));
+    bool front = dot(dir, ng) < 0.0;
+    TriShading sh = sceneShading(hit.triangle);
+    Material mat = sceneMaterial(sh.material);
+
+    // Emission found by the previous vertex's BSDF sample (or directly).
+    if (kHasEmitters != 0u && sh.light != kNoLight) {
+        if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
+            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
+            float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
+            v.L += v.beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
+        }
+    }
+    if (depth < maxDepth) {
+
+        vec3 n = front ? ng : -ng;  // geometric normal on the incoming side
+        vec3 wo = -dir;
+        vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
+        if (dot(ns, n) < 0.0) ns = -ns;
+        SurfacePoint sp = surfacePoint(mat, hit.triangle, vec2(hit.u, hit.v), n, ns);
+        ns = sp.ns;
+        if (dot(ns, wo) <= 0.0) ns = n;  // the viewer is behind the shading normal
+        vec3 t, b;
+        basis(ns, t, b);
+        vec3 woL = vec3(dot(wo, t), dot(wo, b), dot(wo, ns));
+        Bsdf bsdf;
+        if (kLambertOnly) {
+            bsdf = makeLambert(sp.baseColor);
+        } else {
+            bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
+                            sp.specular, front, woL.z);
+        }
+        vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex);
+
+        // Next-event estimation: one light sample, one shadow ray.
+        if (lightSampling) {
+            LightSample ls = sampleLight(p, sample2D(smp));
+            vec3 wiL = vec3(dot(ls.wi, t), dot(ls.wi, b), dot(ls.wi, ns));
+            float geoSide = dot(n, ls.wi);
+            // The shading and geometric normals must agree on the side wi leaves to.
+            if (ls.pdf > 0.0 && any(greaterThan(ls.Li, vec3(0.0))) && geoSide != 0.0 &&
+                (geoSide > 0.0) == (wiL.z > 0.0)) {
+                float bsdfPdf;
+                vec3 f = evalBsdf(bsdf, woL, wiL, bsdfPdf);
+                if (any(greaterThan(f, vec3(0.0)))) {
+                    vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
+                    o.shadowTried = true;
+                    vec3 shadowDir = ls.wi;
+                    float shadowMax = kRayMax;
+                    bool open = true;
+                    if (ls.dist < kLightFar) {
+                        vec3 seg = ls.target - from;
+                        float segLen = length(seg);
+                        open = segLen > 0.0;
+                        shadowDir = open ? seg / segLen : ls.wi;
+                        shadowMax = segLen;
+                    }
+                    o.shadowOpen = open;
+                    o.shadow = TraceRay(from, 0.0, shadowDir, shadowMax);
+                    float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
+                    o.contrib = v.beta * f * ls.Li * (w / ls.pdf);
+                }
+            }
+        }
+
+        // BSDF sampling: lobe choice, direction, then Russian roulette.
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex + 2u);
+        float uLobe = sample1D(smp);
+        BsdfSample bs = sampleBsdf(bsdf, woL, uLobe, sample2D(smp));
+        vec3 wi = bs.wi.x * t + bs.wi.y * b + bs.wi.z * ns;
+        float geoSide = dot(n, wi);
+        if (bs.valid && !(geoSide == 0.0 || (geoSide > 0.0) != (bs.wi.z > 0.0))) {
+            v.beta *= bs.weight;
+            v.prevBsdfPdf = bs.pdf;
+            v.prevDelta = bs.delta;
+
+            // Russian roulette after depth 3, survival probability max(beta) (>= 0.05).
+            float u = sample1D(smp);
+            o.alive = true;
+            if (depth >= 3u) {
+                float q = max(0.05, 1.0 - max(v.beta.r, max(v.beta.g, v.beta.b)));
+                if (u < q) o.alive = false;
+                else v.beta /= 1.0 - q;
+            }
+            if (o.alive) o.next = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n), 0.0, wi, kRayMax);
+        }
+    }
+    return o;
+}
+
+#endif
