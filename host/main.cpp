@@ -74,10 +74,10 @@ int parseBvhWidth(const std::string& value) {
     return value == "2" ? 2 : 4;
 }
 
-strata::Traversal parseTraversal(const std::string& v) {
-    if (v == "auto") return strata::Traversal::Auto;
-    if (v == "texel") return strata::Traversal::Texel;
-    if (v == "storage") return strata::Traversal::Storage;
+strata::ReadMode parseTraversal(const std::string& v) {
+    if (v == "auto") return strata::ReadMode::Auto;
+    if (v == "texel") return strata::ReadMode::Texel;
+    if (v == "storage") return strata::ReadMode::Storage;
     badFlag("--traversal expects auto, texel or storage, got '" + v + "'");
 }
 
@@ -88,9 +88,9 @@ strata::BvhStack parseBvhStack(const std::string& v) {
     badFlag("--bvh-stack expects auto, registers or memory, got '" + v + "'");
 }
 
-strata::Integrator parseIntegrator(const std::string& v) {
-    if (v == "megakernel") return strata::Integrator::Megakernel;
-    if (v == "wavefront") return strata::Integrator::Wavefront;
+strata::IntegratorKind parseIntegrator(const std::string& v) {
+    if (v == "megakernel") return strata::IntegratorKind::Megakernel;
+    if (v == "wavefront") return strata::IntegratorKind::Wavefront;
     badFlag("--integrator expects megakernel or wavefront, got '" + v + "'");
 }
 
@@ -199,7 +199,7 @@ strata::RenderCommand parseRender(const std::vector<std::string>& args) {
         } else if (a == "--bvh") {
             cmd.settings.bvhWidth = parseBvhWidth(value());
         } else if (a == "--traversal") {
-            cmd.settings.traversal = parseTraversal(value());
+            cmd.settings.reads = parseTraversal(value());
         } else if (a == "--bvh-stack") {
             cmd.settings.bvhStack = parseBvhStack(value());
         } else if (a == "--integrator") {
@@ -338,7 +338,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
         else if (parseEnvFlag(a, value, cmd.env)) continue;
         else if (a == "--quick") cmd.quick = true;
         else if (a == "--bvh") cmd.bvhWidth = parseBvhWidth(value());
-        else if (a == "--traversal") cmd.traversal = parseTraversal(value());
+        else if (a == "--traversal") cmd.reads = parseTraversal(value());
         else if (a == "--bvh-stack") cmd.bvhStack = parseBvhStack(value());
         else if (a == "--integrator") cmd.integrator = parseIntegrator(value());
         else if (a == "--only") {

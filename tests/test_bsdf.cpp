@@ -8,7 +8,7 @@
 #include <string>
 
 #include "../shaders/shared/bindings.h"
-#include "render/sample_dump.h"
+#include "measure/sample_dump.h"
 #include "stats/stats.h"
 #include "test_util.h"
 

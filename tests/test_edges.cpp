@@ -23,7 +23,7 @@
 
 #include "../shaders/shared/types.h"
 #include "measure/edges.h"
-#include "render/sample_dump.h"
+#include "measure/sample_dump.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;

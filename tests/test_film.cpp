@@ -6,7 +6,7 @@
 #include <random>
 
 #include "image/film.h"
-#include "render/gpu_scene.h"
+#include "pack/gpu_scene.h"
 
 using namespace strata;
 

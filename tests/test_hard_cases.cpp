@@ -5,7 +5,7 @@
 #include <random>
 
 #include "bvh/bvh.h"
-#include "render/tracer.h"
+#include "measure/tracer.h"
 #include "test_util.h"
 
 using namespace strata;
@@ -54,7 +54,7 @@ gpu::TraceRay rayTo(glm::vec3 origin, glm::vec3 target) {
 TEST_CASE("watertight: 10^5 rays aimed at the vertices and edges of a closed mesh all hit") {
     const glm::vec3 centre(0.3f, -0.2f, 0.1f);
     Scene s = sphere(centre, 1.0f, 60, 120);
-    GpuScene g = packScene(s);
+    GpuScene g = buildAndPack(s);
     std::mt19937 rng(17);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::uniform_int_distribution<std::size_t> pick(0, s.triangles.size() - 1);
@@ -73,7 +73,7 @@ TEST_CASE("watertight: 10^5 rays aimed at the vertices and edges of a closed mes
         const glm::vec3 origin = (i % 4 < 2) ? target + outward * (2.0f + 3.0f * u(rng)) : q;
         rays.push_back(rayTo(origin, target));
     }
-    for (Traversal mode : {Traversal::Texel, Traversal::Storage}) for (int width : {4, 2}) {
+    for (ReadMode mode : {ReadMode::Texel, ReadMode::Storage}) for (int width : {4, 2}) {
         const auto hits = traceOnDevice(context(), g, rays, mode, gpu::kTraceClosest, width);
         std::size_t misses = 0, nonFinite = 0;
         for (const auto& h : hits) {
@@ -101,7 +101,7 @@ TEST_CASE("axis-aligned rays with +-0 components starting on node slab planes ne
                 addTriangle(s, o, o + glm::vec3(0, 1, 0), o + glm::vec3(0, 1, 1));
                 addTriangle(s, o, o + glm::vec3(0, 0, 1), o + glm::vec3(1, 0, 1));
             }
-    GpuScene g = packScene(s);
+    GpuScene g = buildAndPack(s);
     Bvh bvh;
     bvh.nodes = g.nodes;
     std::vector<gpu::TraceRay> rays;
@@ -127,7 +127,7 @@ TEST_CASE("axis-aligned rays with +-0 components starting on node slab planes ne
     }
     for (int width : {4, 2}) {
         INFO("BVH" << width);
-        const auto hits = traceOnDevice(context(), g, rays, Traversal::Texel, gpu::kTraceClosest, width);
+        const auto hits = traceOnDevice(context(), g, rays, ReadMode::Texel, gpu::kTraceClosest, width);
         std::size_t expectedHits = 0, mismatches = 0;
         for (std::size_t i = 0; i < rays.size(); ++i) {
             const Hit ref = traceBruteForce(g.tris, Ray{rays[i].origin, rays[i].dir, 0.0f, 1e30f});
@@ -163,7 +163,7 @@ TEST_CASE("self-intersection: spawned rays never re-hit their own triangle (log-
         };
         addTriangle(s, near(), near(), near());
     }
-    GpuScene g = packScene(s);
+    GpuScene g = buildAndPack(s);
     std::vector<gpu::TraceRay> rays;
     for (std::size_t i = 0; i < g.tris.size(); ++i) {
         const auto& t = g.tris[i];
@@ -182,7 +182,7 @@ TEST_CASE("self-intersection: spawned rays never re-hit their own triangle (log-
             rays.push_back(spawn);
         }
     }
-    const auto hits = traceOnDevice(context(), g, rays, Traversal::Texel, gpu::kTraceSpawn);
+    const auto hits = traceOnDevice(context(), g, rays, ReadMode::Texel, gpu::kTraceSpawn);
     std::size_t primaryHits = 0, reHits = 0;
     for (std::size_t i = 0; i < hits.size(); i += 2) {
         if (hits[i].triangle == gpu::kNoHit) continue;
@@ -216,14 +216,14 @@ TEST_CASE("degenerate triangles are never hit by the shader") {
         targets.push_back(glm::mix(a, b, t(rng)));
         targets.push_back(a);
     }
-    GpuScene g = packScene(s);
+    GpuScene g = buildAndPack(s);
     std::vector<gpu::TraceRay> rays;
     for (const glm::vec3& target : targets)
         for (int k = 0; k < 20; ++k) {
             const glm::vec3 dir = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + 1e-3f);
             rays.push_back(rayTo(target - dir * 20.0f, target));
         }
-    for (Traversal mode : {Traversal::Texel, Traversal::Storage}) for (int width : {4, 2}) {
+    for (ReadMode mode : {ReadMode::Texel, ReadMode::Storage}) for (int width : {4, 2}) {
         const auto hits = traceOnDevice(context(), g, rays, mode, gpu::kTraceClosest, width);
         std::size_t hitCount = 0;
         for (const auto& h : hits) hitCount += h.triangle != gpu::kNoHit;

@@ -197,7 +197,7 @@ Convergence squareLightConvergence(std::uint32_t sampler, const std::vector<std:
                                    double bias = 1.0) {
     const int size = 32;
     Scene scene = loadGltf(sourcePath("scenes/square-light.gltf"));
-    GpuScene gpu = packScene(scene);
+    GpuScene gpu = buildAndPack(scene);
     const std::vector<ExpectedPixel> expected = expectedImage(scene.cameras.at(0), size, size, 16);
     std::vector<float> ref, refBiased;  // plane pixels, rgb
     for (const auto& e : expected)
@@ -230,11 +230,11 @@ Convergence squareLightConvergence(std::uint32_t sampler, const std::vector<std:
         };
         if (samplerByKind(sampler).prefixesAreSamplings) {
             s.spp = levels.back();
-            render(context(), gpu, scene.cameras.at(0), s, Checkpoints{levels, measure});
+            uploadAndRender(gpu, scene.cameras.at(0), s, {}, Checkpoints{levels, measure});
         } else {
             for (std::uint32_t spp : levels) {
                 s.spp = spp;
-                measure(render(context(), gpu, scene.cameras.at(0), s));
+                measure(uploadAndRender(gpu, scene.cameras.at(0), s));
             }
         }
     }

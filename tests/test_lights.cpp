@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "render/env_tables.h"
+#include "pack/env_tables.h"
 #include "scene/environment.h"
 #include "stats/stats.h"
 #include "test_util.h"
@@ -159,7 +159,7 @@ TEST_CASE("lights: the alias table weighs every kind of light by its estimated p
     env.hasColor = true;
     env.color = glm::vec3(0.001f);
     scene.environment = makeEnvironment(env);
-    const GpuScene g = packScene(scene);
+    const GpuScene g = buildAndPack(scene);
     REQUIRE(g.emitters.size() == 4);
     const double r2 = 200.0, yPoint = luminance(glm::dvec3(2.0, 1.0, 0.5));
     const double w[4] = {2.0 * kPi * (1.0 - 0.5 * (std::cos(0.25) + std::cos(0.5))) * 20.0, 4.0 * kPi * yPoint,
@@ -428,7 +428,7 @@ TEST_CASE("lights: a constant environment and a directional light share the choi
     sun.intensity = static_cast<float>(4.0 * kPi);
     sun.direction = glm::vec3(-glm::normalize(n + glm::dvec3(0.3, 0.0, 0.2)));
     scene.lights.push_back(sun);
-    const GpuScene gpu = packScene(scene);
+    const GpuScene gpu = buildAndPack(scene);
     CHECK(gpu.emitters.at(gpu.environment).pmf == doctest::Approx(0.5).epsilon(1e-5));
     const double exact = 0.5 + 0.5 / kPi * 4.0 * kPi * glm::dot(n, -glm::dvec3(sun.direction));
     constexpr int kSize = 16;

@@ -85,11 +85,12 @@ TEST_CASE("the permuted block order gives the image of the row order, bit for bi
     RenderSettings s = small(4, 16, 5);
     s.width = 90;
     s.height = 70;
-    s.tileSize = 64;
-    s.workQueue = WorkQueue::On;
-    Rendered a = renderFile("scenes/cornell-box.gltf", s);
-    s.workQueue = WorkQueue::Off;
-    Rendered b = renderFile("scenes/cornell-box.gltf", s);
+    RenderTuning t;
+    t.tileSize = 64;
+    t.workQueue = WorkQueue::On;
+    Rendered a = renderFile("scenes/cornell-box.gltf", s, t);
+    t.workQueue = WorkQueue::Off;
+    Rendered b = renderFile("scenes/cornell-box.gltf", s, t);
     const auto ma = a.result.film.mean(), mb = b.result.film.mean();
     REQUIRE(ma.size() == mb.size());
     CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
@@ -101,10 +102,11 @@ TEST_CASE("the permuted block order gives the image of the row order, bit for bi
 // Submissions are sized by timing; the image must not depend on where they end.
 TEST_CASE("the image does not depend on how samples are split into submissions") {
     RenderSettings s = small(100, 16, 9);  // 100 = one full fold group of 64 and a partial one
-    s.submitSeconds = 1e-9;                // one sample per submission
-    Rendered a = renderFile("scenes/cornell-box.gltf", s);
-    s.submitSeconds = 1e9;                 // as many as a fold group allows
-    Rendered b = renderFile("scenes/cornell-box.gltf", s);
+    RenderTuning t;
+    t.submitSeconds = 1e-9;                // one sample per submission
+    Rendered a = renderFile("scenes/cornell-box.gltf", s, t);
+    t.submitSeconds = 1e9;                 // as many as a fold group allows
+    Rendered b = renderFile("scenes/cornell-box.gltf", s, t);
     CHECK(a.result.submissions == 100);
     CHECK(b.result.submissions <= 3);
     const auto ma = a.result.film.mean(), mb = b.result.film.mean();
@@ -133,9 +135,9 @@ TEST_CASE("the four-wide BVH (register or memory stack) and the binary BVH rende
 
 TEST_CASE("texel and storage traversal render the same image") {
     RenderSettings s = small(2, 4, 5);
-    s.traversal = Traversal::Texel;
+    s.reads = ReadMode::Texel;
     Rendered t = renderFile("scenes/cornell-box.gltf", s);
-    s.traversal = Traversal::Storage;
+    s.reads = ReadMode::Storage;
     Rendered st = renderFile("scenes/cornell-box.gltf", s);
     CHECK(t.result.reads == gpu::kReadsTexelBvh);
     CHECK(st.result.reads == gpu::kReadsStorage);
@@ -146,22 +148,23 @@ TEST_CASE("texel and storage traversal render the same image") {
 
 TEST_CASE("renders share a compiled pipeline when asked, with the same image") {
     const Scene scene = loadGltf(sourcePath("scenes/cornell-box.gltf"));
-    const GpuScene gpu = packScene(scene);
+    const GpuScene gpu = buildAndPack(scene);
     RenderSettings s = small(4, 3, 77);
     s.width = 24;
     s.height = 16;
-    s.reusePipeline = false;
-    const RenderResult own = render(context(), gpu, scene.cameras.at(0), s);
+    RenderTuning t;
+    t.reusePipeline = false;
+    const RenderResult own = uploadAndRender(gpu, scene.cameras.at(0), s, t);
     CHECK_FALSE(own.pipelineReused);
     CHECK(own.pipelineMs > 0.0);
-    s.reusePipeline = true;
-    const RenderResult first = render(context(), gpu, scene.cameras.at(0), s);
-    const RenderResult second = render(context(), gpu, scene.cameras.at(0), s);
+    t.reusePipeline = true;
+    const RenderResult first = uploadAndRender(gpu, scene.cameras.at(0), s, t);
+    const RenderResult second = uploadAndRender(gpu, scene.cameras.at(0), s, t);
     CHECK(second.pipelineReused);
     CHECK(second.pipelineMs == 0.0);
     // Without reuse a render compiles its own, though one is cached.
-    s.reusePipeline = false;
-    const RenderResult third = render(context(), gpu, scene.cameras.at(0), s);
+    t.reusePipeline = false;
+    const RenderResult third = uploadAndRender(gpu, scene.cameras.at(0), s, t);
     CHECK_FALSE(third.pipelineReused);
     const auto a = own.film.mean(), b = first.film.mean(), c = second.film.mean(), d = third.film.mean();
     CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
@@ -176,13 +179,14 @@ TEST_CASE("an image whose sample sums exceed the device's largest allocation is 
     RenderSettings s = small(1, 0, 1);
     s.width = 24;
     s.height = 16;
-    s.limits.allocation = 12287;
-    CHECK_THROWS_WITH_AS(renderFile("scenes/furnace.gltf", s),
+    RenderTuning t;
+    t.limits.allocation = 12287;
+    CHECK_THROWS_WITH_AS(renderFile("scenes/furnace.gltf", s, t),
                          "strata: error: a 24x16 image needs 12288 bytes for its sample sums, more than the device's "
                          "maxMemoryAllocationSize (12287 bytes); render a smaller image",
                          strata::Error);
-    s.limits.allocation = 12288;
-    CHECK(renderFile("scenes/furnace.gltf", s).result.spp == 1);
+    t.limits.allocation = 12288;
+    CHECK(renderFile("scenes/furnace.gltf", s, t).result.spp == 1);
     CHECK(vk::validationMessageCount() == 0);
 }
 
@@ -190,8 +194,9 @@ TEST_CASE("an image larger than one dispatch tile is covered in full") {
     RenderSettings s = small(1, 0, 3);
     s.width = 37;
     s.height = 29;
-    s.tileSize = 16;  // 3 x 2 tiles, ragged edges
-    Rendered r = renderFile("scenes/furnace.gltf", s);
+    RenderTuning t;
+    t.tileSize = 16;  // 3 x 2 tiles, ragged edges
+    Rendered r = renderFile("scenes/furnace.gltf", s, t);
     for (std::uint64_t n : r.result.film.count) CHECK(n == 1);
     const auto m = r.result.film.mean();
     for (float v : m) CHECK(v == doctest::Approx(0.5).epsilon(1e-6));
@@ -223,12 +228,13 @@ namespace {
 // images are the same bits: the stages do pathtrace.comp's arithmetic in its
 // order, and each pixel's sums are added in sample order either way.
 void checkWavefrontMatches(const Scene& scene, RenderSettings s) {
-    const GpuScene gpu = packScene(scene);
-    s.tileSize = 16;
-    s.integrator = Integrator::Megakernel;
-    const RenderResult mega = render(context(), gpu, scene.cameras.at(0), s);
-    s.integrator = Integrator::Wavefront;
-    const RenderResult wave = render(context(), gpu, scene.cameras.at(0), s);
+    const GpuScene gpu = buildAndPack(scene);
+    RenderTuning t;
+    t.tileSize = 16;
+    s.integrator = IntegratorKind::Megakernel;
+    const RenderResult mega = uploadAndRender(gpu, scene.cameras.at(0), s, t);
+    s.integrator = IntegratorKind::Wavefront;
+    const RenderResult wave = uploadAndRender(gpu, scene.cameras.at(0), s, t);
     CHECK(wave.spp == s.spp);
     CHECK(wave.nonFinite == mega.nonFinite);
     CHECK(sameImage(mega.film, wave.film));

@@ -1,5 +1,5 @@
 // Properties of the GLSL samplers, on samples drawn by the shader
-// (render/sample_dump.h) and on renders.
+// (measure/sample_dump.h) and on renders.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "../shaders/shared/types.h"
-#include "render/sample_dump.h"
+#include "measure/sample_dump.h"
 #include "render/sampler_kind.h"
 #include "test_util.h"
 

@@ -9,9 +9,9 @@
 
 #include "../shaders/shared/bindings.h"
 #include "render/filter.h"
-#include "render/env_tables.h"
-#include "render/gpu_scene.h"
-#include "render/sample_dump.h"
+#include "pack/env_tables.h"
+#include "pack/gpu_scene.h"
+#include "measure/sample_dump.h"
 #include "scene/environment.h"
 #include "stats/stats.h"
 #include "test_util.h"
@@ -155,7 +155,7 @@ struct SkyLight {
         o.file = sourcePath("tests/data/lights/sky.hdr");
         o.rotateDegrees = 30.0f;
         scene.environment = makeEnvironment(o);
-        gpu = packScene(scene);
+        gpu = buildAndPack(scene);
         const Environment& e = scene.environment;
         double total = 0.0;
         for (int y = 0; y < e.height; ++y)
@@ -167,7 +167,7 @@ struct SkyLight {
             }
         for (double& p : texelProb) p /= total;
     }
-    // Texel of world direction d by the host's mapping (render/env_tables.h).
+    // Texel of world direction d by the host's mapping (pack/env_tables.h).
     std::size_t texel(const glm::dvec3& d) const {
         const glm::dvec2 uv = envUv(d, rotation);
         const int w = scene.environment.width, h = scene.environment.height;

@@ -14,8 +14,8 @@
 
 #include "cli_util.h"
 #include "render/command.h"
-#include "render/device_scene.h"
-#include "render/gpu_scene.h"
+#include "upload/device_scene.h"
+#include "pack/gpu_scene.h"
 #include "scene/scene.h"
 #include "test_util.h"
 #include "util/error.h"
@@ -29,18 +29,19 @@ namespace {
 // bytes, so that every array is read through its texel view: the two images
 // are the same bits.
 void checkLargePathMatches(const Scene& scene) {
-    const GpuScene g = packScene(scene);
+    const GpuScene g = buildAndPack(scene);
     RenderSettings s;
-    s.traversal = Traversal::Texel;  // the BVH through texel views, the rest as storage
+    s.reads = ReadMode::Texel;  // the BVH through texel views, the rest as storage
     s.width = 24;
     s.height = 16;
     s.spp = 2;
     s.maxDepth = 4;
     s.seed = 3;
-    const RenderResult normal = render(context(), g, scene.cameras.at(0), s);
-    s.limits.storageRange = 16;  // every array has a texel view to be read through
-    REQUIRE(g.shading.size() * sizeof(gpu::TriShading) > s.limits.storageRange);
-    const RenderResult large = render(context(), g, scene.cameras.at(0), s);
+    const RenderResult normal = uploadAndRender(g, scene.cameras.at(0), s);
+    RenderTuning t;
+    t.limits.storageRange = 16;  // every array has a texel view to be read through
+    REQUIRE(g.shading.size() * sizeof(gpu::TriShading) > t.limits.storageRange);
+    const RenderResult large = uploadAndRender(g, scene.cameras.at(0), s, t);
     CHECK(normal.reads == gpu::kReadsTexelBvh);
     CHECK(large.reads == gpu::kReadsTexelAll);
     CHECK(large.nonFinite == 0);
@@ -69,32 +70,32 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
     g.shading.resize(1000);  // 48000 bytes
     g.materials.resize(1);
     SceneLimits l{1u << 20, 1u << 20, 1u << 30};
-    CHECK(chooseReads(l, g, Traversal::Auto, false, true) == gpu::kReadsTexelAll);  // lavapipe
-    CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsStorage);  // a GPU
-    CHECK(chooseReads(l, g, Traversal::Texel, false, true) == gpu::kReadsTexelBvh);
+    CHECK(chooseReads(l, g, ReadMode::Auto, false, true) == gpu::kReadsTexelAll);  // lavapipe
+    CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsStorage);  // a GPU
+    CHECK(chooseReads(l, g, ReadMode::Texel, false, true) == gpu::kReadsTexelBvh);
     g.shading.resize(2000);   // 96000 bytes: 6000 texels, past a view of 4000 but within the storage range
     l.texelElements = 4000;
-    CHECK(chooseReads(l, g, Traversal::Auto, false, true) == gpu::kReadsTexelBvh);  // the BVH alone
+    CHECK(chooseReads(l, g, ReadMode::Auto, false, true) == gpu::kReadsTexelBvh);  // the BVH alone
     g.shading.resize(1000);
     l.texelElements = 1u << 20;
-    CHECK(chooseReads(l, g, Traversal::Storage, false, true) == gpu::kReadsStorage);
+    CHECK(chooseReads(l, g, ReadMode::Storage, false, true) == gpu::kReadsStorage);
 
     l.storageRange = 16384;  // the triangles and their shading only fit texel views
-    CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsTexelAll);
-    CHECK(chooseReads(l, g, Traversal::Texel, false, false) == gpu::kReadsTexelAll);
-    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Storage, false, true),
+    CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsTexelAll);
+    CHECK(chooseReads(l, g, ReadMode::Texel, false, false) == gpu::kReadsTexelAll);
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Storage, false, true),
                          "big.glb: error: --traversal storage: the triangle vertices need 48000 bytes, more than "
                          "the device's maxStorageBufferRange (16384 bytes)",
                          Error);
 
     l.texelElements = 2000;  // 3000 texels of 16 bytes needed
-    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Auto, false, true),
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Auto, false, true),
                          "big.glb: error: the triangle vertices need 48000 bytes, more than the device's "
                          "maxStorageBufferRange (16384 bytes) and maxTexelBufferElements (2000 texels of 16 bytes)",
                          Error);
 
     l = {1u << 20, 1u << 20, 32768};
-    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Auto, false, true),
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Auto, false, true),
                          "big.glb: error: the triangle vertices need 48000 bytes in one buffer, more than the "
                          "device's maxMemoryAllocationSize (32768 bytes)",
                          Error);
@@ -103,15 +104,15 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
     g.tris.resize(100);  // the per-triangle arrays fit the storage range again
     g.shading.resize(100);
     g.materials.resize(300);  // 24000 bytes: past the storage range, read through a texel view
-    CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsTexelAll);
-    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Storage, false, false),
+    CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsTexelAll);
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Storage, false, false),
                          "big.glb: error: --traversal storage: the materials need 24000 bytes, more than the "
                          "device's maxStorageBufferRange (16384 bytes)",
                          Error);
     g.materials.resize(1);
     g.envTables.resize(5000);  // 20000 bytes: the same
-    CHECK(chooseReads(l, g, Traversal::Auto, false, false) == gpu::kReadsTexelAll);
-    CHECK_THROWS_WITH_AS(chooseReads(l, g, Traversal::Storage, false, false),
+    CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsTexelAll);
+    CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Storage, false, false),
                          "big.glb: error: --traversal storage: the environment sampling tables need 20000 bytes, "
                          "more than the device's maxStorageBufferRange (16384 bytes)",
                          Error);
@@ -127,7 +128,7 @@ TEST_CASE("scale: strata render of a scene the device cannot hold fails with one
     cmd.settings.width = 8;
     cmd.settings.height = 8;
     cmd.settings.spp = 1;
-    cmd.settings.limits.allocation = 1024;  // the 32 triangles' vertices are 1536 bytes
+    cmd.tuning.limits.allocation = 1024;  // the 32 triangles' vertices are 1536 bytes
     std::string message;
     try {
         runRender(cmd);
@@ -152,7 +153,7 @@ TEST_CASE("scale: strata render --stats reports the scene's memory, packed and o
     CHECK(r.output.find("memory     scene ") != std::string::npos);
     std::ifstream f(dir / "s.json");
     const nlohmann::json m = nlohmann::json::parse(f)["memory"];
-    const GpuScene g = packScene(loadGltf(scene));
+    const GpuScene g = buildAndPack(loadGltf(scene));
     // The four-wide BVH, the per-triangle arrays, emitters, materials and textures, as packed.
     const std::uint64_t packed =
         g.wide.size() * sizeof(gpu::BvhNode4) + g.tris.size() * sizeof(gpu::TriVerts) +
@@ -174,12 +175,12 @@ bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-// packSceneAndRelease(copy of scene, width) against packScene(scene).
+// packSceneAndRelease(copy of scene, its BVH, width) against packScene(scene, its BVH).
 void checkConsumingPack(const Scene& scene, int bvhWidth) {
     CAPTURE(bvhWidth);
-    const GpuScene kept = packScene(scene);
+    const GpuScene kept = buildAndPack(scene);
     Scene consumed = scene;
-    const GpuScene g = packSceneAndRelease(consumed, {}, bvhWidth);
+    const GpuScene g = packSceneAndRelease(consumed, buildSceneBvh(consumed), bvhWidth);
     CHECK(consumed.triangles.empty());  // released
     CHECK(consumed.texcoords.empty());
     CHECK(consumed.tangents.empty());

@@ -14,8 +14,8 @@
 #include <functional>
 #include <numbers>
 
-#include "render/gpu_textures.h"
-#include "render/tracer.h"
+#include "pack/textures.h"
+#include "measure/tracer.h"
 #include "scene/tangents.h"
 #include "stats/stats.h"
 #include "test_util.h"
@@ -262,7 +262,7 @@ TEST_CASE("texture: alpha BLEND 0.3 lets 70% of camera rays through, determinist
 
 TEST_CASE("texture: alpha holes are skipped by trace.comp's closest-hit and any-hit alike") {
     const Scene scene = loadGltf(sourcePath(kDir + "alpha-mask.gltf"));
-    const GpuScene gpu = packScene(scene);
+    const GpuScene gpu = buildAndPack(scene);
     // Rays down -Z through the centres of the blocker's 8 x 8 cells (z = 0.5,
     // [-0.75, 0.75]^2); the emitter is at z = 0.
     std::vector<gpu::TraceRay> rays;
@@ -270,9 +270,9 @@ TEST_CASE("texture: alpha holes are skipped by trace.comp's closest-hit and any-
         for (int x = 0; x < 8; ++x)
             rays.push_back({glm::vec3(-0.75f + (x + 0.5f) * 0.1875f, 0.75f - (y + 0.5f) * 0.1875f, 1.0f), 0.0f,
                             glm::vec3(0, 0, -1), 0.75f});
-    const auto any = traceOnDevice(context(), gpu, rays, Traversal::Auto, gpu::kTraceAny);
+    const auto any = traceOnDevice(context(), gpu, rays, ReadMode::Auto, gpu::kTraceAny);
     for (auto& r : rays) r.tmax = 2.0f;
-    const auto closest = traceOnDevice(context(), gpu, rays, Traversal::Auto, gpu::kTraceClosest);
+    const auto closest = traceOnDevice(context(), gpu, rays, ReadMode::Auto, gpu::kTraceClosest);
     for (int i = 0; i < 64; ++i) {
         const bool hole = (i % 8 + i / 8) % 2 == 0;
         CAPTURE(i);

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "bvh/bvh.h"
-#include "render/tracer.h"
+#include "measure/tracer.h"
 #include "test_util.h"
 
 using namespace strata;
@@ -49,9 +49,9 @@ std::vector<gpu::TraceRay> randomRays(std::size_t count, std::uint32_t seed) {
     return rays;
 }
 
-void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, Traversal mode, int width = 4,
+void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, ReadMode mode, int width = 4,
                     BvhStack stack = BvhStack::Registers) {
-    INFO("BVH" << width << (mode == Traversal::Texel ? ", texel reads" : ", storage reads")
+    INFO("BVH" << width << (mode == ReadMode::Texel ? ", texel reads" : ", storage reads")
                << (stack == BvhStack::Memory ? ", memory stack" : ""));
     Bvh bvh;
     bvh.nodes = g.nodes;
@@ -84,21 +84,21 @@ void compareWithCpu(const GpuScene& g, const std::vector<gpu::TraceRay>& rays, T
 
 TEST_CASE("shader traversal matches the CPU BVH on random rays (BVH4 and BVH2, texel and storage reads)") {
     Scene soup = randomSoup(20000, 3);
-    GpuScene g = packScene(soup);
+    GpuScene g = buildAndPack(soup);
     const auto rays = randomRays(50000, 9);
     for (int width : {4, 2}) {
-        compareWithCpu(g, rays, Traversal::Texel, width);
-        compareWithCpu(g, rays, Traversal::Storage, width);
+        compareWithCpu(g, rays, ReadMode::Texel, width);
+        compareWithCpu(g, rays, ReadMode::Storage, width);
     }
     // The four-wide traversal with its stack in an array (GPUs' default).
-    compareWithCpu(g, rays, Traversal::Texel, 4, BvhStack::Memory);
-    compareWithCpu(g, rays, Traversal::Storage, 4, BvhStack::Memory);
+    compareWithCpu(g, rays, ReadMode::Texel, 4, BvhStack::Memory);
+    compareWithCpu(g, rays, ReadMode::Storage, 4, BvhStack::Memory);
     CHECK(vk::validationMessageCount() == 0);
 }
 
 TEST_CASE("shader traversal matches the CPU BVH on the Cornell box") {
     Scene box = loadGltf(sourcePath("scenes/cornell-box.gltf"));
-    GpuScene g = packScene(box);
+    GpuScene g = buildAndPack(box);
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const auto& t : box.triangles)
         for (const auto& v : t.v) lo = glm::min(lo, v), hi = glm::max(hi, v);
@@ -112,8 +112,8 @@ TEST_CASE("shader traversal matches the CPU BVH on the Cornell box") {
         r.tmax = 1e30f;
         rays.push_back(r);
     }
-    compareWithCpu(g, rays, Traversal::Texel, 4);
-    compareWithCpu(g, rays, Traversal::Texel, 2);
+    compareWithCpu(g, rays, ReadMode::Texel, 4);
+    compareWithCpu(g, rays, ReadMode::Texel, 2);
     CHECK(vk::validationMessageCount() == 0);
 }
 
@@ -134,7 +134,7 @@ TEST_CASE("four-wide traversal of a deep tree (24 or 32 stack registers) matches
     BvhBuildOptions options;
     options.bins = 2;
     options.maxLeafSize = 1;
-    GpuScene g = packScene(chain, options);
+    GpuScene g = buildAndPack(chain, options);
     INFO("BVH2 depth " << g.bvh.maxDepth << ", wide depth " << g.wideDepth);
     REQUIRE(g.wideDepth > 16);
     REQUIRE(g.wideDepth <= 32);
@@ -165,18 +165,18 @@ TEST_CASE("four-wide traversal of a deep tree (24 or 32 stack registers) matches
             rays.push_back(r);
         }
     }
-    DeviceTracer tracer(context(), g, Traversal::Texel, 4);
+    DeviceTracer tracer(context(), g, ReadMode::Texel, 4);
     CHECK(tracer.bvhRegs() == bvhRegsFor(g.wideDepth));
     CHECK(tracer.bvhRegs() > 16);
-    compareWithCpu(g, rays, Traversal::Texel, 4);
-    compareWithCpu(g, rays, Traversal::Storage, 4);
-    compareWithCpu(g, rays, Traversal::Storage, 4, BvhStack::Memory);
+    compareWithCpu(g, rays, ReadMode::Texel, 4);
+    compareWithCpu(g, rays, ReadMode::Storage, 4);
+    compareWithCpu(g, rays, ReadMode::Storage, 4, BvhStack::Memory);
     CHECK(vk::validationMessageCount() == 0);
 }
 
 TEST_CASE("the trace kernel's mode is a specialization constant: one pipeline per mode, an unknown mode refused") {
-    GpuScene g = packScene(randomSoup(2000, 4));
-    DeviceTracer tracer(context(), g, Traversal::Texel, 4);
+    GpuScene g = buildAndPack(randomSoup(2000, 4));
+    DeviceTracer tracer(context(), g, ReadMode::Texel, 4);
     const auto rays = randomRays(512, 7);
     // Modes in turn on one tracer, each from its own pipeline (compareWithCpu
     // checks them against the CPU); the first pipeline still answers after
@@ -203,10 +203,10 @@ TEST_CASE("the trace kernel's mode is a specialization constant: one pipeline pe
 // for subgroups to reach that budget (without the checks, rays come back
 // wrong); every ray must come back exactly as the plain dispatch traces it.
 TEST_CASE("the trace kernel's work queue traces every ray once, with the plain dispatch's hits") {
-    GpuScene g = packScene(randomSoup(20000, 8));
+    GpuScene g = buildAndPack(randomSoup(20000, 8));
     const auto rays = randomRays(300000, 12);
-    DeviceTracer queued(context(), g, Traversal::Texel, 4, BvhStack::Registers, WorkQueue::On);
-    DeviceTracer plain(context(), g, Traversal::Texel, 4, BvhStack::Registers, WorkQueue::Off);
+    DeviceTracer queued(context(), g, ReadMode::Texel, 4, BvhStack::Registers, WorkQueue::On);
+    DeviceTracer plain(context(), g, ReadMode::Texel, 4, BvhStack::Registers, WorkQueue::Off);
     REQUIRE(queued.workQueue());
     REQUIRE_FALSE(plain.workQueue());
     for (std::uint32_t mode : {gpu::kTraceClosest, gpu::kTraceAny, gpu::kTraceSpawn}) {

@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "render/gpu_scene.h"
+#include "bvh/scene_bvh.h"
+#include "pack/gpu_scene.h"
 #include "render/renderer.h"
+#include "upload/device_scene.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
 #include "vk/context.h"
@@ -30,20 +32,32 @@ struct Rendered {
     RenderResult result;
 };
 
-// Packs and renders a loaded scene from camera `camera`. Every test scene
+// The BVH and packing stages of a render, as `strata render` runs them
+// (without releasing the scene).
+inline GpuScene buildAndPack(const Scene& scene, const BvhBuildOptions& options = {}) {
+    return packScene(scene, buildSceneBvh(scene, options));
+}
+
+// Uploads a packed scene as the settings ask and renders it.
+inline RenderResult uploadAndRender(const GpuScene& gpu, const Camera& camera, const RenderSettings& settings,
+                                    const RenderTuning& tuning = {}, const Checkpoints& checkpoints = {}) {
+    const DeviceScene dev = uploadScene(context(), gpu, uploadOptions(settings, tuning));
+    return render(context(), dev, camera, settings, tuning, checkpoints);
+}
+
+// Packs and renders a loaded scene from its first camera. Every test scene
 // renders without a single NaN/Inf sample.
-inline RenderResult renderScene(const Scene& scene, const RenderSettings& settings, int camera = 0) {
-    const GpuScene gpu = packScene(scene);
-    RenderResult r = render(context(), gpu, scene.cameras.at(camera), settings);
+inline RenderResult renderScene(const Scene& scene, const RenderSettings& settings, const RenderTuning& tuning = {}) {
+    RenderResult r = uploadAndRender(buildAndPack(scene), scene.cameras.at(0), settings, tuning);
     CHECK(r.nonFinite == 0);
     return r;
 }
 
-inline Rendered renderFile(const std::string& relPath, const RenderSettings& settings, int camera = 0) {
+inline Rendered renderFile(const std::string& relPath, const RenderSettings& settings, const RenderTuning& tuning = {}) {
     Rendered r;
     r.scene = loadGltf(sourcePath(relPath));
-    r.gpu = packScene(r.scene);
-    r.result = render(context(), r.gpu, r.scene.cameras.at(camera), settings);
+    r.gpu = buildAndPack(r.scene);
+    r.result = uploadAndRender(r.gpu, r.scene.cameras.at(0), settings, tuning);
     CHECK(r.result.nonFinite == 0);
     return r;
 }

@@ -12,7 +12,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
-#include "oiio/module.h"
+#include "oiio/api.h"
 #include "util/error.h"
 #include "util/files.h"
 

@@ -1,4 +1,4 @@
-// Image files through OpenImageIO, loaded on first use (host/oiio/module.h).
+// Image files through OpenImageIO, loaded on first use (host/oiio/api.h).
 // EXR: linear float RGB. PNG: sRGB-encoded 8-bit, clamped. Every file
 // appears whole or not at all: written under a temporary name in the same
 // directory, then renamed.
@@ -6,19 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "image/image.h"
+
 namespace strata {
 
 namespace oiio {
 struct Api;
 }
-
-struct Image {
-    int width = 0;
-    int height = 0;
-    int channels = 0;
-    std::vector<std::string> channelNames;
-    std::vector<float> pixels;  // row-major, interleaved channels, row 0 at the top
-};
 
 enum class ImageFormat { Exr, Png };
 

@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <string>
 
-#include "render/device_scene.h"
+#include "upload/device_scene.h"
 #include "render/renderer.h"
 #include "scene/environment.h"
 
@@ -36,9 +36,9 @@ struct BenchCommand {
     EnvironmentOptions env;           // --env / --env-color, --env-intensity, --env-rotate (as render)
     bool quick = false;               // small dispatch section, for tests
     int bvhWidth = 4;                 // --bvh: 4 (four-wide where it fits) or 2
-    Traversal traversal = Traversal::Auto;  // --traversal: texel views or storage buffers
+    ReadMode reads = ReadMode::Auto;    // --reads: the scene arrays through texel views or storage
     BvhStack bvhStack = BvhStack::Auto;     // --bvh-stack: the four-wide traversal's stack
-    Integrator integrator = Integrator::Megakernel;  // --integrator: path tracing's (render/renderer.h)
+    IntegratorKind integrator = IntegratorKind::Megakernel;  // --integrator: path tracing's (render/settings.h)
     std::string only;                 // "traversal": start-up, BVH and traversal sections only
     std::string json;
     bool validation = false;

@@ -25,17 +25,27 @@ RenderSettings settingsFor(const BenchCommand& cmd, int width, int height, std::
     s.seed = cmd.seed;
     s.maxDepth = cmd.maxDepth;
     s.bvhWidth = cmd.bvhWidth;
-    s.traversal = cmd.traversal;
+    s.reads = cmd.reads;
     s.bvhStack = cmd.bvhStack;
     s.integrator = cmd.integrator;
-    s.warmUp = true;
-    s.reusePipeline = false;  // every render's pipeline creation is timed (start-up)
     return s;
 }
 
+// Each render warms its pipeline up apart and creates it anew (its creation
+// is timed: start-up).
+RenderTuning benchTuning() {
+    RenderTuning t;
+    t.warmUp = true;
+    t.reusePipeline = false;
+    return t;
+}
+
+// Uploads the scene and renders it, as `strata render` does.
 RenderResult timedRender(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
-                         const RenderSettings& s, PipelineTimes& pipelines) {
-    RenderResult r = render(ctx, scene, camera, s);
+                         const RenderSettings& s, const RenderTuning& t, PipelineTimes& pipelines) {
+    checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
+    const DeviceScene dev = uploadScene(ctx, scene, uploadOptions(s, t));
+    RenderResult r = render(ctx, dev, camera, s, t);
     pipelines.push_back(r.pipelineMs);
     return r;
 }
@@ -65,7 +75,7 @@ nlohmann::ordered_json benchPathTracing(const vk::Context& ctx, const GpuScene& 
                                         const BenchCommand& cmd, const RgbImage* reference,
                                         PipelineTimes& pipelines) {
     const RenderSettings s = settingsFor(cmd, cmd.width, cmd.height, cmd.spp);
-    const RenderResult r = timedRender(ctx, scene, camera, s, pipelines);
+    const RenderResult r = timedRender(ctx, scene, camera, s, benchTuning(), pipelines);
     const double samples = static_cast<double>(r.film.pixels()) * r.spp;
     const double rays = static_cast<double>(r.closestRays + r.shadowRays);
     nlohmann::ordered_json j;
@@ -114,9 +124,10 @@ nlohmann::ordered_json benchPathTracing(const vk::Context& ctx, const GpuScene& 
     std::vector<double> on, off;
     for (int k = 0; k < pairs; ++k)
         for (bool count : {true, false}) {
-            RenderSettings c = settingsFor(cmd, side, side, spp);
+            RenderTuning c = benchTuning();
             c.countRays = count;
-            (count ? on : off).push_back(timedRender(ctx, scene, camera, c, pipelines).deviceSeconds);
+            (count ? on : off).push_back(
+                timedRender(ctx, scene, camera, settingsFor(cmd, side, side, spp), c, pipelines).deviceSeconds);
         }
     const double mOn = median(on), mOff = median(off);
     j["ray_counting"] = {{"image", {side, side}},
@@ -136,7 +147,7 @@ nlohmann::ordered_json benchDispatch(const vk::Context& ctx, const GpuScene& sce
     const std::vector<int> sizes = cmd.quick ? std::vector<int>{64, 128}
                                              : std::vector<int>{64, 128, 256, 512, 1024, 2048};
     nlohmann::ordered_json j;
-    const RenderSettings defaults;
+    const RenderTuning defaults;
     j["sample_budget_per_size"] = budget;
     j["tile"] = defaults.tileSize;
     j["submission_target_s"] = defaults.submitSeconds;
@@ -144,7 +155,8 @@ nlohmann::ordered_json benchDispatch(const vk::Context& ctx, const GpuScene& sce
     for (int size : sizes) {
         const double pixels = static_cast<double>(size) * size;
         const auto spp = static_cast<std::uint32_t>(std::max(1.0, std::floor(budget / pixels)));
-        const RenderResult r = timedRender(ctx, scene, camera, settingsFor(cmd, size, size, spp), pipelines);
+        const RenderResult r =
+            timedRender(ctx, scene, camera, settingsFor(cmd, size, size, spp), benchTuning(), pipelines);
         nlohmann::ordered_json row = {{"size", size}, {"spp", r.spp},
                                       {"dispatches_per_sample", r.spp ? r.dispatches / r.spp : 0}};
         row.update(dispatchFigures(r));
@@ -160,9 +172,9 @@ nlohmann::ordered_json benchDispatch(const vk::Context& ctx, const GpuScene& sce
     nlohmann::ordered_json runs = nlohmann::ordered_json::array();
     double first = 0.0, last = 0.0;
     for (std::uint32_t n : perSubmit) {
-        RenderSettings s = settingsFor(cmd, size, size, spp);
-        s.fixedBatch = n;
-        const RenderResult r = timedRender(ctx, scene, camera, s, pipelines);
+        RenderTuning t = benchTuning();
+        t.fixedBatch = n;
+        const RenderResult r = timedRender(ctx, scene, camera, settingsFor(cmd, size, size, spp), t, pipelines);
         nlohmann::ordered_json run = {{"recorded_per_submission", n}};
         run.update(dispatchFigures(r));
         run["host_ms_per_dispatch"] = 1e3 * r.hostSubmitSeconds / std::max<std::uint64_t>(1, r.dispatches);

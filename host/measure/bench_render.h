@@ -1,6 +1,6 @@
 // The sections of `strata bench` that run the path tracer (measure/bench.h):
 // path tracing and dispatch throughput. Each render() they make warms the
-// pipeline up with one dispatch first (RenderSettings::warmUp) and is timed
+// pipeline up with one dispatch first (RenderTuning::warmUp) and is timed
 // with Vulkan timestamps around its dispatches.
 #pragma once
 #include <vector>
@@ -9,7 +9,7 @@
 
 #include "image/image_io.h"
 #include "measure/bench.h"
-#include "render/gpu_scene.h"
+#include "pack/gpu_scene.h"
 #include "scene/scene.h"
 #include "vk/context.h"
 

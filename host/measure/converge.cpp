@@ -11,7 +11,7 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "measure/plot.h"
-#include "render/gpu_scene.h"
+#include "pack/gpu_scene.h"
 #include "render/sampler_kind.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
@@ -94,7 +94,7 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
     if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
         fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist");
-    GpuScene gpu = packScene(scene);
+    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
     vk::Context ctx({cmd.device, cmd.validation});
 
     RenderSettings s = cmd.settings;
@@ -102,6 +102,7 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     s.height = ref.height;
     s.spp = cmd.spp.back();
     s.progress = false;
+    const DeviceScene dev = uploadScene(ctx, gpu, uploadOptions(s));
     const std::size_t levels = cmd.spp.size();
     std::vector<std::vector<ErrorMetrics>> metrics(levels);
     std::vector<std::vector<double>> seconds(levels);
@@ -119,12 +120,12 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
             ++level;
         };
         if (prefixes) {
-            render(ctx, gpu, scene.cameras[cmd.camera], s, Checkpoints{cmd.spp, measure});
+            render(ctx, dev, scene.cameras[cmd.camera], s, {}, Checkpoints{cmd.spp, measure});
         } else {
             for (std::uint32_t spp : cmd.spp) {
                 RenderSettings one = s;
                 one.spp = spp;
-                measure(render(ctx, gpu, scene.cameras[cmd.camera], one));
+                measure(render(ctx, dev, scene.cameras[cmd.camera], one));
             }
         }
         if (!cmd.quiet) std::fprintf(stderr, "strata: converge: seed %u of %u done\n", k + 1, cmd.seeds);

@@ -13,7 +13,7 @@
 #include "../../shaders/shared/types.h"
 #include "image/image_io.h"
 #include "measure/plot.h"
-#include "render/sample_dump.h"
+#include "measure/sample_dump.h"
 #include "render/sampler_kind.h"
 #include "util/error.h"
 #include "util/files.h"

@@ -1,6 +1,6 @@
 // `strata edges`: how well each pixel sampler estimates the coverage of a
 // straight edge crossing a pixel, with samples drawn by the real GLSL
-// samplers (render/sample_dump.h).
+// samplers (measure/sample_dump.h).
 //
 // A pixel's colour is the integral of the image over the pixel; for an edge
 // between two flat colours that integral is the covered fraction of the

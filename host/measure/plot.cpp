@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "image/image_io.h"
-#include "oiio/module.h"
+#include "oiio/api.h"
 #include "util/error.h"
 
 namespace strata {

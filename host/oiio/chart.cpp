@@ -1,4 +1,4 @@
-// Line charts drawn with OpenImageIO (measure/plot.h; host/oiio/module.h).
+// Line charts drawn with OpenImageIO (measure/plot.h; host/oiio/api.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "oiio/module.h"
+#include "oiio/api.h"
 
 namespace strata::oiio {
 namespace {

@@ -1,10 +1,10 @@
-// Image files through OpenImageIO (host/oiio/module.h).
+// Image files through OpenImageIO (host/oiio/api.h).
 #include <algorithm>
 #include <exception>
 
 #include <OpenImageIO/imageio.h>
 
-#include "oiio/module.h"
+#include "oiio/api.h"
 
 namespace strata::oiio {
 namespace {

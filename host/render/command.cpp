@@ -5,9 +5,10 @@
 #include <fstream>
 
 #include "image/image_io.h"
-#include "render/gpu_scene.h"
+#include "bvh/scene_bvh.h"
+#include "pack/gpu_scene.h"
 #include "render/sampler_kind.h"
-#include "render/stats.h"
+#include "render/report.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
 #include "util/error.h"
@@ -39,8 +40,9 @@ int runRender(const RenderCommand& cmd) {
                             std::to_string(scene.cameras.size()) + " camera(s))");
 
     t0 = std::chrono::steady_clock::now();
-    GpuScene gpu = packSceneAndRelease(scene, {}, cmd.settings.bvhWidth);
-    const double packMs = msSince(t0);
+    SceneBvh bvh = buildSceneBvh(scene);
+    GpuScene gpu = packSceneAndRelease(scene, std::move(bvh), cmd.settings.bvhWidth);
+    const double packMs = msSince(t0);  // the BVH build and the packing
 
     t0 = std::chrono::steady_clock::now();
     vk::Context ctx({cmd.device, cmd.validation});
@@ -49,9 +51,8 @@ int runRender(const RenderCommand& cmd) {
         std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
                      ctx.info.type.c_str(), ctx.info.driver.c_str());
 
-    const DeviceScene dev = uploadAndRelease(ctx, gpu, cmd.settings.traversal, cmd.settings.bvhWidth,
-                                             cmd.settings.bvhStack, cmd.settings.limits);
-    RenderResult result = render(ctx, dev, gpu, scene.cameras[cmd.camera], cmd.settings);
+    const DeviceScene dev = uploadAndRelease(ctx, gpu, uploadOptions(cmd.settings, cmd.tuning));
+    RenderResult result = render(ctx, dev, scene.cameras[cmd.camera], cmd.settings, cmd.tuning);
 
     StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs, deviceMs};
     nlohmann::json stats = statsJson(in);

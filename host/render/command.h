@@ -1,5 +1,5 @@
-// `strata render`: load -> pack -> render -> write, the one-way flow of
-// DESIGN.md, with the options of the command line.
+// `strata render`: load -> BVH -> pack -> upload -> render -> write, the
+// one-way flow of docs/architecture.md, with the options of the command line.
 #pragma once
 #include <string>
 #include <vector>
@@ -13,6 +13,7 @@ struct RenderCommand {
     std::string scene;
     std::vector<std::string> outputs;   // .exr and/or .png
     RenderSettings settings;
+    RenderTuning tuning;                // tests lower tuning.limits; the command line never sets it
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     int camera = 0;
     int device = -1;

@@ -11,7 +11,7 @@
 
 #include "../../shaders/shared/bindings.h"
 #include "render/sampler_kind.h"
-#include "render/wavefront.h"
+#include "integrate/integrator.h"
 #include "util/error.h"
 #include "vk/check.h"
 #include "vk/kernel.h"
@@ -36,9 +36,10 @@ std::uint32_t blockStride(std::uint32_t tileW, std::uint32_t tileH) {
     return stride;
 }
 
-gpu::FrameUniforms frameUniforms(const DeviceScene& dev, const GpuScene& scene, const Camera& cam,
-                                 const RenderSettings& s) {
-    gpu::FrameUniforms f{};
+// The scene's part of the frame constants (DeviceScene::frame) with the
+// camera, the image and the render's spp.
+gpu::FrameUniforms frameUniforms(const DeviceScene& dev, const Camera& cam, const RenderSettings& s) {
+    gpu::FrameUniforms f = dev.frame;
     const float tanHalf = std::tan(cam.yfov * 0.5f);
     const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
     const glm::vec3 right = glm::normalize(glm::cross(cam.forward, cam.up));
@@ -48,9 +49,7 @@ gpu::FrameUniforms frameUniforms(const DeviceScene& dev, const GpuScene& scene, 
     f.camRight = glm::vec4(right * tanHalf * aspect, 0.0f);
     f.camUp = glm::vec4(up * tanHalf, 0.0f);
     f.image = glm::uvec4(s.width, s.height, s.maxDepth, s.seed);
-    f.counts = glm::uvec4(scene.emitters.size(), dev.triangles, dev.nodeCount, s.spp);
-    f.scene = glm::vec4(static_cast<float>(scene.totalPower), 0.0f, 0.0f, 0.0f);
-    setLightUniforms(f, scene);
+    f.counts.w = s.spp;
     return f;
 }
 
@@ -63,74 +62,26 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 
 }  // namespace
 
-std::vector<vk::BindingDesc> pathBindings() {
-    using namespace gpu;
-    std::vector<vk::BindingDesc> bindings = sceneBindings();
-    bindings.insert(bindings.end(), {
-        {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-        {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-        {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-    });
-    return bindings;
-}
-
-void bindPathInputs(vk::Kernel& kernel, const DeviceScene& dev, const vk::Buffer& frame, const vk::Buffer& filterTable,
-                    const vk::Buffer& accum, const vk::Buffer& counters) {
-    using namespace gpu;
-    bindTraversal(kernel, dev);
-    kernel.bind(BINDING_FRAME, frame);
-    bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
-    kernel.bind(BINDING_ACCUM, accum);
-    kernel.bind(BINDING_COUNTERS, counters);
-    kernel.bind(BINDING_FILTER, filterTable);
-    kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
-    bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
-}
-
-std::vector<std::uint32_t> pathSpec(const DeviceScene& dev, const GpuScene& scene, const RenderSettings& s) {
-    using namespace gpu;
-    std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
-    setTraversalSpec(dev, spec);
-    spec[SPEC_HAS_EMITTERS] = scene.features.emitters ? 1u : 0u;
-    spec[SPEC_SAMPLER] = s.sampler;
-    spec[SPEC_FEATURES] = scene.features.bits;
-    spec[SPEC_MIS] = s.mis;
-    return spec;
-}
-
-void checkImageFits(const vk::Context& ctx, const RenderSettings& s) {
+void checkImageFits(const vk::Context& ctx, const RenderSettings& s, const SceneLimits& limits) {
     // The sample sums are one device buffer (and one readback buffer).
     const std::uint64_t bytes = std::uint64_t(s.width) * std::uint64_t(s.height) * gpu::kAccumVec4PerPixel * 16;
-    const std::uint64_t largest = sceneLimits(ctx, s.limits).allocation;
+    const std::uint64_t largest = sceneLimits(ctx, limits).allocation;
     if (bytes > largest)
         throw Error("strata: error: a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
                     sizeText(bytes) + " for its sample sums, more than the device's maxMemoryAllocationSize (" +
                     sizeText(largest) + "); render a smaller image");
 }
 
-RenderResult render(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
-                    const RenderSettings& s, const Checkpoints& checkpoints) {
-    checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
-    const DeviceScene dev = uploadScene(ctx, scene, s.traversal, s.bvhWidth, s.bvhStack, s.limits);
-    return render(ctx, dev, scene, camera, s, checkpoints);
-}
-
-RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuScene& scene, const Camera& camera,
-                    const RenderSettings& s, const Checkpoints& checkpoints) {
+RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera& camera, const RenderSettings& s,
+                    const RenderTuning& t, const Checkpoints& checkpoints) {
     using namespace gpu;
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
     const VkDeviceSize accumBytes = pixels * kAccumVec4PerPixel * 16;
-    checkImageFits(ctx, s);
+    checkImageFits(ctx, s, t.limits);
 
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
-    const FrameUniforms fu = frameUniforms(dev, scene, camera, s);
+    const FrameUniforms fu = frameUniforms(dev, camera, s);
     std::memcpy(frame.mapped(), &fu, sizeof fu);
     constexpr VkBufferUsageFlags xfer = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     vk::Buffer accum(ctx, accumBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | xfer, vk::MemoryUse::Device);
@@ -140,22 +91,12 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     vk::Buffer countersBack(ctx, sizeof(RenderCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             vk::MemoryUse::Readback);
     vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(s.filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const FilmBuffers film{frame, filterTable, accum, counters};
 
-    const std::uint32_t tile = std::max(8u, s.tileSize);
-    // The megakernel (pathtrace.comp), or the wavefront integrator's stages.
-    std::unique_ptr<vk::Kernel> mega;
-    std::unique_ptr<WavefrontIntegrator> wave;
-    if (s.integrator == Integrator::Wavefront) {
-        const std::uint32_t maxPaths = std::min<std::uint32_t>(tile, s.width) * std::min<std::uint32_t>(tile, s.height);
-        wave = std::make_unique<WavefrontIntegrator>(ctx, dev, scene, s, maxPaths, frame, filterTable, accum, counters);
-    } else {
-        std::vector<std::uint32_t> spec = pathSpec(dev, scene, s);
-        spec[SPEC_COUNT_RAYS] = s.countRays ? 1u : 0u;
-        spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, s.workQueue) ? 1u : 0u;
-        mega = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true), pathBindings(), sizeof(DispatchParams),
-                                            spec, s.reusePipeline);
-        bindPathInputs(*mega, dev, frame, filterTable, accum, counters);
-    }
+    const std::uint32_t tile = std::max(8u, t.tileSize);
+    const std::uint32_t maxTilePixels =
+        std::min<std::uint32_t>(tile, s.width) * std::min<std::uint32_t>(tile, s.height);
+    const std::unique_ptr<Integrator> integrator = makeIntegrator(ctx, dev, s, t, maxTilePixels, film);
 
     RenderResult result;
     result.film = Film(s.width, s.height);
@@ -165,30 +106,24 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     result.uploadMs = dev.uploadMs;
     result.sceneBytes = dev.packedBytes;
     result.sceneDeviceBytes = dev.deviceBytes;
-    result.pipelineMs = mega ? mega->pipelineMs() : wave->pipelineMs();
-    result.pipelineReused = mega ? mega->reusedProgram() : wave->reusedProgram();
+    result.pipelineMs = integrator->pipelineMs();
+    result.pipelineReused = integrator->reusedProgram();
     vk::OneShot submit(ctx);
     vk::DeviceTimer timer(ctx);
-    if (s.warmUp) {  // first-use costs of the pipeline, measured apart; the clear below undoes it
+    if (t.warmUp) {  // first-use costs of the pipeline, measured apart; the clear below undoes it
         DispatchParams p{};
         p.tileW = std::min(64u, static_cast<std::uint32_t>(s.width));
         p.tileH = std::min(64u, static_cast<std::uint32_t>(s.height));
         p.blockStride = blockStride(p.tileW, p.tileH);
         const auto w0 = Clock::now();
-        double device = 0.0;
-        if (wave) {
-            device = wave->sample(0, 0, p.tileW, p.tileH, 0);
-            wave->resetCounts();  // its rays are not the render's
-        } else {
-            VkCommandBuffer cmd = submit.begin();
-            timer.begin(cmd);
-            mega->dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
-            timer.end(cmd);
-            submit.submitAndWait();
-            device = timer.seconds();
-        }
+        VkCommandBuffer cmd = submit.begin();
+        timer.begin(cmd);
+        const double own = integrator->addSample(cmd, p);
+        timer.end(cmd);
+        submit.submitAndWait();
+        integrator->resetCounts();  // its rays and dispatches are not the render's
         result.warmUpHostSeconds = std::chrono::duration<double>(Clock::now() - w0).count();
-        result.warmUpDeviceSeconds = timer.supported() ? device : result.warmUpHostSeconds;
+        result.warmUpDeviceSeconds = timer.supported() ? timer.seconds() + own : result.warmUpHostSeconds;
         result.warmUpPixels = p.tileW * p.tileH;
     }
     {
@@ -201,7 +136,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
-    std::uint32_t batch = s.fixedBatch ? s.fixedBatch : 1u;  // samples in the next submission
+    std::uint32_t batch = t.fixedBatch ? t.fixedBatch : 1u;  // samples in the next submission
     std::size_t nextCheckpoint = 0;
 
     // The device sums samples in float32 and the host folds the sums into
@@ -225,9 +160,9 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         readback.invalidate();
         result.film.fold(static_cast<const float*>(readback.mapped()));
     };
-    const std::uint32_t foldEvery = std::max(1u, s.maxBatch);
+    const std::uint32_t foldEvery = std::max(1u, t.maxBatch);
     std::uint32_t unfolded = 0;  // samples summed on the device since the last fold
-    double waveSeconds = 0.0;    // device time of the wavefront stages in this submission
+    double ownSeconds = 0.0;     // device time of what the integrator submitted on its own
 
     while (result.spp < s.spp) {
         while (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] <= result.spp)
@@ -253,12 +188,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
                     p.tileH = std::min<std::uint32_t>(tile, s.height - ty);
                     p.sampleIndex = result.spp + k;
                     p.blockStride = blockStride(p.tileW, p.tileH);
-                    if (wave) {  // submits its stages itself
-                        waveSeconds += wave->sample(p.tileX, p.tileY, p.tileW, p.tileH, p.sampleIndex);
-                        continue;
-                    }
-                    mega->dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
-                    ++result.dispatches;
+                    ownSeconds += integrator->addSample(cmd, p);
                 }
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                               VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
@@ -271,8 +201,8 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         submit.submitAndWait();
         const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         result.hostSubmitSeconds += secs;
-        result.deviceSeconds += timer.supported() ? timer.seconds() + waveSeconds : secs;
-        waveSeconds = 0.0;
+        result.deviceSeconds += timer.supported() ? timer.seconds() + ownSeconds : secs;
+        ownSeconds = 0.0;
         result.spp = after;
         unfolded += batch;
         ++result.submissions;
@@ -287,9 +217,9 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
 
         const double perSample = secs / batch;
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
-        double target = s.submitSeconds;
+        double target = t.submitSeconds;
         if (s.timeLimit > 0.0) target = std::min(target, s.timeLimit - elapsed());
-        batch = s.fixedBatch ? s.fixedBatch
+        batch = t.fixedBatch ? t.fixedBatch
                              : static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
         if (showProgress)
             printProgress(result.spp, s.spp, elapsed(),
@@ -314,14 +244,11 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const GpuSce
         RenderCounters c;
         std::memcpy(&c, countersBack.mapped(), sizeof c);
         result.nonFinite = c.nonFinite + result.film.overflowed;
-        result.closestRays = (static_cast<std::uint64_t>(c.closestHi) << 32) | c.closestLo;
-        result.shadowRays = (static_cast<std::uint64_t>(c.shadowHi) << 32) | c.shadowLo;
+        const RayCounts rays = integrator->rays(c);
+        result.closestRays = rays.closest;
+        result.shadowRays = rays.shadow;
     }
-    if (wave) {  // counted on the host, from the lists' lengths
-        result.closestRays = s.countRays ? wave->closestRays() : 0;
-        result.shadowRays = s.countRays ? wave->shadowRays() : 0;
-        result.dispatches = wave->dispatches();
-    }
+    result.dispatches = integrator->dispatches();
     result.peakDeviceBytes = vk::peakDeviceMemoryBytes();
     return result;
 }

@@ -12,6 +12,14 @@
 
 namespace strata::gltf {
 
+// The file parsed by tinygltf (JSON or binary glTF, told apart by the GLB
+// magic), buffers and images resolved next to the file only.
+tinygltf::Model parseModel(const std::string& path);
+
+// Extensions outside the supported list: in extensionsRequired an error, in
+// extensionsUsed a warning.
+void checkExtensions(const std::string& path, const tinygltf::Model& model);
+
 // A string as it appears in one message line: in double quotes, with
 // quotes, backslashes and control characters escaped.
 std::string quoted(const std::string& s);

@@ -154,7 +154,7 @@ struct Scene {
 };
 
 // Frees what packing copies (triangles, texture coordinates, tangents,
-// images, environment texels) once the scene is packed (render/gpu_scene.h);
+// images, environment texels) once the scene is packed (pack/gpu_scene.h);
 // materials, cameras, lights and the other small members stay.
 inline void releaseGeometry(Scene& scene) {
     std::vector<Triangle>().swap(scene.triangles);

@@ -1,4 +1,4 @@
-#include "render/env_tables.h"
+#include "pack/env_tables.h"
 
 #include <algorithm>
 #include <cmath>

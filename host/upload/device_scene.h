@@ -12,14 +12,14 @@
 #include <vector>
 
 #include "../../shaders/shared/bindings.h"
-#include "render/gpu_scene.h"
+#include "pack/gpu_scene.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
-#include "vk/kernel.h"
+#include "vk/kernel.h"  // TexelView
 
 namespace strata {
 
-enum class Traversal { Auto, Texel, Storage };
+enum class ReadMode { Auto, Texel, Storage };
 
 // Where the four-wide traversal keeps its stack (shaders/lib/bvh.glsl): in
 // registers (CPU devices: lavapipe runs an indexed array as a scalar loop per
@@ -48,18 +48,8 @@ std::string sizeText(std::uint64_t bytes);
 // reads. Throws strata::Error (one line naming the scene file) when an array
 // exceeds limits.allocation, when an array fits neither a storage descriptor
 // nor a texel view, or when the forced reads cannot address the scene.
-std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Traversal mode, bool wide,
+std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, ReadMode mode, bool wide,
                           bool cpuDevice);
-
-// SPEC_WORK_QUEUE: whether the trace kernel's subgroups take their rays from
-// a counter (BINDING_WORK; shaders/trace.comp) instead of by workgroup index,
-// and the path tracer shades a tile's 8x8 blocks in a permuted order
-// (shaders/pathtrace.comp). lavapipe splits a dispatch's workgroups into one
-// contiguous share per thread, so uneven rows or a core slowed by other
-// processes left a thread idle; a GPU schedules workgroups itself. Auto: on
-// for CPU devices; never with subgroups wider than 64.
-enum class WorkQueue { Auto, On, Off };
-bool useWorkQueue(const vk::Context& ctx, WorkQueue mode = WorkQueue::Auto);
 
 // "storage", "texel" (the BVH) or "texel-all" for a kReads* value.
 const char* readsName(std::uint32_t reads);
@@ -83,9 +73,6 @@ DeviceArray uploadArray(const vk::Context& ctx, const std::vector<T>& v, const S
     return uploadArray(ctx, std::as_bytes(std::span<const T>(v)), limits, releaseSource);
 }
 
-// Binds the array's storage range at `storageBinding` and its view at `texelBinding`.
-void bindArray(vk::Kernel& kernel, std::uint32_t storageBinding, std::uint32_t texelBinding, const DeviceArray& a);
-
 struct DeviceScene {
     DeviceArray nodes, tris, shading, texcoords, tangents, emitters, materials, textureRefs;
     // Texturing inputs; a 16-byte zero buffer each when the scene has none
@@ -104,45 +91,35 @@ struct DeviceScene {
     std::uint64_t packedBytes = 0;  // bytes of the arrays uploaded, as packed
     std::uint64_t deviceBytes = 0;  // device memory of their buffers
     double uploadMs = 0.0;          // host wall time of the upload
+    SceneFeatures features;         // what the kernels compile in (SPEC_FEATURES, SPEC_HAS_EMITTERS)
+    gpu::FrameUniforms frame{};     // the scene's part of the frame constants (counts.xyz,
+                                    // scene.x, env*); the renderer adds the camera, image and spp
     bool texel() const { return reads != gpu::kReadsStorage; }
 };
 
-// bvhWidth 4: the four-wide BVH unless the scene's wide tree
-// is deeper than kBvhMaxRegs (bvh/wide.h); 2: the BVH2 (a scene packed by
-// packSceneAndRelease for width 4 has none: std::logic_error). `stack`: the
-// four-wide traversal's (BvhStack). `overrides` as sceneLimits.
-DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth = 4,
-                        BvhStack stack = BvhStack::Auto, const SceneLimits& overrides = {});
+// How a packed scene goes onto the device: how its arrays are read, which
+// BVH and stack the shaders traverse, and the limits it is planned against.
+struct UploadOptions {
+    ReadMode reads = ReadMode::Auto;
+    int bvhWidth = 4;  // 4: the four-wide BVH unless the scene's wide tree is deeper
+                       // than kBvhMaxRegs (bvh/wide.h); 2: the BVH2 (a scene packed by
+                       // packSceneAndRelease for width 4 has none: std::logic_error)
+    BvhStack stack = BvhStack::Auto;  // the four-wide traversal's
+    SceneLimits limits;               // overrides, as sceneLimits
+};
+
+DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, const UploadOptions& options = {});
 
 // The same, and frees each of the scene's large arrays (BVH, triangles,
 // shading, texture coordinates, tangents, texture and environment texels) as
 // soon as it is on the device (each array's pages handed back chunk by chunk
-// as they are copied), so host memory does not hold the scene twice.
-// What the renderer still reads of `scene` (materials, emitters, lights,
-// features, counts) stays.
-DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth = 4,
-                             BvhStack stack = BvhStack::Auto, const SceneLimits& overrides = {});
-
-// The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,
-// SPEC_BVH_REGS) into `spec`, grown as needed. The BVH width and the stack
-// are the shader's (traversalShader below).
-void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec);
-
-// The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp built for the
-// scene's traversal: BVH2, four-wide with registers, or four-wide with an
-// array stack.
-std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace);
+// as they are copied), so host memory does not hold the scene twice. The
+// rest (materials, emitters, features, counts) stays for the report.
+DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, const UploadOptions& options = {});
 
 // "registers" (four-wide, register stack) or "memory" (an indexed array: the
 // four-wide memory stack, and always the BVH2's).
 const char* bvhStackName(const DeviceScene& scene);
-
-// The traversal's inputs: nodes, triangles, their texel views, and what the
-// alpha test reads (shading, materials, texture coordinates, texture refs and
-// texels; shaders/lib/material.glsl) plus the tangents. sceneBindings() lists
-// their descriptor types for a vk::Kernel.
-std::vector<vk::BindingDesc> sceneBindings();
-void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene);
 
 // Uploads the environment map's texels (with their RGBA32F view) and tables
 // (storage range and RGBA32UI view as `limits` allow).

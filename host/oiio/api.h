@@ -1,8 +1,9 @@
 // The OpenImageIO side of strata, built as a module (libstrata_oiio.so) that
-// image/image_io.cpp loads on the first image read or written. Linking
-// OpenImageIO into strata itself cost every command ~0.25 s before main (the
-// static initialisers of the ~260 libraries Debian's OpenImageIO pulls in):
-// `strata devices` took 0.30 s linked, 0.02 s without it.
+// image/image_io.cpp loads on the first image read or written, so that
+// commands touching no image do not run the static initialisers of the
+// libraries Debian's OpenImageIO pulls in (docs/experiments.md). The
+// interface is plain data (image/image.h, image/chart.h) and function
+// pointers: the module and strata share no other header.
 //
 // Functions return "" on success, else the error (one line, no file name).
 #pragma once
@@ -10,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "image/image_io.h"
-#include "measure/plot.h"
+#include "image/chart.h"
+#include "image/image.h"
 
 namespace strata::oiio {
 

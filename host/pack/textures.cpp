@@ -1,4 +1,4 @@
-#include "render/gpu_textures.h"
+#include "pack/textures.h"
 
 #include <cmath>
 #include <cstring>

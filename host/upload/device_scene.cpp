@@ -1,12 +1,10 @@
-#include "render/device_scene.h"
+#include "upload/device_scene.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
 #include <type_traits>
-
-#include <strata_spirv.h>
 
 #include "util/error.h"
 
@@ -64,10 +62,11 @@ void release(const std::vector<T>&) {}
 
 // G is GpuScene (each large array freed once uploaded) or const GpuScene (kept).
 template <class G>
-DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidth, BvhStack stack,
-                   const SceneLimits& overrides) {
+DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
-    const SceneLimits limits = sceneLimits(ctx, overrides);
+    const SceneLimits limits = sceneLimits(ctx, options.limits);
+    const int bvhWidth = options.bvhWidth;
+    const BvhStack stack = options.stack;
     const std::uint32_t regs = bvhRegsFor(scene.wideDepth);
     const bool wide = bvhWidth == 4 && regs > 0 && !scene.wide.empty();
     if (!wide && scene.nodes.empty())
@@ -75,13 +74,17 @@ DeviceScene upload(const vk::Context& ctx, G& scene, Traversal mode, int bvhWidt
     constexpr bool consume = !std::is_const_v<G>;  // each array released as it is copied
     const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     DeviceScene d;
-    d.reads = chooseReads(limits, scene, mode, wide, cpu);
+    d.reads = chooseReads(limits, scene, options.reads, wide, cpu);
     d.wide = wide;
     d.bvhRegs = wide ? regs : 16u;
     d.memoryStack = wide && (stack == BvhStack::Memory || (stack == BvhStack::Auto && !cpu));
     d.triangles = scene.tris.size();
     d.nodeCount = wide ? scene.wide.size() : scene.nodes.size();
     for (const ArrayUse& a : arrayUses(scene, wide)) d.packedBytes += a.bytes;
+    d.features = scene.features;
+    d.frame.counts = glm::uvec4(scene.emitters.size(), d.triangles, d.nodeCount, 0u);
+    d.frame.scene = glm::vec4(static_cast<float>(scene.totalPower), 0.0f, 0.0f, 0.0f);
+    setLightUniforms(d.frame, scene);
     // Each array is handed back as it is copied and released once on the
     // device; the tree not traversed is released first.
     auto put = [&](DeviceArray& dst, auto& src) {
@@ -141,7 +144,7 @@ SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides) {
             lower(m3.maxMemoryAllocationSize, overrides.allocation)};
 }
 
-std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Traversal mode, bool wide,
+std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, ReadMode mode, bool wide,
                           bool cpuDevice) {
     const ArrayUse* beyondStorage = nullptr;  // first array read either way that only a texel view holds
     const ArrayUse* beyondTexel = nullptr;    // ... that only a storage descriptor holds
@@ -162,13 +165,13 @@ std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Trav
         if (!texel && !beyondTexel) beyondTexel = &a;
         if (!texel && a.bvh && !bvhBeyondTexel) bvhBeyondTexel = &a;
     }
-    if (mode == Traversal::Storage) {
+    if (mode == ReadMode::Storage) {
         if (beyondStorage)
             fail(scene.source, "--traversal storage: " + need(*beyondStorage) + ", more than the device's " +
                                    storageLimit(limits));
         return gpu::kReadsStorage;
     }
-    if (mode == Traversal::Texel && bvhBeyondTexel)
+    if (mode == ReadMode::Texel && bvhBeyondTexel)
         fail(scene.source, "--traversal texel: " + need(*bvhBeyondTexel) + ", more than the device's " +
                                texelLimit(limits, *bvhBeyondTexel));
     if (beyondStorage) {  // past the storage range: everything through texel views, if they hold it
@@ -177,18 +180,12 @@ std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Trav
                                    need(*beyondTexel) + ", more than its " + texelLimit(limits, *beyondTexel));
         return gpu::kReadsTexelAll;
     }
-    if (mode == Traversal::Texel) return gpu::kReadsTexelBvh;
+    if (mode == ReadMode::Texel) return gpu::kReadsTexelBvh;
     // CPU devices: every array through texel views where they all fit (a
     // divergent storage load is a scalar loop on lavapipe): path tracing
     // 1.13x on the Cornell box, 0.98-1.02x elsewhere, against the BVH alone.
     if (cpuDevice && !beyondTexel) return gpu::kReadsTexelAll;
     return cpuDevice && !bvhBeyondTexel ? gpu::kReadsTexelBvh : gpu::kReadsStorage;
-}
-
-bool useWorkQueue(const vk::Context& ctx, WorkQueue mode) {
-    if (ctx.info.subgroupSize > 64) return false;  // trace.comp's chunks are whole 64-lane groups
-    if (mode != WorkQueue::Auto) return mode == WorkQueue::On;
-    return ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
 const char* readsName(std::uint32_t reads) {
@@ -207,69 +204,23 @@ DeviceArray uploadArray(const vk::Context& ctx, std::span<const std::byte> bytes
     return a;
 }
 
-void bindArray(vk::Kernel& kernel, std::uint32_t storageBinding, std::uint32_t texelBinding, const DeviceArray& a) {
-    kernel.bind(storageBinding, a.buffer, a.storageRange);
-    kernel.bind(texelBinding, a.texel);
+
+DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, const UploadOptions& options) {
+    return upload(ctx, scene, options);
 }
 
-DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, Traversal mode, int bvhWidth, BvhStack stack,
-                        const SceneLimits& overrides) {
-    return upload(ctx, scene, mode, bvhWidth, stack, overrides);
-}
-
-DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, Traversal mode, int bvhWidth, BvhStack stack,
-                             const SceneLimits& overrides) {
-    return upload(ctx, scene, mode, bvhWidth, stack, overrides);
-}
-
-void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {
-    spec.resize(std::max<std::size_t>(spec.size(), gpu::SPEC_BVH_REGS + 1), 0u);
-    spec[gpu::SPEC_TEXEL_FETCH] = scene.reads;
-    spec[gpu::SPEC_BVH_REGS] = scene.bvhRegs;
+DeviceScene uploadAndRelease(const vk::Context& ctx, GpuScene& scene, const UploadOptions& options) {
+    return upload(ctx, scene, options);
 }
 
 const char* bvhStackName(const DeviceScene& scene) {
     return scene.wide && !scene.memoryStack ? "registers" : "memory";
 }
 
-std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace) {
-    using Span = std::span<const std::uint32_t>;
-    if (!scene.wide)
-        return pathtrace ? Span(kSpirvPtr_pathtrace_bvh2, kSpirvSize_pathtrace_bvh2 / 4)
-                         : Span(kSpirvPtr_trace_bvh2, kSpirvSize_trace_bvh2 / 4);
-    if (scene.memoryStack)
-        return pathtrace ? Span(kSpirvPtr_pathtrace_bvh4m, kSpirvSize_pathtrace_bvh4m / 4)
-                         : Span(kSpirvPtr_trace_bvh4m, kSpirvSize_trace_bvh4m / 4);
-    return pathtrace ? Span(kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4) : Span(kSpirvPtr_trace, kSpirvSize_trace / 4);
-}
-
 void uploadEnvironment(const vk::Context& ctx, const GpuScene& scene, DeviceScene& d, const SceneLimits& limits) {
     d.envTexels = vk::uploadVector(ctx, scene.envTexels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
     d.envTexelView = vk::TexelView(ctx, d.envTexels, VK_FORMAT_R32G32B32A32_SFLOAT);
     d.envTables = uploadArray(ctx, scene.envTables, limits);
-}
-
-std::vector<vk::BindingDesc> sceneBindings() {
-    using namespace gpu;
-    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    constexpr VkDescriptorType texel = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    return {{BINDING_NODES, storage},     {BINDING_NODES_TEXEL, texel},     {BINDING_TRIS, storage},
-            {BINDING_TRIS_TEXEL, texel},  {BINDING_SHADING, storage},       {BINDING_SHADING_TEXEL, texel},
-            {BINDING_TEXCOORDS, storage}, {BINDING_TEXCOORDS_TEXEL, texel}, {BINDING_TANGENTS, storage},
-            {BINDING_TANGENTS_TEXEL, texel}, {BINDING_MATERIALS, storage},  {BINDING_MATERIALS_TEXEL, texel},
-            {BINDING_TEXREFS, storage},   {BINDING_TEXREFS_TEXEL, texel},   {BINDING_TEXELS, texel}};
-}
-
-void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
-    using namespace gpu;
-    bindArray(kernel, BINDING_NODES, BINDING_NODES_TEXEL, scene.nodes);
-    bindArray(kernel, BINDING_TRIS, BINDING_TRIS_TEXEL, scene.tris);
-    bindArray(kernel, BINDING_SHADING, BINDING_SHADING_TEXEL, scene.shading);
-    bindArray(kernel, BINDING_TEXCOORDS, BINDING_TEXCOORDS_TEXEL, scene.texcoords);
-    bindArray(kernel, BINDING_TANGENTS, BINDING_TANGENTS_TEXEL, scene.tangents);
-    bindArray(kernel, BINDING_MATERIALS, BINDING_MATERIALS_TEXEL, scene.materials);
-    bindArray(kernel, BINDING_TEXREFS, BINDING_TEXREFS_TEXEL, scene.textureRefs);
-    kernel.bind(BINDING_TEXELS, scene.texelsView);
 }
 
 }  // namespace strata

@@ -1,4 +1,4 @@
-#include "render/wavefront.h"
+#include "integrate/wavefront.h"
 
 #include <algorithm>
 #include <span>
@@ -7,7 +7,10 @@
 #include <strata_spirv.h>
 
 #include "../../shaders/shared/bindings.h"
-#include "render/tracer.h"
+#include "integrate/kernels.h"
+#include "vk/buffer.h"
+#include "vk/kernel.h"
+#include "vk/timer.h"
 
 namespace strata {
 
@@ -51,11 +54,9 @@ struct WavefrontIntegrator::Impl {
     }
 };
 
-WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceScene& dev, const GpuScene& scene,
-                                         const RenderSettings& s, std::uint32_t maxPaths, const vk::Buffer& frame,
-                                         const vk::Buffer& filterTable, const vk::Buffer& accum,
-                                         const vk::Buffer& counters)
-    : impl_(std::make_unique<Impl>(ctx, useWorkQueue(ctx, s.workQueue))) {
+WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s,
+                                         const RenderTuning& t, std::uint32_t maxPaths, const FilmBuffers& film)
+    : impl_(std::make_unique<Impl>(ctx, useWorkQueue(ctx, t.workQueue))), countRays_(t.countRays) {
     using namespace gpu;
     Impl& m = *impl_;
     const VkDeviceSize n = std::max<std::uint32_t>(1, maxPaths);
@@ -77,7 +78,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
                         vk::MemoryUse::Device);
 
     auto trace = [&](std::uint32_t mode) {
-        auto k = makeTraceKernel(ctx, dev, scene.features.bits, mode, m.queue, s.reusePipeline);
+        auto k = makeTraceKernel(ctx, dev, mode, m.queue, t.reusePipeline);
         k->bind(BINDING_WORK, m.work);
         return k;
     };
@@ -88,15 +89,15 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     m.anyHit->bind(BINDING_HITS, m.shadowHits);
 
     for (std::uint32_t stage = kStageCamera; stage <= kStageAccumulate; ++stage) {
-        std::vector<std::uint32_t> spec = pathSpec(dev, scene, s);
+        std::vector<std::uint32_t> spec = pathSpec(dev, s);
         spec[SPEC_TRACE_MODE] = stage;
         std::vector<vk::BindingDesc> b = pathBindings();
         for (std::uint32_t i = BINDING_WAVE_STATE; i <= BINDING_WAVE_SHADOW_HITS; ++i)
             b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         auto k = std::make_unique<vk::Kernel>(
             ctx, std::span<const std::uint32_t>(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4), std::move(b),
-            sizeof(WaveParams), spec, s.reusePipeline);
-        bindPathInputs(*k, dev, frame, filterTable, accum, counters);
+            sizeof(WaveParams), spec, t.reusePipeline);
+        bindPathInputs(*k, dev, film);
         k->bind(BINDING_WAVE_STATE, m.state);
         k->bind(BINDING_WAVE_HITS, m.hits);
         k->bind(BINDING_WAVE_SHADOW_RAYS, m.shadowRays);
@@ -118,10 +119,15 @@ double WavefrontIntegrator::pipelineMs() const {
 
 bool WavefrontIntegrator::reusedProgram() const { return impl_->stages[gpu::kStageShade]->reusedProgram(); }
 
-double WavefrontIntegrator::sample(std::uint32_t x, std::uint32_t y, std::uint32_t w, std::uint32_t h,
-                                   std::uint32_t sampleIndex) {
+RayCounts WavefrontIntegrator::rays(const gpu::RenderCounters&) const {
+    return countRays_ ? RayCounts{closestRays_, shadowRays_} : RayCounts{};
+}
+
+double WavefrontIntegrator::addSample(VkCommandBuffer, const gpu::DispatchParams& tile) {
     using namespace gpu;
     Impl& m = *impl_;
+    const std::uint32_t x = tile.tileX, y = tile.tileY, w = tile.tileW, h = tile.tileH;
+    const std::uint32_t sampleIndex = tile.sampleIndex;
     const std::uint32_t n = w * h;
     double seconds = 0.0;
     // The lists of bounce `cur`: rays[cur] and live[cur] are traced and

@@ -1,4 +1,4 @@
-#include "render/stats.h"
+#include "render/report.h"
 
 #include <cstdio>
 #include <sstream>

@@ -5,8 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "bvh/bvh.h"
-#include "bvh/wide.h"
+#include "bvh/scene_bvh.h"
 #include "scene/scene.h"
 
 namespace strata {
@@ -44,13 +43,14 @@ struct GpuScene {
     glm::vec3 envScale{0.0f};               // Environment::scale
     float envRotation = 0.0f;               // radians about +Y
     std::uint32_t envWidth = 0, envHeight = 0;  // 0 without a map
-    std::vector<glm::vec4> envTexels;       // RGBA32F, row 0 at the top (render/env_tables.h)
-    std::vector<float> envTables;           // sampling tables (render/env_tables.h)
+    std::vector<glm::vec4> envTexels;       // RGBA32F, row 0 at the top (pack/env_tables.h)
+    std::vector<float> envTables;           // sampling tables (pack/env_tables.h)
     SceneFeatures features;
     BvhStats bvh;
 };
 
-// Builds the BVH and packs everything. Emitters are the triangles for which
+// Lays the scene out in the order of its BVH (bvh/scene_bvh.h) and packs
+// everything. Emitters are the triangles for which
 // isEmitter (scene.h) holds, the punctual lights and the environment. The
 // alias table's weights are estimated powers (any positive choice is
 // unbiased; these make the choice roughly proportional to contribution),
@@ -60,7 +60,7 @@ struct GpuScene {
 //   spot         2 pi (1 - (cos inner + cos outer) / 2) Y(I)
 //   directional  pi R^2 Y(E)
 //   environment  pi R^2 * 4 pi * (solid-angle mean of Y(L))   (as pbrt-v4)
-GpuScene packScene(const Scene& scene, const BvhBuildOptions& options = {});
+GpuScene packScene(const Scene& scene, SceneBvh bvh);
 
 // The same, consuming the scene's geometry (releaseGeometry(scene) done):
 // each page of the triangles is handed back as soon as it has been read, so
@@ -68,7 +68,7 @@ GpuScene packScene(const Scene& scene, const BvhBuildOptions& options = {});
 // bvhWidth 4 (the traversal the scene will get, as uploadScene's) also drops
 // `nodes`, the BVH2, once the four-wide tree is built, where that tree is
 // shallow enough to be traversed; bvhWidth 2 keeps it.
-GpuScene packSceneAndRelease(Scene& scene, const BvhBuildOptions& options = {}, int bvhWidth = 4);
+GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth = 4);
 
 // Fills FrameUniforms.counts.x and the env* members from the packed scene.
 void setLightUniforms(gpu::FrameUniforms& frame, const GpuScene& scene);

@@ -1,4 +1,4 @@
-#include "render/sample_dump.h"
+#include "measure/sample_dump.h"
 
 #include <algorithm>
 #include <cstring>
@@ -8,7 +8,8 @@
 
 #include "../../shaders/shared/bindings.h"
 #include "../../shaders/shared/types.h"
-#include "render/device_scene.h"
+#include "integrate/kernels.h"
+#include "upload/device_scene.h"
 #include "render/filter.h"
 #include "render/sampler_kind.h"
 #include "vk/buffer.h"

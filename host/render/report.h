@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/gpu_scene.h"
+#include "pack/gpu_scene.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "vk/context.h"

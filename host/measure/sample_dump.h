@@ -10,7 +10,7 @@
 
 #include "../../shaders/shared/types.h"
 #include "render/filter.h"
-#include "render/gpu_scene.h"
+#include "pack/gpu_scene.h"
 #include "vk/context.h"
 
 namespace strata {

@@ -1,4 +1,4 @@
-#include "render/gpu_scene.h"
+#include "pack/gpu_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <optional>
 #include <type_traits>
 
-#include "render/env_tables.h"
-#include "render/gpu_textures.h"
+#include "pack/env_tables.h"
+#include "pack/textures.h"
 #include "util/memory.h"
 
 namespace strata {
@@ -229,24 +229,18 @@ struct BvhOrderSource {
 // so the host never holds it twice) or const Scene (gathered in BVH order,
 // left as it was).
 template <class S>
-GpuScene pack(S& scene, const BvhBuildOptions& options, int bvhWidth) {
+GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
     constexpr bool consume = !std::is_const_v<S>;
     GpuScene g;
     g.source = scene.path;
     const std::size_t n = scene.triangles.size();
     g.triangleCount = n;
-    TriangleVertices view;
-    if (n > 0)
-        for (int k = 0; k < 3; ++k) view.base[k] = reinterpret_cast<const std::byte*>(&scene.triangles[0].v[k]);
-    view.stride = sizeof(Triangle);
-    view.count = n;
-    Bvh bvh = buildBvh(view, options);
+    Bvh& bvh = sceneBvh.binary;
     g.nodes = std::move(bvh.nodes);
-    WideBvh wide = collapseBvh4(g.nodes, unsigned(std::max(options.threads, 0)));
-    g.wide = std::move(wide.nodes);
-    g.wideDepth = wide.maxDepth;
-    g.wideSahCost = wide.sahCost;
-    g.wideBuildMs = wide.buildMs;
+    g.wide = std::move(sceneBvh.wide.nodes);
+    g.wideDepth = sceneBvh.wide.maxDepth;
+    g.wideSahCost = sceneBvh.wide.sahCost;
+    g.wideBuildMs = sceneBvh.wide.buildMs;
     if (consume && bvhWidth == 4 && bvhRegsFor(g.wideDepth) > 0)
         std::vector<gpu::BvhNode>().swap(g.nodes);  // the four-wide tree will be traversed
     g.bvh = bvh.stats;
@@ -370,12 +364,8 @@ GpuScene pack(S& scene, const BvhBuildOptions& options, int bvhWidth) {
 
 }  // namespace
 
-GpuScene packScene(const Scene& scene, const BvhBuildOptions& options) {
-    return pack(scene, options, 2);
-}
+GpuScene packScene(const Scene& scene, SceneBvh bvh) { return pack(scene, std::move(bvh), 2); }
 
-GpuScene packSceneAndRelease(Scene& scene, const BvhBuildOptions& options, int bvhWidth) {
-    return pack(scene, options, bvhWidth);
-}
+GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth) { return pack(scene, std::move(bvh), bvhWidth); }
 
 }  // namespace strata

@@ -1,0 +1,56 @@
+// The megakernel: shaders/pathtrace.comp, one path per invocation, both
+// traversals inlined; every dispatch is recorded into the loop's command
+// buffer.
+#include <memory>
+
+#include "../../shaders/shared/bindings.h"
+#include "integrate/integrator.h"
+#include "integrate/wavefront.h"
+#include "vk/kernel.h"
+
+namespace strata {
+namespace {
+
+class Megakernel final : public Integrator {
+public:
+    Megakernel(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s, const RenderTuning& t,
+               const FilmBuffers& film) {
+        using namespace gpu;
+        std::vector<std::uint32_t> spec = pathSpec(dev, s);
+        spec[SPEC_COUNT_RAYS] = t.countRays ? 1u : 0u;
+        spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, t.workQueue) ? 1u : 0u;
+        kernel_ = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true), pathBindings(),
+                                               sizeof(DispatchParams), spec, t.reusePipeline);
+        bindPathInputs(*kernel_, dev, film);
+    }
+
+    double addSample(VkCommandBuffer cmd, const gpu::DispatchParams& p) override {
+        kernel_->dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
+        ++dispatches_;
+        return 0.0;
+    }
+    RayCounts rays(const gpu::RenderCounters& c) const override {
+        return {(static_cast<std::uint64_t>(c.closestHi) << 32) | c.closestLo,
+                (static_cast<std::uint64_t>(c.shadowHi) << 32) | c.shadowLo};
+    }
+    std::uint64_t dispatches() const override { return dispatches_; }
+    void resetCounts() override { dispatches_ = 0; }  // the device's counters are cleared by the loop
+    double pipelineMs() const override { return kernel_->pipelineMs(); }
+    bool reusedProgram() const override { return kernel_->reusedProgram(); }
+
+private:
+    std::unique_ptr<vk::Kernel> kernel_;
+    std::uint64_t dispatches_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> makeIntegrator(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s,
+                                           const RenderTuning& t, std::uint32_t maxTilePixels,
+                                           const FilmBuffers& film) {
+    if (s.integrator == IntegratorKind::Wavefront)
+        return std::make_unique<WavefrontIntegrator>(ctx, dev, s, t, maxTilePixels, film);
+    return std::make_unique<Megakernel>(ctx, dev, s, t, film);
+}
+
+}  // namespace strata

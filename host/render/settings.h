@@ -1,0 +1,68 @@
+// What a render is asked for (RenderSettings: the command line's flags) and
+// how the progressive loop dispatches and measures it (RenderTuning: knobs
+// that tests and `strata bench` turn; `strata render` keeps the defaults).
+#pragma once
+#include <cstdint>
+
+#include "../../shaders/shared/types.h"
+#include "render/filter.h"
+#include "upload/device_scene.h"
+
+namespace strata {
+
+// How a sample is taken: pathtrace.comp, one invocation per path with both
+// traversals inlined (the megakernel), or the wavefront integrator's stages
+// with every traversal in the trace kernel (integrate/wavefront.h).
+enum class IntegratorKind { Megakernel, Wavefront };
+
+// SPEC_WORK_QUEUE (integrate/kernels.h, useWorkQueue): whether the trace
+// kernel's subgroups take their rays from a counter (BINDING_WORK;
+// shaders/trace.comp) instead of by workgroup index, and the path tracer
+// shades a tile's 8x8 blocks in a permuted order (shaders/pathtrace.comp). lavapipe splits a dispatch's workgroups into one
+// contiguous share per thread, so uneven rows or a core slowed by other
+// processes left a thread idle; a GPU schedules workgroups itself. Auto: on
+// for CPU devices; never with subgroups wider than 64.
+enum class WorkQueue { Auto, On, Off };
+
+struct RenderSettings {
+    int width = 512;
+    int height = 512;
+    std::uint32_t spp = 64;
+    std::uint32_t seed = 0;
+    std::uint32_t maxDepth = 16;        // scattering events (pbrt's convention)
+    double timeLimit = 0.0;             // seconds; 0 = none. Stops after the submission in progress
+    bool progress = false;              // progress line on stderr
+    ReadMode reads = ReadMode::Auto;    // --reads: the scene arrays through texel views or storage
+    int bvhWidth = 4;                   // 4: four-wide BVH where it fits (upload/device_scene.h), 2: BVH2
+    BvhStack bvhStack = BvhStack::Auto; // the four-wide traversal's stack (upload/device_scene.h)
+    std::uint32_t sampler = gpu::kSamplerSobol;  // gpu::kSampler* (render/sampler_kind.h names them)
+    PixelFilter filter;                 // pixel reconstruction filter (box, radius 0.5)
+    std::uint32_t mis = gpu::kMisPower; // gpu::kMis*: light and BSDF sampling by the power
+                                        // heuristic, or one technique alone (for comparisons)
+    IntegratorKind integrator = IntegratorKind::Megakernel;
+};
+
+struct RenderTuning {
+    std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
+    double submitSeconds = 0.25;        // target wall time of one submission (sets how many
+                                        // samples each carries; never changes the image)
+    std::uint32_t tileSize = 512;       // a dispatch covers at most tileSize^2 pixels
+    std::uint32_t fixedBatch = 0;       // samples per submission (cut at folds and checkpoints);
+                                        // 0: adapt to submitSeconds
+    bool warmUp = false;                // one dispatch (a tile of at most 64x64 pixels, sample 0)
+                                        // before the loop, timed apart and cleared from the image
+    bool countRays = true;              // SPEC_COUNT_RAYS: closest/shadow ray counters
+    WorkQueue workQueue = WorkQueue::Auto;  // SPEC_WORK_QUEUE (above)
+    SceneLimits limits;                 // lower device limits to plan the scene against (0: the
+                                        // device's; upload/device_scene.h)
+    bool reusePipeline = true;          // share the compiled pipeline of an earlier render with the
+                                        // same shader and constants (vk::Kernel's reuse; bench
+                                        // turns it off to time pipeline creation)
+};
+
+// The upload the settings ask for, planned against tuning.limits.
+inline UploadOptions uploadOptions(const RenderSettings& s, const RenderTuning& t = {}) {
+    return {s.reads, s.bvhWidth, s.bvhStack, t.limits};
+}
+
+}  // namespace strata

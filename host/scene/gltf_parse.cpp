@@ -1,0 +1,236 @@
+// Reading a glTF file: the bytes (.gltf JSON or .glb binary), the uris it
+// names (next to the file only), tinygltf's parse with its messages made
+// one line, and the extensions strata reads.
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <filesystem>
+#include <string_view>
+
+#include "scene/gltf_internal.h"
+#include "util/error.h"
+#include "util/files.h"
+#include "util/memory.h"
+
+namespace strata::gltf {
+
+namespace {
+
+// Extensions strata reads; others named in extensionsUsed are ignored with a
+// warning, and in extensionsRequired are an error.
+constexpr std::array<std::string_view, 6> kSupportedExtensions = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
+    "KHR_materials_specular", "KHR_materials_transmission", "KHR_texture_transform"};
+
+std::string supportedList() {
+    std::string out;
+    for (auto e : kSupportedExtensions) out += (out.empty() ? "" : ", ") + std::string(e);
+    return out;
+}
+
+std::vector<unsigned char> readFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) fail(path, "cannot read file: is a directory");
+    errno = 0;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                         &std::fclose);
+    if (!file) fail(path, std::string("cannot open file: ") + std::strerror(errno));
+    std::vector<unsigned char> bytes;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec) bytes.reserve(size);  // one allocation (not a doubling vector) for a regular file
+    unsigned char chunk[1 << 16];
+    std::size_t got = 0;
+    while ((got = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) {
+        bytes.insert(bytes.end(), chunk, chunk + got);
+    }
+    if (std::ferror(file.get()))
+        fail(path, std::string("cannot read file: ") + std::strerror(errno));
+    return bytes;
+}
+
+bool hasGlbMagic(const std::vector<unsigned char>& bytes) {
+    return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+bool hasGlbExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".glb";
+}
+
+// Files named by uris (buffers, images) are looked up next to the glTF file
+// only (tinygltf also tries the working directory); misses are recorded.
+struct FsContext {
+    std::string prefix;                // base directory ending in '/'
+    std::vector<std::string> missing;  // paths looked up and not found
+    std::string unreadable;            // the first uri that names a directory or an empty file
+};
+
+bool fileExists(const std::string& file, void* user) {
+    auto* context = static_cast<FsContext*>(user);
+    if (file.rfind(context->prefix, 0) != 0) return false;
+    if (tinygltf::FileExists(file, nullptr)) return true;
+    context->missing.push_back(file);
+    return false;
+}
+
+std::string keepPath(const std::string& file, void*) { return file; }
+
+// tinygltf's reader, but a directory or an empty file is refused with a
+// message of ours (a directory made tinygltf allocate its bogus size and
+// fail with std::bad_alloc; an empty image was a warning, then an error).
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+    auto* context = static_cast<FsContext*>(user);
+    if (const Unusable u = unusableInput(file); u != Unusable::No) {
+        const char* what = u == Unusable::Directory ? "a directory" : "an empty file";
+        if (context->unreadable.empty()) {
+            const std::string uri = file.rfind(context->prefix, 0) == 0 ? file.substr(context->prefix.size()) : file;
+            context->unreadable = "unreadable file: uri " + gltf::quoted(uri) + " refers to " + file + ", which is " + what;
+        }
+        if (err) *err += context->unreadable + "\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, file, nullptr);
+}
+
+// tinygltf's stb_image loader (RGBA, 8 or 16 bits), with the failure kept
+// as one message naming the image instead of tinygltf's multi-line text.
+struct ImageContext {
+    std::string failure;
+};
+
+bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
+                 int width, int height, const unsigned char* bytes, int size, void* user) {
+    std::string ignored;
+    if (tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
+        return true;
+    auto* context = static_cast<ImageContext*>(user);
+    std::string label = "image " + std::to_string(index);
+    if (!image->uri.empty()) {
+        label += " (" + gltf::quoted(image->uri) + ")";
+    } else if (!image->name.empty()) {
+        label += " (" + gltf::quoted(image->name) + ")";
+    }
+    context->failure = label + ": cannot decode " + std::to_string(size) +
+                       " bytes: corrupt, too large, or not a PNG/JPEG that stb_image reads";
+    if (err) *err += context->failure + "\n";
+    return false;
+}
+
+// Little-endian u32 at `offset`.
+std::uint32_t readU32(const std::vector<unsigned char>& bytes, std::size_t offset) {
+    return static_cast<std::uint32_t>(bytes[offset]) |
+           static_cast<std::uint32_t>(bytes[offset + 1]) << 8 |
+           static_cast<std::uint32_t>(bytes[offset + 2]) << 16 |
+           static_cast<std::uint32_t>(bytes[offset + 3]) << 24;
+}
+
+// GLB header: magic, version 2, total length <= file size.
+void checkGlbHeader(const std::string& path, const std::vector<unsigned char>& bytes) {
+    if (bytes.size() < 12)
+        fail(path, "truncated GLB: " + std::to_string(bytes.size()) +
+                       " bytes is shorter than the 12-byte header");
+    const std::uint32_t version = readU32(bytes, 4);
+    if (version != 2)
+        fail(path, "GLB version " + std::to_string(version) + " is not supported; only 2");
+    const std::uint32_t length = readU32(bytes, 8);
+    if (length > bytes.size()) {
+        fail(path, "truncated GLB: the header says " + std::to_string(length) +
+                       " bytes but the file has " + std::to_string(bytes.size()));
+    }
+}
+
+bool isSupported(const std::string& extension) {
+    return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), extension) !=
+           kSupportedExtensions.end();
+}
+
+}  // namespace
+
+tinygltf::Model parseModel(const std::string& path) {
+    const std::vector<unsigned char> bytes = readFile(path);
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
+        fail(path, "file is larger than 4 GiB");
+    }
+    const bool binary = hasGlbMagic(bytes);
+    if (binary) {
+        checkGlbHeader(path, bytes);
+    } else if (hasGlbExtension(path)) {
+        fail(path, "not a binary glTF file: it does not start with the 'glTF' magic");
+    } else if (bytes.empty()) {
+        fail(path, "empty file");
+    } else {
+        // JSON glTF is a UTF-8 object: '{' after any whitespace (and a byte
+        // order mark, which the spec forbids but some writers emit).
+        std::size_t i = bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF ? 3 : 0;
+        while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r')) ++i;
+        if (i == bytes.size() || bytes[i] != '{')
+            fail(path, "not a glTF file: neither a JSON object (it does not start with '{') nor binary glTF "
+                       "(no 'glTF' magic)");
+    }
+    std::string baseDir = std::filesystem::path(path).parent_path().string();
+    if (baseDir.empty()) baseDir = ".";
+
+    FsContext fsContext;
+    fsContext.prefix = baseDir.back() == '/' ? baseDir : baseDir + "/";
+    tinygltf::TinyGLTF context;
+    context.SetFsCallbacks(
+        {&fileExists, &keepPath, &readWholeFile, &tinygltf::WriteWholeFile, &fsContext});
+    ImageContext imageContext;
+    context.SetImageLoader(&decodeImage, &imageContext);
+    tinygltf::Model model;
+    std::string err;
+    std::string warnings;
+    bool ok = false;
+    try {
+        const auto size = static_cast<unsigned int>(bytes.size());
+        if (binary) {
+            ok = context.LoadBinaryFromMemory(&model, &err, &warnings, bytes.data(), size, baseDir);
+        } else {
+            ok = context.LoadASCIIFromString(&model, &err, &warnings,
+                                             reinterpret_cast<const char*>(bytes.data()), size,
+                                             baseDir);
+        }
+    } catch (const std::exception& e) {
+        fail(path, std::string("invalid glTF: ") + gltf::oneLine(e.what()));
+    }
+    if (!fsContext.unreadable.empty()) fail(path, fsContext.unreadable);
+    if (!imageContext.failure.empty()) fail(path, imageContext.failure);
+    // tinygltf only warns about a missing image file; strata fails on it.
+    if (!fsContext.missing.empty()) {
+        const std::string& file = fsContext.missing.front();
+        fail(path, "missing file: uri " + quoted(file.substr(fsContext.prefix.size())) + " refers to " + file +
+                       ", which does not exist");
+    }
+    // Anything in err fails, also when tinygltf loads on: it reports some
+    // malformed required properties there and drops them (a primitive's
+    // 'attributes' that are not accessor indices, and its mesh with them),
+    // which would otherwise surface as a misleading error later.
+    const std::string why = gltf::oneLine(err);
+    if (!ok || !why.empty()) fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
+    const std::string notes = gltf::oneLine(warnings);
+    if (!notes.empty()) warn(path, notes);
+    return model;
+}
+
+void checkExtensions(const std::string& path, const tinygltf::Model& model) {
+    std::string required;
+    for (const auto& e : model.extensionsRequired) {
+        if (!isSupported(e)) required += (required.empty() ? "" : ", ") + e;
+    }
+    if (!required.empty()) {
+        fail(path, "unsupported required extension(s): " + gltf::oneLine(required) +
+                       " (supported: " + supportedList() + ")");
+    }
+    std::string used;
+    for (const auto& e : model.extensionsUsed) {
+        if (!isSupported(e)) used += (used.empty() ? "" : ", ") + e;
+    }
+    if (!used.empty()) warn(path, "unsupported extension(s) used, ignored: " + gltf::oneLine(used));
+}
+
+}  // namespace strata::gltf
