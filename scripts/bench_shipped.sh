@@ -1,5 +1,5 @@
 #!/bin/bash
-# The README's table of the shipped scenes: `strata bench --only traversal`
+# The shipped scenes' table of docs/benchmarks.md: `strata bench --only traversal`
 # side by side with the Embree peer (shared/peers/embree-rays, MEDIUM BVH,
 # the same threads) in alternated rounds, and path tracing against a
 # reference rendered here. Usage:

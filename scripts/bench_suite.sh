@@ -1,5 +1,5 @@
 #!/bin/bash
-# The traversal comparison of the README's benchmark section on any device:
+# The traversal comparison of docs/benchmarks.md on any device:
 # generates the bench scenes, runs `strata bench --only traversal` for the
 # BVH2 and both four-wide stacks, then the full `strata bench` (default
 # choices) per scene, and prints one table. Usage:

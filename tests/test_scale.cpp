@@ -2,7 +2,7 @@
 // per-triangle array and the emitters are read through texel views, each
 // descriptor stays within the device's limits, and a scene beyond what the
 // device can address at all is a one-line error. Lowered limits
-// (RenderSettings::limits) take small scenes down the large-scene path.
+// (RenderTuning::limits) take small scenes down the large-scene path.
 #include <doctest/doctest.h>
 
 #include <algorithm>

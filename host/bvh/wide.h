@@ -19,10 +19,9 @@ namespace strata {
 // than that is traversed as the BVH2.
 inline constexpr std::uint32_t kBvhMaxRegs = gpu::kBvhMaxWideDepth;
 
-// SAH cost of a wide node visit, in triangle tests. On lavapipe a node pass
-// costs about as much as two triangle passes, but a higher cost (fewer,
-// fuller nodes over somewhat larger leaves) measured better: iterations per
-// subgroup fell 5-7% at 3 against 2-5% at 2 (docs/design-notes.md).
+// SAH cost of a wide node visit, in triangle tests: higher than a node
+// pass's instruction count alone suggests, for fewer and fuller nodes over
+// somewhat larger leaves (docs/experiments.md, the collapse).
 inline constexpr float kWideNodeCost = 3.0f;
 // Most triangles in a leaf made from a BVH2 subtree (the BVH2's own leaves
 // keep their size).

@@ -108,7 +108,7 @@ nlohmann::ordered_json benchPathTracing(const vk::Context& ctx, const GpuScene& 
         j["reference"] = cmd.reference;
         j["relmse"] = m.relMse;
         j["rmse"] = m.rmse;
-        // 1 / (relMSE x device seconds): speed and error in one figure (README, Speed against error).
+        // 1 / (relMSE x device seconds): speed and error in one figure (docs/benchmarks.md).
         j["efficiency"] = m.relMse > 0.0 && r.deviceSeconds > 0.0 ? nlohmann::ordered_json(1.0 / (m.relMse * r.deviceSeconds))
                                                                   : nlohmann::ordered_json(nullptr);
     } else {

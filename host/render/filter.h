@@ -29,10 +29,10 @@ double filterValue(const PixelFilter& f, double x);
 
 // Offsets (pixels) at u = i / (gpu::kFilterTableEntries - 1): the inverse of
 // the normalised CDF of filterValue, from a fine piecewise-linear
-// integration. The table is fine enough (16385 entries) that its piecewise
-// linear inverse is indistinguishable from the filter by the chi-square
-// test at 500k samples; 1025 entries were not, in the Gaussian's and
-// Blackman-Harris's tails.
+// integration, kFilterTableEntries (16385) entries: the chi-square test at
+// 500k samples cannot tell its piecewise-linear inverse from the filter,
+// where it can with 1025 entries in the Gaussian's and Blackman-Harris's
+// tails.
 std::vector<float> filterInverseCdf(const PixelFilter& f);
 
 }  // namespace strata

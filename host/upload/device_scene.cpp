@@ -182,8 +182,7 @@ std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Read
     }
     if (mode == ReadMode::Texel) return gpu::kReadsTexelBvh;
     // CPU devices: every array through texel views where they all fit (a
-    // divergent storage load is a scalar loop on lavapipe): path tracing
-    // 1.13x on the Cornell box, 0.98-1.02x elsewhere, against the BVH alone.
+    // divergent storage load is a scalar loop on lavapipe).
     if (cpuDevice && !beyondTexel) return gpu::kReadsTexelAll;
     return cpuDevice && !bvhBeyondTexel ? gpu::kReadsTexelBvh : gpu::kReadsStorage;
 }

@@ -2,9 +2,10 @@
 // per-triangle arrays and the emitters are bound twice, as storage buffers and
 // through RGBA32UI texel views of the same VkBuffer; SPEC_TEXEL_FETCH (kReads*,
 // shaders/shared/types.h) says which of the two the shaders read. Texel reads
-// are faster on lavapipe (DESIGN.md) and reach maxTexelBufferElements texels
-// (2 GiB there) where a storage descriptor reaches maxStorageBufferRange (128
-// MiB there), so scenes beyond the storage range read everything through them.
+// are faster on lavapipe (docs/architecture.md, device facts) and reach
+// maxTexelBufferElements texels (2 GiB there) where a storage descriptor
+// reaches maxStorageBufferRange (128 MiB there), so scenes beyond the storage
+// range read everything through them.
 #pragma once
 #include <cstdint>
 #include <span>

@@ -20,9 +20,8 @@ inline std::uint64_t peakRssBytes() {
 // Asks the kernel for 2 MiB pages in [p, p + bytes) (MADV_HUGEPAGE: in THP's
 // "madvise" mode, Debian's default, only memory so advised gets them): a
 // large array then takes one page fault per 2 MiB instead of one per 4 KiB
-// when first written, which otherwise costs more than filling it (zero-
-// filling 960 MB: 400 ms with 4 KiB pages, 133 ms with 2 MiB, on the 2-core
-// test machine). Advice only; arrays under 2 MiB are left alone.
+// when first written (on 4 KiB pages the faults cost more than the filling:
+// docs/experiments.md). Advice only; arrays under 2 MiB are left alone.
 inline void adviseHugePages(const void* p, std::size_t bytes) {
 #ifdef MADV_HUGEPAGE
     constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;

@@ -57,8 +57,8 @@ public:
     // `spirv` is the module's words; specialization constant i gets value
     // specConstants[i] (all 32-bit). With `reuse`, a Program compiled for a
     // Kernel of the same words, bindings, push-constant size and constants
-    // is shared instead of compiled again (lavapipe's
-    // pipeline cache keeps nothing, and a compile takes ~0.4 s there); each
+    // is shared instead of compiled again (lavapipe's pipeline cache keeps
+    // nothing, and LLVM compiles the path tracer anew each time); each
     // Kernel still has its own descriptor set.
     Kernel(const Context& ctx, std::span<const std::uint32_t> spirv,
            std::vector<BindingDesc> bindings, std::uint32_t pushConstantBytes,
