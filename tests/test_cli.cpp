@@ -113,7 +113,7 @@ TEST_CASE("an output that cannot be written fails before any work, and nothing i
     }
 }
 
-TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
+TEST_CASE("render writes EXR and PNG from one run, and devices lists the device") {
     TempDir out;
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
     const Run r = run("render " + scene + " -o " + (out.path / "c.exr").string() + " -o " +
@@ -131,7 +131,7 @@ TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
     CHECK(d.output.find("0: ") == 0);
 }
 
-TEST_CASE("OpenImageIO is a module loaded for images only; without it an image is a one-line error") {
+TEST_CASE("OpenImageIO is a module loaded for images only, and without it an image is a one-line error") {
     // strata itself does not link OpenImageIO (its libraries' start-up cost
     // every command ~0.25 s): the executable's dependencies do not name it.
     const Run deps = runShell("ldd " + std::string(STRATA_EXE));
