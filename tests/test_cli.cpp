@@ -4,12 +4,13 @@
 
 #include "cli_util.h"
 
-
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include "cli/commands.h"
 
 namespace fs = std::filesystem;
 using namespace strata::test;
@@ -17,6 +18,12 @@ using namespace strata::test;
 namespace {
 
 const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
+
+// `strata ARGS` with its standard output only (or, with `stream` "2>&1
+// >/dev/null", its standard error only).
+Run runOneStream(const std::string& args, const std::string& stream = "2>/dev/null") {
+    return runShell("{ " + std::string(STRATA_EXE) + " " + args + " " + stream + "; }");
+}
 
 }  // namespace
 
@@ -212,4 +219,52 @@ TEST_CASE("samples whose float sums overflow are left out with one warning, and 
     CHECK(r.output.find(" of 16384 samples were NaN or Inf and were left out of the image") != std::string::npos);
     const Run c = run("compare " + (d.path / "hot.exr").string() + " " + (d.path / "hot.exr").string());
     CHECK(c.output.find(", 0 non-finite (excluded)") != std::string::npos);
+}
+
+TEST_CASE("strata --help lists every command, and strata alone prints the same to stderr and exits 2") {
+    for (const char* flag : {"--help", "-h", "help"}) {
+        CAPTURE(flag);
+        const Run r = runOneStream(flag);
+        CHECK(r.status == 0);
+        for (const char* command : {"render", "reference", "compare", "converge", "edges", "bench", "devices"})
+            CHECK(r.output.find("\n  " + std::string(command) + " ") != std::string::npos);
+        CHECK(r.output.find("'strata COMMAND --help'") != std::string::npos);
+    }
+    const Run bare = runOneStream("", "2>&1 >/dev/null");
+    CHECK(bare.status == 2);
+    CHECK(bare.output == runOneStream("--help").output);
+}
+
+TEST_CASE("COMMAND --help prints the command's usage and every flag of its table, and does nothing else") {
+    for (const strata::cli::CommandInfo& c : strata::cli::commands()) {
+        CAPTURE(c.name);
+        const Run r = runOneStream(c.name + " --help");
+        CHECK(r.status == 0);
+        CHECK(r.output.rfind("usage: strata " + c.name, 0) == 0);
+        for (const std::string& flag : c.flags()) {
+            CAPTURE(flag);
+            CHECK(r.output.find(flag) != std::string::npos);
+        }
+        CHECK(run("help " + c.name).output == r.output);
+        CHECK(run(c.name + " -h").output == r.output);
+    }
+    const std::string render = run("render --help").output;
+    for (const char* flag : {"--spp N", "--traversal auto|texel|storage", "--env MAP", "-o, --output FILE"})
+        CHECK(render.find(flag) != std::string::npos);
+    CHECK(run("converge --help").output.find("--reference REF.exr") != std::string::npos);
+    // Help ignores the rest of the line: no scene is loaded, no value checked,
+    // no device opened, nothing written.
+    TempDir out;
+    for (const std::string& args : std::vector<std::string>{
+             "render /nonexistent/scene.gltf --spp 0 --bogus -o " + out / "a.exr" + " --help",
+             "reference --help /nonexistent/scene.gltf", "bench /nonexistent/scene.gltf -h --json " + out / "b.json",
+             "converge --device 99 --help", "edges --spp 0 -h -o " + out / "t.csv", "devices --help",
+             "compare --help"}) {
+        CAPTURE(args);
+        const Run r = run(args, "STRATA_OIIO_MODULE=/nonexistent/libstrata_oiio.so");
+        CHECK(r.status == 0);
+        CHECK(r.output.find("error:") == std::string::npos);
+        CHECK(r.output.find("strata: device") == std::string::npos);
+        CHECK(out.empty());
+    }
 }
