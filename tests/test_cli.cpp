@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/commands.h"
 
 namespace fs = std::filesystem;
@@ -249,7 +251,7 @@ TEST_CASE("COMMAND --help prints the command's usage and every flag of its table
         CHECK(run(c.name + " -h").output == r.output);
     }
     const std::string render = run("render --help").output;
-    for (const char* flag : {"--spp N", "--traversal auto|texel|storage", "--env MAP", "-o, --output FILE"})
+    for (const char* flag : {"--spp N", "--reads auto|texel|storage", "--env MAP", "-o, --output FILE"})
         CHECK(render.find(flag) != std::string::npos);
     CHECK(run("converge --help").output.find("--reference REF.exr") != std::string::npos);
     // Help ignores the rest of the line: no scene is loaded, no value checked,
@@ -267,4 +269,27 @@ TEST_CASE("COMMAND --help prints the command's usage and every flag of its table
         CHECK(r.output.find("strata: device") == std::string::npos);
         CHECK(out.empty());
     }
+}
+
+TEST_CASE("cli: render --reads and its old name --traversal both choose the read mode, and give the same image") {
+    TempDir out;
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    for (const char* flag : {"--reads", "--traversal"}) {
+        CAPTURE(flag);
+        const std::string name = std::string(flag).substr(2);
+        const Run r = run("render " + scene + kSmall + " " + flag + " storage -o " + out / (name + ".exr") +
+                          " --stats-json " + out / (name + ".json"));
+        CAPTURE(r.output);
+        REQUIRE(r.status == 0);
+        std::ifstream f(out / (name + ".json"));
+        CHECK(nlohmann::json::parse(f)["render"]["traversal"] == "storage");
+    }
+    const Run c = run("compare " + out / "reads.exr" + " " + out / "traversal.exr" + " --json " + out / "c.json");
+    REQUIRE(c.status == 0);
+    std::ifstream f(out / "c.json");
+    CHECK(nlohmann::json::parse(f)["max_abs"].get<double>() == 0.0);
+    const Run bad = run("render " + scene + kSmall + " --reads fast -o " + out / "bad.exr");
+    CHECK(bad.status == 2);
+    CHECK(bad.output == "strata: error: --reads expects auto, texel or storage, got 'fast'\n");
+    CHECK(!fs::exists(out / "bad.exr"));
 }

@@ -65,6 +65,18 @@ TEST_CASE("cli parser: --filter-radius overrides the filter's own radius in eith
     CHECK(cli::parseRender({"s.gltf", "--filter", "gaussian"}).settings.filter.radius == 1.5f);
 }
 
+TEST_CASE("cli parser: --reads and its old name --traversal set the read mode") {
+    CHECK(cli::parseRender({"s.gltf", "--reads", "storage"}).settings.traversal == Traversal::Storage);
+    CHECK(cli::parseRender({"s.gltf", "--traversal", "texel"}).settings.traversal == Traversal::Texel);
+    CHECK(cli::parseBench({"s.gltf", "--reads", "texel"}).traversal == Traversal::Texel);
+    CHECK(cli::parseBench({"s.gltf", "--traversal", "storage"}).traversal == Traversal::Storage);
+    // The error names the flag as written.
+    CHECK(errorOf(cli::parseRender, {"s.gltf", "--reads", "fast"}) ==
+          "strata: error: --reads expects auto, texel or storage, got 'fast'");
+    CHECK(errorOf(cli::parseBench, {"s.gltf", "--traversal", "fast"}) ==
+          "strata: error: --traversal expects auto, texel or storage, got 'fast'");
+}
+
 TEST_CASE("cli parser: the shared groups set each command's own fields") {
     const BenchCommand b = cli::parseBench({"s.gltf", "--seed", "7", "--max-depth", "3", "--bvh", "2", "--env-color",
                                             "1,2,3", "--env-rotate", "-30", "--integrator", "wavefront"});
@@ -145,7 +157,9 @@ TEST_CASE("cli help: each command's help shows every flag of its table, with met
     const std::string render = flat(cli::findCommand("render")->help());
     CHECK(render.find("--spp N ") != std::string::npos);
     CHECK(render.find("in [1, 1073741824] (default: 64)") != std::string::npos);
+    CHECK(render.find("--reads auto|texel|storage") != std::string::npos);
     CHECK(render.find("--traversal auto|texel|storage") != std::string::npos);
+    CHECK(render.find("(old name of --reads)") != std::string::npos);
     CHECK(render.find("(default: sobol)") != std::string::npos);
     CHECK(flat(cli::findCommand("converge")->help()).find("(default: 1,2,4,8,16,32,64,128,256)") != std::string::npos);
     CHECK(flat(cli::findCommand("edges")->help()).find("(default: all)") != std::string::npos);

@@ -69,7 +69,7 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
     };
 }
 
-// --bvh, --bvh-stack, --traversal, --integrator.
+// --bvh, --bvh-stack, --reads (formerly --traversal), --integrator.
 template <class T, class Settings>
 std::vector<Flag<T>> traceFlags(Settings settings) {
     return {
@@ -82,13 +82,14 @@ std::vector<Flag<T>> traceFlags(Settings settings) {
                              {"registers", BvhStack::Registers},
                              {"memory", BvhStack::Memory}},
                             [settings](auto& c) -> auto& { return settings(c).bvhStack; }),
-        choice<T, Traversal>("--traversal",
+        choice<T, Traversal>("--reads",
                              "how the scene arrays are read: texel (the BVH through texel views, the rest through "
                              "storage buffers) or storage (every array through storage buffers); auto: every array "
                              "through texel views on CPU devices, storage buffers elsewhere, texel views for a scene "
                              "past the storage range",
                              {{"auto", Traversal::Auto}, {"texel", Traversal::Texel}, {"storage", Traversal::Storage}},
-                             [settings](auto& c) -> auto& { return settings(c).traversal; }),
+                             [settings](auto& c) -> auto& { return settings(c).traversal; })
+            .withOldName("--traversal"),
         choice<T, Integrator>("--integrator",
                               "one path per invocation (megakernel), or stages with ray lists on the device "
                               "(wavefront); the same image",
