@@ -6,14 +6,32 @@
 #include <string>
 #include <vector>
 
+#include <vulkan/vulkan.h>
+
 #include "cli/commands.h"
 #include "cli/flags.h"
+#include "strata_version.h"  // generated at build time (cmake/GitVersion.cmake)
 #include "util/error.h"
 #include "vk/check.h"
 
 namespace {
 
 using strata::cli::badFlag;
+
+// "strata 0.21.0 (git 1abe589)" and the Vulkan loader's version; no
+// instance is created.
+int printVersion() {
+    const std::string git = STRATA_GIT_DESCRIBE;
+    const std::string line = std::string("strata ") + STRATA_VERSION + (git.empty() ? "" : " (git " + git + ")");
+    std::printf("%s\n", line.c_str());
+    std::uint32_t v = 0;
+    if (vkEnumerateInstanceVersion(&v) == VK_SUCCESS)
+        std::printf("Vulkan loader %u.%u.%u\n", VK_API_VERSION_MAJOR(v), VK_API_VERSION_MINOR(v),
+                    VK_API_VERSION_PATCH(v));
+    else
+        std::printf("Vulkan loader: version unknown\n");
+    return 0;
+}
 
 const strata::cli::CommandInfo& command(const std::string& name) {
     if (const strata::cli::CommandInfo* c = strata::cli::findCommand(name)) return *c;
@@ -36,6 +54,7 @@ int run(const std::vector<std::string>& args) {
         std::fputs(strata::cli::overview().c_str(), stdout);
         return 0;
     }
+    if (first == "--version") return printVersion();
     return command(first).run(std::vector<std::string>(args.begin() + 1, args.end()));
 }
 

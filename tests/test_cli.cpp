@@ -4,6 +4,7 @@
 
 #include "cli_util.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -221,6 +222,24 @@ TEST_CASE("samples whose float sums overflow are left out with one warning, and 
     CHECK(r.output.find(" of 16384 samples were NaN or Inf and were left out of the image") != std::string::npos);
     const Run c = run("compare " + (d.path / "hot.exr").string() + " " + (d.path / "hot.exr").string());
     CHECK(c.output.find(", 0 non-finite (excluded)") != std::string::npos);
+}
+
+TEST_CASE("strata --version prints the version, the git hash of a checkout and the Vulkan loader's version") {
+    const Run r = run("--version");
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    CHECK(lines(r.output) == 2);
+    // "strata 0.21.0" or "strata 0.21.0 (git 1abe589-dirty)"
+    REQUIRE(r.output.rfind("strata ", 0) == 0);
+    const std::string version = r.output.substr(7, r.output.find_first_of(" \n", 7) - 7);
+    CHECK(std::count(version.begin(), version.end(), '.') == 2);
+    CHECK(version.find_first_not_of("0123456789.") == std::string::npos);
+    // A git checkout of its own (not a tarball, nor a folder inside another checkout).
+    const std::string source = STRATA_SOURCE_DIR;
+    const std::string top = "$(git -C '" + source + "' rev-parse --show-toplevel 2>/dev/null)";
+    const bool checkout = runShell("test \"" + top + "\" = \"$(cd '" + source + "' && pwd -P)\"").status == 0;
+    CHECK((r.output.find(" (git ") != std::string::npos) == checkout);
+    CHECK(r.output.find("\nVulkan loader 1.") != std::string::npos);
 }
 
 TEST_CASE("strata --help lists every command, and strata alone prints the same to stderr and exits 2") {

@@ -502,7 +502,7 @@ const CommandInfo* findCommand(const std::string& name) {
 std::string overview() {
     std::string out =
         "usage: strata COMMAND [ARGUMENTS]\n"
-        "       strata --help\n\n"
+        "       strata --help | --version\n\n"
         "A path tracer for glTF 2.0 scenes on Vulkan compute shaders.\n\ncommands:\n";
     for (const CommandInfo& c : commands()) {
         std::string summary = c.summary;
