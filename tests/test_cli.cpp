@@ -4,12 +4,16 @@
 
 #include "cli_util.h"
 
-
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
 
 namespace fs = std::filesystem;
 using namespace strata::test;
@@ -17,6 +21,12 @@ using namespace strata::test;
 namespace {
 
 const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
+
+// `strata ARGS` with its standard output only (or, with `stream` "2>&1
+// >/dev/null", its standard error only).
+Run runOneStream(const std::string& args, const std::string& stream = "2>/dev/null") {
+    return runShell("{ " + std::string(STRATA_EXE) + " " + args + " " + stream + "; }");
+}
 
 }  // namespace
 
@@ -113,7 +123,7 @@ TEST_CASE("an output that cannot be written fails before any work, and nothing i
     }
 }
 
-TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
+TEST_CASE("render writes EXR and PNG from one run, and devices lists the device") {
     TempDir out;
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
     const Run r = run("render " + scene + " -o " + (out.path / "c.exr").string() + " -o " +
@@ -131,7 +141,7 @@ TEST_CASE("render writes EXR and PNG from one run; devices lists the device") {
     CHECK(d.output.find("0: ") == 0);
 }
 
-TEST_CASE("OpenImageIO is a module loaded for images only; without it an image is a one-line error") {
+TEST_CASE("OpenImageIO is a module loaded for images only, and without it an image is a one-line error") {
     // strata itself does not link OpenImageIO (its libraries' start-up cost
     // every command ~0.25 s): the executable's dependencies do not name it.
     const Run deps = runShell("ldd " + std::string(STRATA_EXE));
@@ -212,4 +222,93 @@ TEST_CASE("samples whose float sums overflow are left out with one warning, and 
     CHECK(r.output.find(" of 16384 samples were NaN or Inf and were left out of the image") != std::string::npos);
     const Run c = run("compare " + (d.path / "hot.exr").string() + " " + (d.path / "hot.exr").string());
     CHECK(c.output.find(", 0 non-finite (excluded)") != std::string::npos);
+}
+
+TEST_CASE("strata --version prints the version, the git hash of a checkout and the Vulkan loader's version") {
+    const Run r = run("--version");
+    CAPTURE(r.output);
+    CHECK(r.status == 0);
+    CHECK(lines(r.output) == 2);
+    // "strata 0.21.0" or "strata 0.21.0 (git 1abe589-dirty)"
+    REQUIRE(r.output.rfind("strata ", 0) == 0);
+    const std::string version = r.output.substr(7, r.output.find_first_of(" \n", 7) - 7);
+    CHECK(std::count(version.begin(), version.end(), '.') == 2);
+    CHECK(version.find_first_not_of("0123456789.") == std::string::npos);
+    // A git checkout of its own (not a tarball, nor a folder inside another checkout).
+    const std::string source = STRATA_SOURCE_DIR;
+    const std::string top = "$(git -C '" + source + "' rev-parse --show-toplevel 2>/dev/null)";
+    const bool checkout = runShell("test \"" + top + "\" = \"$(cd '" + source + "' && pwd -P)\"").status == 0;
+    CHECK((r.output.find(" (git ") != std::string::npos) == checkout);
+    CHECK(r.output.find("\nVulkan loader 1.") != std::string::npos);
+}
+
+TEST_CASE("strata --help lists every command, and strata alone prints the same to stderr and exits 2") {
+    for (const char* flag : {"--help", "-h", "help"}) {
+        CAPTURE(flag);
+        const Run r = runOneStream(flag);
+        CHECK(r.status == 0);
+        for (const char* command : {"render", "reference", "compare", "converge", "edges", "bench", "devices"})
+            CHECK(r.output.find("\n  " + std::string(command) + " ") != std::string::npos);
+        CHECK(r.output.find("'strata COMMAND --help'") != std::string::npos);
+    }
+    const Run bare = runOneStream("", "2>&1 >/dev/null");
+    CHECK(bare.status == 2);
+    CHECK(bare.output == runOneStream("--help").output);
+}
+
+TEST_CASE("COMMAND --help prints the command's usage and every flag of its table, and does nothing else") {
+    for (const strata::cli::CommandInfo& c : strata::cli::commands()) {
+        CAPTURE(c.name);
+        const Run r = runOneStream(c.name + " --help");
+        CHECK(r.status == 0);
+        CHECK(r.output.rfind("usage: strata " + c.name, 0) == 0);
+        for (const std::string& flag : c.flags()) {
+            CAPTURE(flag);
+            CHECK(r.output.find(flag) != std::string::npos);
+        }
+        CHECK(run("help " + c.name).output == r.output);
+        CHECK(run(c.name + " -h").output == r.output);
+    }
+    const std::string render = run("render --help").output;
+    for (const char* flag : {"--spp N", "--reads auto|texel|storage", "--env MAP", "-o, --output FILE"})
+        CHECK(render.find(flag) != std::string::npos);
+    CHECK(run("converge --help").output.find("--reference REF.exr") != std::string::npos);
+    // Help ignores the rest of the line: no scene is loaded, no value checked,
+    // no device opened, nothing written.
+    TempDir out;
+    for (const std::string& args : std::vector<std::string>{
+             "render /nonexistent/scene.gltf --spp 0 --bogus -o " + out / "a.exr" + " --help",
+             "reference --help /nonexistent/scene.gltf", "bench /nonexistent/scene.gltf -h --json " + out / "b.json",
+             "converge --device 99 --help", "edges --spp 0 -h -o " + out / "t.csv", "devices --help",
+             "compare --help"}) {
+        CAPTURE(args);
+        const Run r = run(args, "STRATA_OIIO_MODULE=/nonexistent/libstrata_oiio.so");
+        CHECK(r.status == 0);
+        CHECK(r.output.find("error:") == std::string::npos);
+        CHECK(r.output.find("strata: device") == std::string::npos);
+        CHECK(out.empty());
+    }
+}
+
+TEST_CASE("cli: render --reads and its old name --traversal both choose the read mode, and give the same image") {
+    TempDir out;
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    for (const char* flag : {"--reads", "--traversal"}) {
+        CAPTURE(flag);
+        const std::string name = std::string(flag).substr(2);
+        const Run r = run("render " + scene + kSmall + " " + flag + " storage -o " + out / (name + ".exr") +
+                          " --stats-json " + out / (name + ".json"));
+        CAPTURE(r.output);
+        REQUIRE(r.status == 0);
+        std::ifstream f(out / (name + ".json"));
+        CHECK(nlohmann::json::parse(f)["render"]["traversal"] == "storage");
+    }
+    const Run c = run("compare " + out / "reads.exr" + " " + out / "traversal.exr" + " --json " + out / "c.json");
+    REQUIRE(c.status == 0);
+    std::ifstream f(out / "c.json");
+    CHECK(nlohmann::json::parse(f)["max_abs"].get<double>() == 0.0);
+    const Run bad = run("render " + scene + kSmall + " --reads fast -o " + out / "bad.exr");
+    CHECK(bad.status == 2);
+    CHECK(bad.output == "strata: error: --reads expects auto, texel or storage, got 'fast'\n");
+    CHECK(!fs::exists(out / "bad.exr"));
 }

@@ -1,0 +1,519 @@
+#include "cli/commands.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "../../shaders/shared/types.h"
+#include "cli/flags.h"
+#include "image/image_io.h"
+#include "measure/compare.h"
+#include "render/filter.h"
+#include "render/sampler_kind.h"
+#include "vk/context.h"
+
+namespace strata::cli {
+namespace {
+
+// The member a flag sets, for a command and for a const one.
+#define STRATA_FIELD(member) [](auto& c) -> auto& { return c.member; }
+
+template <class T>
+std::vector<Flag<T>> concat(std::initializer_list<std::vector<Flag<T>>> groups) {
+    std::vector<Flag<T>> all;
+    for (const auto& g : groups) all.insert(all.end(), g.begin(), g.end());
+    return all;
+}
+
+std::vector<std::string> samplerNames() {
+    std::vector<std::string> names;
+    for (const SamplerInfo& s : samplers()) names.push_back(s.name);
+    return names;
+}
+
+constexpr const char* kSamplerHelp =
+    "the pixel sampler; regular, rotated and stratified need a square spp, bluenoise a power of two";
+
+std::vector<std::string> filterNames() {
+    std::vector<std::string> names;
+    for (FilterKind k : {FilterKind::Box, FilterKind::Tent, FilterKind::Gaussian, FilterKind::BlackmanHarris})
+        names.push_back(filterName(k));
+    return names;
+}
+
+// "box 0.5, tent 1, ...": each filter's own radius.
+std::string filterRadii() {
+    std::vector<std::string> radii;
+    for (const std::string& name : filterNames()) radii.push_back(name + " " + numberText(filterByName(name).radius));
+    return joined(radii, ", ");
+}
+
+// The shared groups. `settings` gives the struct that holds seed, maxDepth
+// and the traversal choices: RenderSettings, or the bench command itself.
+template <class T, class Settings>
+Flag<T> seedFlag(Settings settings) {
+    return integer<T>("--seed", "S", "seed of the sample sequences", 0, 0xffffffffu,
+                      [settings](auto& c) -> auto& { return settings(c).seed; });
+}
+
+// --camera, --seed, --max-depth.
+template <class T, class Settings>
+std::vector<Flag<T>> pathFlags(Settings settings) {
+    return {
+        integer<T>("--camera", "I", "view through camera I, counting the scene's nodes with a camera in order", 0,
+                   1u << 20,
+                   STRATA_FIELD(camera)),
+        seedFlag<T>(settings),
+        integer<T>("--max-depth", "D",
+                   "scattering events per path (pbrt's count): 0 shows emitters only, 1 is direct lighting", 0, 1024,
+                   [settings](auto& c) -> auto& { return settings(c).maxDepth; }),
+    };
+}
+
+// --bvh, --bvh-stack, --reads (formerly --traversal), --integrator.
+template <class T, class Settings>
+std::vector<Flag<T>> traceFlags(Settings settings) {
+    return {
+        choice<T, int>("--bvh", "traverse the four-wide BVH, or the binary one it is collapsed from; the same hits",
+                       {{"2", 2}, {"4", 4}}, [settings](auto& c) -> auto& { return settings(c).bvhWidth; }),
+        choice<T, BvhStack>("--bvh-stack",
+                            "the four-wide traversal's stack: registers, or memory (an array, the children entered "
+                            "nearest first); the same hits; auto: registers on CPU devices, memory elsewhere",
+                            {{"auto", BvhStack::Auto},
+                             {"registers", BvhStack::Registers},
+                             {"memory", BvhStack::Memory}},
+                            [settings](auto& c) -> auto& { return settings(c).bvhStack; }),
+        choice<T, ReadMode>("--reads",
+                             "how the scene arrays are read: texel (the BVH through texel views, the rest through "
+                             "storage buffers) or storage (every array through storage buffers); auto: every array "
+                             "through texel views on CPU devices, storage buffers elsewhere, texel views for a scene "
+                             "past the storage range",
+                             {{"auto", ReadMode::Auto}, {"texel", ReadMode::Texel}, {"storage", ReadMode::Storage}},
+                             [settings](auto& c) -> auto& { return settings(c).reads; })
+            .withOldName("--traversal"),
+        choice<T, IntegratorKind>("--integrator",
+                              "one path per invocation (megakernel), or stages with ray lists on the device "
+                              "(wavefront); the same image",
+                              {{"megakernel", IntegratorKind::Megakernel}, {"wavefront", IntegratorKind::Wavefront}},
+                              [settings](auto& c) -> auto& { return settings(c).integrator; }),
+    };
+}
+
+// --env, --env-color, --env-intensity, --env-rotate (cmd.env).
+template <class T>
+std::vector<Flag<T>> envFlags() {
+    return {
+        text<T>("--env", "MAP.hdr|MAP.exr",
+                "light the scene with an equirectangular map: +Y up, the image centre at -Z, u towards +X",
+                STRATA_FIELD(env.file)),
+        flag<T>("--env-color", "R,G,B",
+                "light the scene with a constant radiance: three numbers in [0, 1e+30], not all 0; excludes --env",
+                [](T& c, const std::string& given, const std::string& v) {
+                    c.env.color = parseColor(given, v);
+                    c.env.hasColor = true;
+                }),
+        positive<T>("--env-intensity", "S", "scale the radiance of --env or --env-color", 1e30, "a factor",
+                    STRATA_FIELD(env.intensity)),
+        finite<T>("--env-rotate", "DEGREES",
+                  "turn the environment about +Y, counter-clockwise seen from above; any finite angle",
+                  STRATA_FIELD(env.rotateDegrees)),
+    };
+}
+
+void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
+    if (!env.file.empty() && env.hasColor) badFlag("--env and --env-color exclude each other");
+    for (const std::string& a : parsed.given)
+        if ((a == "--env-intensity" || a == "--env-rotate") && !env.given())
+            badFlag(a + " needs --env or --env-color");
+}
+
+// --device, --validation.
+template <class T>
+std::vector<Flag<T>> deviceFlags() {
+    return {
+        integer<T>("--device", "I", "run on device I of 'strata devices'", 0, 1024, STRATA_FIELD(device))
+            .withDefault("a discrete GPU, else an integrated one, else the CPU"),
+        toggle<T>("--validation", "turn on the Vulkan validation layers, as STRATA_VALIDATION=1 does",
+                  [](T& c) { c.validation = true; }),
+    };
+}
+
+template <class T>
+CommandSpec<T> makeSpec(CommandText text, std::vector<Flag<T>> flags, T init = {}) {
+    CommandSpec<T> spec;
+    static_cast<CommandText&>(spec) = std::move(text);
+    spec.flags = std::move(flags);
+    spec.init = std::move(init);
+    return spec;
+}
+
+std::vector<Flag<RenderCommand>> renderFlags() {
+    using C = RenderCommand;
+    const auto settings = [](auto& c) -> auto& { return c.settings; };
+    return concat<C>({
+        {
+            flag<C>("--output", "FILE",
+                    "write the image to FILE: .exr (linear float) or .png (sRGB, 8 bits); may be given more "
+                    "than once",
+                    [](C& c, const std::string&, const std::string& v) { c.outputs.push_back(v); })
+                .withAlias("-o")
+                .withDefault("SCENE.exr and SCENE.png in the current directory"),
+            integer<C>("--spp", "N", "samples per pixel", 1, 1u << 30, STRATA_FIELD(settings.spp)),
+            integer<C>("--width", "W", "image width in pixels", 1, 16384, STRATA_FIELD(settings.width)),
+            integer<C>("--height", "H", "image height in pixels", 1, 16384, STRATA_FIELD(settings.height)),
+            positive<C>("--time", "SECONDS",
+                        "stop after the submission in progress once SECONDS have passed, recording the spp "
+                        "reached",
+                        1e9, "seconds", STRATA_FIELD(settings.timeLimit))
+                .withDefault("no limit"),
+            flag<C>(
+                "--sampler", joined(samplerNames(), "|"), kSamplerHelp,
+                [](C& c, const std::string&, const std::string& v) { c.settings.sampler = samplerByName(v).kind; },
+                [](const C& c) { return std::string(samplerByKind(c.settings.sampler).name); }),
+            flag<C>(
+                "--filter", joined(filterNames(), "|"),
+                "the pixel reconstruction filter, sampled by importance: each sample weighs 1",
+                // With its own radius; --filter-radius, applied last, overrides it.
+                [](C& c, const std::string&, const std::string& v) { c.settings.filter = filterByName(v); },
+                [](const C& c) { return std::string(filterName(c.settings.filter.kind)); }),
+            positive<C>("--filter-radius", "PIXELS", "the filter's radius, in pixels", 16, "a radius in pixels",
+                        STRATA_FIELD(settings.filter.radius))
+                .withDefault(filterRadii())
+                .appliedLast(),
+            choice<C, std::uint32_t>("--mis",
+                                     "how light sampling and BSDF sampling combine: Veach's power heuristic, or "
+                                     "one technique alone",
+                                     {{"power", gpu::kMisPower}, {"bsdf", gpu::kMisBsdf}, {"light", gpu::kMisLight}},
+                                     STRATA_FIELD(settings.mis)),
+            toggle<C>("--quiet", "print no device line, progress or names of the files written",
+                      [](C& c) { c.quiet = true, c.settings.progress = false; }),
+            toggle<C>("--stats", "print the device, scene, BVH, start-up, render and memory figures",
+                      [](C& c) { c.stats = true; }),
+            text<C>("--stats-json", "FILE", "write the --stats figures to FILE as JSON", STRATA_FIELD(statsJson)),
+        },
+        pathFlags<C>(settings),
+        traceFlags<C>(settings),
+        envFlags<C>(),
+        deviceFlags<C>(),
+    });
+}
+
+RenderCommand renderInit() {
+    RenderCommand c;
+    c.settings.progress = true;  // on a terminal; --quiet turns it off
+    return c;
+}
+
+const CommandSpec<RenderCommand>& renderSpec(const std::string& name) {
+    static const auto render =
+        makeSpec<RenderCommand>({"render", "SCENE.gltf|.glb [options]", "Render a glTF scene to EXR and/or PNG.",
+                                 "Files appear whole or not at all: after an error, none is written.\n"},
+                                renderFlags(), renderInit());
+    static const auto reference = makeSpec<RenderCommand>(
+        {"reference", "SCENE.gltf|.glb --spp N -o REF.exr [options]",
+         "Render a reference: EXR with each pixel's variance of the mean.",
+         "--spp and an .exr output are required. The EXR gets channels variance.R/G/B\n"
+         "(the variance of each pixel's mean), which compare, converge and the tests use.\n"},
+        renderFlags(), renderInit());
+    return name == "render" ? render : reference;
+}
+
+// Parses a render-like command's flags and positional scene.
+RenderCommand parseRenderLike(const std::string& name, const std::vector<std::string>& args, Parsed& parsed) {
+    const CommandSpec<RenderCommand>& spec = renderSpec(name);
+    RenderCommand cmd = spec.init;
+    parsed = parseFlags(spec, args, cmd);
+    if (parsed.positional.size() > 1)
+        badFlag("unexpected argument '" + parsed.positional[1] + "' (one scene per " + name + ")");
+    if (parsed.positional.empty()) badFlag(name + " needs a scene file (see 'strata " + name + " --help')");
+    cmd.scene = parsed.positional[0];
+    checkEnvFlags(parsed, cmd.env);
+    if (cmd.outputs.empty()) {
+        const std::string stem = std::filesystem::path(cmd.scene).stem().string();
+        cmd.outputs = {stem + ".exr", stem + ".png"};
+    }
+    return cmd;
+}
+
+std::vector<std::uint32_t> parseSppList(const std::string& value) {
+    std::vector<std::uint32_t> out;
+    std::size_t start = 0;
+    while (start <= value.size()) {
+        const std::size_t comma = value.find(',', start);
+        const std::string item = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        const auto v = static_cast<std::uint32_t>(parseUnsigned("--spp", item, 1, 1u << 30));
+        if (!out.empty() && v <= out.back()) badFlag("--spp values must be ascending, got '" + value + "'");
+        out.push_back(v);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+const CommandSpec<CompareArgs>& compareSpec() {
+    static const auto spec = makeSpec<CompareArgs>(
+        {"compare", "IMAGE.exr REFERENCE.exr [options]", "Print the error of an image against a reference.",
+         "Prints RMSE, relMSE = mean (x - r)^2 / (r^2 + 0.01), relMSE with the largest\n"
+         "0.1% of terms dropped, MAPE, SMAPE, the largest absolute error and the count of\n"
+         "non-finite values. The images must have the same size and R, G, B channels.\n"},
+        {text<CompareArgs>("--json", "FILE", "also write the metrics to FILE as JSON", STRATA_FIELD(json))});
+    return spec;
+}
+
+ConvergeCommand convergeInit() {
+    ConvergeCommand c;
+    for (std::uint32_t n = 1; n <= 256; n *= 2) c.spp.push_back(n);
+    return c;
+}
+
+const CommandSpec<ConvergeCommand>& convergeSpec() {
+    using C = ConvergeCommand;
+    static const auto spec = makeSpec<C>(
+        {"converge", "SCENE.gltf|.glb --reference REF.exr -o REPORT.csv|.json [options]",
+         "Measure the error against a reference by spp and by device time.",
+         "Each seed is one render; the image at every listed spp is taken along the way.\n"
+         "Per spp: device seconds, relMSE (mean and standard deviation over the seeds) and\n"
+         "efficiency 1 / (relMSE x seconds); then the log-log slopes of relMSE against spp\n"
+         "and seconds, the floor b^2 of relMSE(N) = b^2 + c / N and the reference's own\n"
+         "noise floor.\n"},
+        concat<C>({
+            {
+                text<C>("--reference", "REF.exr",
+                        "the reference (from 'strata reference'); its size is the render size",
+                        STRATA_FIELD(reference)),
+                text<C>("--output", "REPORT", "write the report to REPORT: .csv or .json", STRATA_FIELD(report))
+                    .withAlias("-o"),
+                flag<C>(
+                    "--spp", "N,N,...", "the spp at which the error is measured, ascending, each in [1, 1073741824]",
+                    [](C& c, const std::string&, const std::string& v) { c.spp = parseSppList(v); },
+                    [](const C& c) {
+                        std::vector<std::string> items;
+                        for (std::uint32_t n : c.spp) items.push_back(std::to_string(n));
+                        return joined(items, ",");
+                    }),
+                integer<C>("--seeds", "K", "renders, each with its own seed (--seed, --seed + 1, ...)", 1, 1000,
+                           STRATA_FIELD(seeds)),
+                text<C>("--plot", "PLOT.png", "draw relMSE against spp and against device seconds",
+                        STRATA_FIELD(plot)),
+                flag<C>(
+                    "--sampler", joined(samplerNames(), "|") + "|all",
+                    std::string(kSamplerHelp) + "; all: every sampler that suits the spp list",
+                    [](C& c, const std::string&, const std::string& v) {
+                        if (v == "all") c.allSamplers = true;
+                        else c.settings.sampler = samplerByName(v).kind;
+                    },
+                    [](const C& c) {
+                        return std::string(c.allSamplers ? "all" : samplerByKind(c.settings.sampler).name);
+                    }),
+                toggle<C>("--quiet", "print no device line or progress", [](C& c) { c.quiet = true; }),
+            },
+            pathFlags<C>([](auto& c) -> auto& { return c.settings; }),
+            envFlags<C>(),
+            deviceFlags<C>(),
+        }),
+        convergeInit());
+    return spec;
+}
+
+const CommandSpec<EdgesCommand>& edgesSpec() {
+    using C = EdgesCommand;
+    static const auto spec = makeSpec<C>(
+        {"edges", "[options]", "Measure how well each sampler estimates an edge's coverage.",
+         "Samples are drawn by the GLSL samplers on the device. Per sampler and edge angle:\n"
+         "the distinct estimates (shades) as the edge slides across the pixel, the RMSE\n"
+         "against the exact coverage, and the RMSE independent samples would have.\n"},
+        concat<C>({
+            {
+                text<C>("--output", "TABLE.csv", "write the table to TABLE.csv", STRATA_FIELD(table)).withAlias("-o"),
+                text<C>("--plot", "PLOT.png|.exr", "draw estimate against exact coverage", STRATA_FIELD(plot)),
+                integer<C>("--spp", "N", "samples per pixel", 1, 1u << 16, STRATA_FIELD(settings.spp)),
+                seedFlag<C>([](auto& c) -> auto& { return c.settings; }),
+                flag<C>(
+                    "--sampler", joined(samplerNames(), "|") + "|all",
+                    "the samplers measured; all: every one that suits --spp",
+                    [](C& c, const std::string&, const std::string& v) {
+                        c.settings.samplers.clear();
+                        if (v != "all") c.settings.samplers.push_back(samplerByName(v).kind);
+                    },
+                    [](const C& c) {
+                        std::vector<std::string> names;
+                        for (std::uint32_t k : c.settings.samplers) names.push_back(samplerByKind(k).name);
+                        return names.empty() ? std::string("all") : joined(names, ",");
+                    }),
+            },
+            deviceFlags<C>(),
+        }));
+    return spec;
+}
+
+const CommandSpec<BenchCommand>& benchSpec() {
+    using C = BenchCommand;
+    const auto self = [](auto& c) -> auto& { return c; };
+    static const auto spec = makeSpec<C>(
+        {"bench", "SCENE.gltf|.glb [options]", "Measure traversal, path tracing, dispatch and start-up speed.",
+         "Sections: traversal (primary, diffuse and occlusion rays, the ray sets of\n"
+         "shared/peers/embree-rays), path tracing (Msamples/s, rays/s, relMSE against\n"
+         "--reference), dispatch throughput, start-up. Device time from Vulkan\n"
+         "timestamps, warm-up excluded.\n"},
+        concat<C>({
+            {
+                integer<C>("--width", "W", "image width in pixels", 1, 16384, STRATA_FIELD(width)),
+                integer<C>("--height", "H", "image height in pixels", 1, 16384, STRATA_FIELD(height)),
+                integer<C>("--reps", "R", "timed passes per ray set (the median is reported)", 1, 1000,
+                           STRATA_FIELD(reps)),
+                integer<C>("--spp", "N", "samples per pixel of the path-tracing section", 1, 1u << 20,
+                           STRATA_FIELD(spp)),
+                text<C>("--reference", "REF.exr",
+                        "a reference of the same size: the relMSE of the path-tracing image",
+                        STRATA_FIELD(reference)),
+                toggle<C>("--quick", "a small dispatch section and short path-tracing timings",
+                          [](C& c) { c.quick = true; }),
+                flag<C>("--only", "traversal", "run only the start-up, BVH and traversal sections",
+                        [](C& c, const std::string&, const std::string& v) {
+                            c.only = v;
+                            if (c.only != "traversal") badFlag("--only takes 'traversal' (got '" + c.only + "')");
+                        }),
+                text<C>("--json", "FILE", "also write the results to FILE as JSON", STRATA_FIELD(json)),
+            },
+            pathFlags<C>(self),
+            traceFlags<C>(self),
+            envFlags<C>(),
+            deviceFlags<C>(),
+        }));
+    return spec;
+}
+
+struct NoArgs {};
+
+const CommandSpec<NoArgs>& devicesSpec() {
+    static const auto spec = makeSpec<NoArgs>(
+        {"devices", "", "List the Vulkan devices.",
+         "One line per device: index, name, type, driver and Vulkan version; --device takes the index.\n"},
+        {});
+    return spec;
+}
+
+int listDevices(const std::vector<std::string>& args) {
+    if (!args.empty()) badFlag("devices takes no arguments");
+    for (const auto& d : vk::listDevices())
+        std::printf("%u: %s | %s | %s | Vulkan %s\n", d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
+                    d.apiVersion.c_str());
+    return 0;
+}
+
+template <class T>
+CommandInfo command(const CommandSpec<T>& spec, std::function<int(const std::vector<std::string>&)> run) {
+    return {spec.name, spec.summary, [&spec] { return helpText(spec); },
+            [&spec] {
+                std::vector<std::string> names;
+                for (const Flag<T>& f : spec.flags)
+                    for (const std::string* n : {&f.alias, &f.name, &f.oldName})
+                        if (!n->empty()) names.push_back(*n);
+                return names;
+            },
+            [&spec, run](const std::vector<std::string>& args) {
+                if (helpRequested(flagTexts(spec), args)) {
+                    std::fputs(helpText(spec).c_str(), stdout);
+                    return 0;
+                }
+                return run(args);
+            }};
+}
+
+#undef STRATA_FIELD
+
+}  // namespace
+
+RenderCommand parseRender(const std::vector<std::string>& args) {
+    Parsed parsed;
+    return parseRenderLike("render", args, parsed);
+}
+
+RenderCommand parseReference(const std::vector<std::string>& args) {
+    Parsed parsed;
+    RenderCommand cmd = parseRenderLike("reference", args, parsed);
+    bool exrGiven = false;
+    for (const auto& o : cmd.outputs) exrGiven |= outputFormat(o) == ImageFormat::Exr;
+    if (!parsed.has("--spp")) badFlag("reference needs --spp N (a high sample count)");
+    if (!exrGiven) badFlag("reference needs an .exr output (-o REF.exr) to store the variance");
+    cmd.variance = true;
+    return cmd;
+}
+
+CompareArgs parseCompare(const std::vector<std::string>& args) {
+    CompareArgs a = compareSpec().init;
+    const Parsed parsed = parseFlags(compareSpec(), args, a);
+    if (parsed.positional.size() != 2) badFlag("compare needs IMAGE and REFERENCE");
+    a.image = parsed.positional[0];
+    a.reference = parsed.positional[1];
+    return a;
+}
+
+// The scene of converge and bench: one positional argument.
+template <class T>
+T parseSceneCommand(const CommandSpec<T>& spec, const std::vector<std::string>& args) {
+    T cmd = spec.init;
+    const Parsed parsed = parseFlags(spec, args, cmd);
+    if (parsed.positional.size() > 1) badFlag("unexpected argument '" + parsed.positional[1] + "'");
+    if (parsed.positional.empty()) badFlag(spec.name + " needs a scene file");
+    cmd.scene = parsed.positional[0];
+    checkEnvFlags(parsed, cmd.env);
+    return cmd;
+}
+
+ConvergeCommand parseConverge(const std::vector<std::string>& args) {
+    ConvergeCommand cmd = parseSceneCommand(convergeSpec(), args);
+    if (cmd.reference.empty()) badFlag("converge needs --reference REF.exr");
+    if (cmd.report.empty()) badFlag("converge needs -o REPORT.csv or REPORT.json");
+    return cmd;
+}
+
+EdgesCommand parseEdges(const std::vector<std::string>& args) {
+    EdgesCommand cmd = edgesSpec().init;
+    const Parsed parsed = parseFlags(edgesSpec(), args, cmd);
+    if (!parsed.positional.empty()) badFlag("unexpected argument '" + parsed.positional[0] + "'");
+    return cmd;
+}
+
+BenchCommand parseBench(const std::vector<std::string>& args) { return parseSceneCommand(benchSpec(), args); }
+
+const std::vector<CommandInfo>& commands() {
+    static const std::vector<CommandInfo> list = {
+        command(renderSpec("render"), [](const auto& a) { return runRender(parseRender(a)); }),
+        command(renderSpec("reference"), [](const auto& a) { return runRender(parseReference(a)); }),
+        command(compareSpec(),
+                [](const auto& a) {
+                    const CompareArgs c = parseCompare(a);
+                    return runCompare(c.image, c.reference, c.json);
+                }),
+        command(convergeSpec(), [](const auto& a) { return runConverge(parseConverge(a)); }),
+        command(edgesSpec(), [](const auto& a) { return runEdges(parseEdges(a)); }),
+        command(benchSpec(), [](const auto& a) { return runBench(parseBench(a)); }),
+        command(devicesSpec(), listDevices),
+    };
+    return list;
+}
+
+const CommandInfo* findCommand(const std::string& name) {
+    for (const CommandInfo& c : commands())
+        if (c.name == name) return &c;
+    return nullptr;
+}
+
+std::string overview() {
+    std::string out =
+        "usage: strata COMMAND [ARGUMENTS]\n"
+        "       strata --help | --version\n\n"
+        "A path tracer for glTF 2.0 scenes on Vulkan compute shaders.\n\ncommands:\n";
+    for (const CommandInfo& c : commands()) {
+        std::string summary = c.summary;
+        if (!summary.empty() && summary.back() == '.') summary.pop_back();
+        out += "  " + c.name + std::string(12 - c.name.size(), ' ') + summary + "\n";
+    }
+    out +=
+        "\n'strata COMMAND --help' gives each command's usage and options.\n"
+        "Bad input (scene, flags, files) is one line 'FILE: error: ...' and exit status 2;\n"
+        "device failures exit with 3.\n";
+    return out;
+}
+
+}  // namespace strata::cli

@@ -1,0 +1,46 @@
+// The commands of strata and their flag tables (cli/flags.h): parsing into
+// the command structs of render/ and measure/, and each command's help.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "measure/bench.h"
+#include "measure/converge.h"
+#include "measure/edges.h"
+#include "render/command.h"
+
+namespace strata::cli {
+
+struct CommandInfo {
+    std::string name;
+    std::string summary;                           // one line
+    std::function<std::string()> help;             // `strata NAME --help`
+    std::function<std::vector<std::string>()> flags;  // every name its table accepts (aliases, old names)
+    // Prints the help and returns 0 when the arguments ask for it; parses and
+    // runs the command otherwise.
+    std::function<int(const std::vector<std::string>& args)> run;
+};
+
+// render, reference, compare, converge, edges, bench, devices.
+const std::vector<CommandInfo>& commands();
+const CommandInfo* findCommand(const std::string& name);
+// `strata --help`: the commands with their summaries.
+std::string overview();
+
+// The parsers: `args` are the words after the command's name. They check
+// every value and the combinations (throwing strata::Error, one line) and
+// fill in what the flags leave to a default (render's outputs). Help flags
+// are not theirs to handle.
+struct CompareArgs {
+    std::string image, reference, json;
+};
+
+RenderCommand parseRender(const std::vector<std::string>& args);
+RenderCommand parseReference(const std::vector<std::string>& args);
+CompareArgs parseCompare(const std::vector<std::string>& args);
+ConvergeCommand parseConverge(const std::vector<std::string>& args);
+EdgesCommand parseEdges(const std::vector<std::string>& args);
+BenchCommand parseBench(const std::vector<std::string>& args);
+
+}  // namespace strata::cli

@@ -1,0 +1,167 @@
+// The command-line parser and help (host/cli) without running the binary:
+// the flag tables set the command structs, keep the one-line errors, and
+// the help of each command lists every flag its table has.
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+#include "../shaders/shared/types.h"
+#include "cli/commands.h"
+#include "util/error.h"
+
+using namespace strata;
+using Args = std::vector<std::string>;
+
+namespace {
+
+// The one-line error `parse(args)` throws, or "" when it throws none.
+template <class Parse>
+std::string errorOf(Parse parse, const Args& args) {
+    try {
+        parse(args);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// `text` with every run of spaces and line breaks made one space: help as
+// words, whatever its wrapping.
+std::string flat(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        const bool space = c == ' ' || c == '\n';
+        if (!space) out += c;
+        else if (!out.empty() && out.back() != ' ') out += ' ';
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("cli parser: render's defaults, -o and --output, and a switch") {
+    RenderCommand cmd = cli::parseRender({"dir/box.gltf"});
+    CHECK(cmd.scene == "dir/box.gltf");
+    CHECK(cmd.outputs == Args{"box.exr", "box.png"});
+    CHECK(cmd.settings.spp == 64);
+    CHECK(cmd.settings.progress);
+    CHECK(cmd.device == -1);
+    cmd = cli::parseRender({"-o", "a.exr", "box.gltf", "--output", "b.png", "--spp", "9", "--quiet", "--camera", "2"});
+    CHECK(cmd.outputs == Args{"a.exr", "b.png"});
+    CHECK(cmd.settings.spp == 9);
+    CHECK(cmd.quiet);
+    CHECK_FALSE(cmd.settings.progress);
+    CHECK(cmd.camera == 2);
+}
+
+TEST_CASE("cli parser: --filter-radius overrides the filter's own radius in either order") {
+    for (const Args& args : {Args{"s.gltf", "--filter", "tent", "--filter-radius", "3"},
+                             Args{"s.gltf", "--filter-radius", "3", "--filter", "tent"}}) {
+        const RenderCommand cmd = cli::parseRender(args);
+        CHECK(cmd.settings.filter.kind == FilterKind::Tent);
+        CHECK(cmd.settings.filter.radius == 3.0f);
+    }
+    CHECK(cli::parseRender({"s.gltf", "--filter", "gaussian"}).settings.filter.radius == 1.5f);
+}
+
+TEST_CASE("cli parser: --reads and its old name --traversal set the read mode") {
+    CHECK(cli::parseRender({"s.gltf", "--reads", "storage"}).settings.reads == ReadMode::Storage);
+    CHECK(cli::parseRender({"s.gltf", "--traversal", "texel"}).settings.reads == ReadMode::Texel);
+    CHECK(cli::parseBench({"s.gltf", "--reads", "texel"}).reads == ReadMode::Texel);
+    CHECK(cli::parseBench({"s.gltf", "--traversal", "storage"}).reads == ReadMode::Storage);
+    // The error names the flag as written.
+    CHECK(errorOf(cli::parseRender, {"s.gltf", "--reads", "fast"}) ==
+          "strata: error: --reads expects auto, texel or storage, got 'fast'");
+    CHECK(errorOf(cli::parseBench, {"s.gltf", "--traversal", "fast"}) ==
+          "strata: error: --traversal expects auto, texel or storage, got 'fast'");
+}
+
+TEST_CASE("cli parser: the shared groups set each command's own fields") {
+    const BenchCommand b = cli::parseBench({"s.gltf", "--seed", "7", "--max-depth", "3", "--bvh", "2", "--env-color",
+                                            "1,2,3", "--env-rotate", "-30", "--integrator", "wavefront"});
+    CHECK(b.seed == 7);
+    CHECK(b.maxDepth == 3);
+    CHECK(b.bvhWidth == 2);
+    CHECK(b.env.hasColor);
+    CHECK(b.env.color.z == 3.0f);
+    CHECK(b.env.rotateDegrees == -30.0);
+    CHECK(b.integrator == IntegratorKind::Wavefront);
+    const ConvergeCommand c = cli::parseConverge(
+        {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--seed", "5", "--spp", "1,4,16", "--sampler", "all"});
+    CHECK(c.settings.seed == 5);
+    CHECK(c.spp == std::vector<std::uint32_t>{1, 4, 16});
+    CHECK(c.allSamplers);
+    CHECK(cli::parseConverge({"s.gltf", "--reference", "r.exr", "-o", "r.csv"}).spp.size() == 9);  // 1 .. 256
+    const EdgesCommand e = cli::parseEdges({"--spp", "16", "--sampler", "regular", "--seed", "4"});
+    CHECK(e.settings.spp == 16);
+    CHECK(e.settings.seed == 4);
+    CHECK(e.settings.samplers == std::vector<std::uint32_t>{gpu::kSamplerRegular});
+    const cli::CompareArgs a = cli::parseCompare({"a.exr", "--json", "m.json", "b.exr"});
+    CHECK(a.image == "a.exr");
+    CHECK(a.reference == "b.exr");
+    CHECK(a.json == "m.json");
+}
+
+TEST_CASE("cli parser: bad flags are the same one-line errors as before") {
+    const std::vector<std::pair<Args, std::string>> cases = {
+        {{"s.gltf", "--bogus"}, "unknown option '--bogus' (see 'strata render --help')"},
+        {{"s.gltf", "--width"}, "--width needs a value"},
+        {{"s.gltf", "-o"}, "-o needs a value"},
+        {{"s.gltf", "--spp", "0"}, "--spp expects an integer in [1, 1073741824], got '0'"},
+        {{"s.gltf", "--seed", "-1"}, "--seed expects an integer in [0, 4294967295], got '-1'"},
+        {{"s.gltf", "--time", "-1"}, "--time expects seconds in (0, 1000000000], got '-1'"},
+        {{"s.gltf", "--filter-radius", "17"}, "--filter-radius expects a radius in pixels in (0, 16], got '17'"},
+        {{"s.gltf", "--bvh", "3"}, "--bvh expects 2 or 4, got '3'"},
+        {{"s.gltf", "--bvh-stack", "heap"}, "--bvh-stack expects auto, registers or memory, got 'heap'"},
+        {{"s.gltf", "--mis", "both"}, "--mis expects power, bsdf or light, got 'both'"},
+        {{"s.gltf", "--env-rotate", "10"}, "--env-rotate needs --env or --env-color"},
+        {{"s.gltf", "--env", "a.hdr", "--env-color", "1,1,1"}, "--env and --env-color exclude each other"},
+        {{"s.gltf", "--env-color", "0,0,0"}, "--env-color is black; leave out --env-color for no environment"},
+        {{"a.gltf", "b.gltf"}, "unexpected argument 'b.gltf' (one scene per render)"},
+        {{}, "render needs a scene file (see 'strata render --help')"},
+    };
+    for (const auto& [args, what] : cases) {
+        CAPTURE(what);
+        CHECK(errorOf(cli::parseRender, args) == "strata: error: " + what);
+    }
+    CHECK(errorOf(cli::parseReference, {"s.gltf", "-o", "r.exr"}) ==
+          "strata: error: reference needs --spp N (a high sample count)");
+    CHECK(errorOf(cli::parseReference, {"s.gltf", "--spp", "4", "-o", "r.png"}) ==
+          "strata: error: reference needs an .exr output (-o REF.exr) to store the variance");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "-o", "r.csv"}) ==
+          "strata: error: converge needs --reference REF.exr");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--spp", "4,2"}) ==
+          "strata: error: --spp values must be ascending, got '4,2'");
+    CHECK(errorOf(cli::parseBench, {"s.gltf", "--only", "paths"}) ==
+          "strata: error: --only takes 'traversal' (got 'paths')");
+    CHECK(errorOf(cli::parseBench, {}) == "strata: error: bench needs a scene file");
+    CHECK(errorOf(cli::parseEdges, {"x"}) == "strata: error: unexpected argument 'x'");
+    CHECK(errorOf(cli::parseCompare, {"a.exr"}) == "strata: error: compare needs IMAGE and REFERENCE");
+    CHECK(errorOf(cli::parseCompare, {"a.exr", "b.exr", "--plot", "p.png"}) ==
+          "strata: error: unknown option '--plot' (see 'strata compare --help')");
+}
+
+TEST_CASE("cli help: each command's help shows every flag of its table, with metavar and default") {
+    CHECK(cli::commands().size() == 7);
+    for (const cli::CommandInfo& c : cli::commands()) {
+        CAPTURE(c.name);
+        const std::string help = flat(c.help());
+        CHECK(help.rfind("usage: strata " + c.name, 0) == 0);
+        for (const std::string& name : c.flags()) {
+            CAPTURE(name);
+            CHECK((help.find(name + " ") != std::string::npos || help.find(name + ", ") != std::string::npos));
+        }
+        CHECK(help.find("-h, --help") != std::string::npos);
+    }
+    const std::string render = flat(cli::findCommand("render")->help());
+    CHECK(render.find("--spp N ") != std::string::npos);
+    CHECK(render.find("in [1, 1073741824] (default: 64)") != std::string::npos);
+    CHECK(render.find("--reads auto|texel|storage") != std::string::npos);
+    CHECK(render.find("--traversal auto|texel|storage") != std::string::npos);
+    CHECK(render.find("(old name of --reads)") != std::string::npos);
+    CHECK(render.find("(default: sobol)") != std::string::npos);
+    CHECK(flat(cli::findCommand("converge")->help()).find("(default: 1,2,4,8,16,32,64,128,256)") != std::string::npos);
+    CHECK(flat(cli::findCommand("edges")->help()).find("(default: all)") != std::string::npos);
+    CHECK(cli::findCommand("frobnicate") == nullptr);
+}
