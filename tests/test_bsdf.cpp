@@ -15,6 +15,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 constexpr double kAlpha = 0.01;
@@ -245,7 +247,7 @@ std::pair<double, double> fluxAlbedo(const TestMaterial& m, std::uint32_t n, std
 
 }  // namespace
 
-TEST_CASE("Smooth glass and mirrors conserve energy exactly; rough glass never gains energy") {
+TEST_CASE("Smooth glass and mirrors conserve energy exactly, and rough glass never gains energy") {
     // Delta lobes: a white mirror reflects everything, and smooth glass
     // reflects with probability F and weight 1 or refracts with weight
     // 1/eta^2 in radiance, that is 1 in flux, at every angle (total internal
@@ -286,3 +288,5 @@ TEST_CASE("Smooth glass and mirrors conserve energy exactly; rough glass never g
     }
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

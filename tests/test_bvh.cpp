@@ -16,6 +16,9 @@
 #include <doctest/doctest.h>
 
 #include "bvh/bvh.h"
+#include "bvh/wide.h"
+
+TEST_SUITE_BEGIN("unit");
 
 namespace strata {
 namespace {
@@ -324,7 +327,7 @@ std::vector<Case> testCases() {
 
 }  // namespace
 
-TEST_CASE("bvh: closest hits equal brute force; structure holds") {
+TEST_CASE("bvh: closest hits equal brute force, and the structure holds") {
     std::mt19937 rng(7u);
     std::size_t totalRays = 0;
     for (Case& c : testCases()) {
@@ -528,7 +531,6 @@ TEST_CASE("bvh: parallel build equals the one-thread build") {
 
 }  // namespace strata
 
-#include "bvh/wide.h"
 
 namespace strata {
 namespace {
@@ -846,3 +848,5 @@ TEST_CASE("wide bvh: stack registers follow the wide depth") {
 }
 
 }  // namespace strata
+
+TEST_SUITE_END();

@@ -18,6 +18,8 @@
 namespace fs = std::filesystem;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
@@ -30,7 +32,7 @@ Run runOneStream(const std::string& args, const std::string& stream = "2>/dev/nu
 
 }  // namespace
 
-TEST_CASE("every broken file gives one error line naming it, exit 2 and no output") {
+TEST_CASE("every broken file gives one error line naming it, exit 2 and no output" * doctest::test_suite("unit")) {
     const fs::path dir = fs::path(STRATA_SOURCE_DIR) / "tests/data/broken";
     std::size_t checked = 0;
     for (const auto& entry : fs::directory_iterator(dir)) {
@@ -61,7 +63,7 @@ TEST_CASE("a zero-area emitter is dropped with a warning and the scene still ren
     CHECK(fs::exists(out.path / "a.exr"));
 }
 
-TEST_CASE("bad flags are one-line errors with exit 2 and write nothing") {
+TEST_CASE("bad flags are one-line errors with exit 2 and write nothing" * doctest::test_suite("unit")) {
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
     TempDir out;
     const std::string o = " -o " + (out.path / "a.exr").string();
@@ -89,7 +91,7 @@ TEST_CASE("bad flags are one-line errors with exit 2 and write nothing") {
     }
 }
 
-TEST_CASE("an output that cannot be written fails before any work, and nothing is written") {
+TEST_CASE("an output that cannot be written fails before any work, and nothing is written" * doctest::test_suite("unit")) {
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
     TempDir out;
     fs::create_directories(out.path / "d.exr");
@@ -179,7 +181,7 @@ TEST_CASE("--time stops early and records the spp actually reached") {
     CHECK(spp < 1000000);
 }
 
-TEST_CASE("texture errors: missing, corrupt or empty image, a directory as image, bad texture index, missing TEXCOORD set") {
+TEST_CASE("texture errors: missing, corrupt or empty image, a directory as image, bad texture index, missing TEXCOORD set" * doctest::test_suite("unit")) {
     const std::string dir = std::string(STRATA_SOURCE_DIR) + "/tests/data/textures/broken/";
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"missing-image.gltf", "does-not-exist.png"},
@@ -224,7 +226,7 @@ TEST_CASE("samples whose float sums overflow are left out with one warning, and 
     CHECK(c.output.find(", 0 non-finite (excluded)") != std::string::npos);
 }
 
-TEST_CASE("strata --version prints the version, the git hash of a checkout and the Vulkan loader's version") {
+TEST_CASE("strata --version prints the version, the git hash of a checkout and the Vulkan loader's version" * doctest::test_suite("unit")) {
     const Run r = run("--version");
     CAPTURE(r.output);
     CHECK(r.status == 0);
@@ -242,7 +244,7 @@ TEST_CASE("strata --version prints the version, the git hash of a checkout and t
     CHECK(r.output.find("\nVulkan loader 1.") != std::string::npos);
 }
 
-TEST_CASE("strata --help lists every command, and strata alone prints the same to stderr and exits 2") {
+TEST_CASE("strata --help lists every command, and strata alone prints the same to stderr and exits 2" * doctest::test_suite("unit")) {
     for (const char* flag : {"--help", "-h", "help"}) {
         CAPTURE(flag);
         const Run r = runOneStream(flag);
@@ -256,7 +258,7 @@ TEST_CASE("strata --help lists every command, and strata alone prints the same t
     CHECK(bare.output == runOneStream("--help").output);
 }
 
-TEST_CASE("COMMAND --help prints the command's usage and every flag of its table, and does nothing else") {
+TEST_CASE("COMMAND --help prints the command's usage and every flag of its table, and does nothing else" * doctest::test_suite("unit")) {
     for (const strata::cli::CommandInfo& c : strata::cli::commands()) {
         CAPTURE(c.name);
         const Run r = runOneStream(c.name + " --help");
@@ -312,3 +314,5 @@ TEST_CASE("cli: render --reads and its old name --traversal both choose the read
     CHECK(bad.output == "strata: error: --reads expects auto, texel or storage, got 'fast'\n");
     CHECK(!fs::exists(out / "bad.exr"));
 }
+
+TEST_SUITE_END();

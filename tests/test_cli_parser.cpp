@@ -13,6 +13,8 @@
 using namespace strata;
 using Args = std::vector<std::string>;
 
+TEST_SUITE_BEGIN("unit");
+
 namespace {
 
 // The one-line error `parse(args)` throws, or "" when it throws none.
@@ -165,3 +167,5 @@ TEST_CASE("cli help: each command's help shows every flag of its table, with met
     CHECK(flat(cli::findCommand("edges")->help()).find("(default: all)") != std::string::npos);
     CHECK(cli::findCommand("frobnicate") == nullptr);
 }
+
+TEST_SUITE_END();

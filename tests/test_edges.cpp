@@ -30,6 +30,8 @@ namespace fs = std::filesystem;
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 constexpr std::uint32_t kSpp = 64, kGrid = 8;
@@ -61,7 +63,7 @@ double pooledRmse(const EdgeReport& r, const std::string& sampler) {
 
 }  // namespace
 
-TEST_CASE("edge coverage is the exact area of the half-plane in the pixel") {
+TEST_CASE("edge coverage is the exact area of the half-plane in the pixel" * doctest::test_suite("unit")) {
     // theta = 0: the region below y = 0.5 + c.
     for (double c : {-0.5, -0.3, 0.0, 0.123, 0.5}) CHECK(edgeCoverage(0.0, c) == doctest::Approx(0.5 + c));
     // theta = 45: h = sqrt(2)/2; the uncovered corner at distance t = h - c
@@ -87,7 +89,7 @@ TEST_CASE("edge coverage is the exact area of the half-plane in the pixel") {
     CHECK(rotatedGridAngle(64) == doctest::Approx(7.1250163));
 }
 
-TEST_CASE("edge profile of a CPU 8x8 grid: 9 shades at 0 degrees, 16 at 45") {
+TEST_CASE("edge profile of a CPU 8x8 grid: 9 shades at 0 degrees, 16 at 45" * doctest::test_suite("unit")) {
     std::vector<glm::vec2> grid;
     for (std::uint32_t j = 0; j < kGrid; ++j)
         for (std::uint32_t i = 0; i < kGrid; ++i) grid.emplace_back((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
@@ -207,7 +209,7 @@ TEST_CASE("GLSL random samplers: edge RMSE of independent, stratified and Sobol 
     }
 }
 
-TEST_CASE("strata edges: table, plot, summary; bad input is one line and exit 2") {
+TEST_CASE("strata edges: table, plot, summary, and bad input is one line and exit 2") {
     const fs::path dir = fs::temp_directory_path() / ("strata-edges-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const std::string csv = (dir / "edges.csv").string(), png = (dir / "edges.png").string();
@@ -235,3 +237,5 @@ TEST_CASE("strata edges: table, plot, summary; bad input is one line and exit 2"
     CHECK(!fs::exists(dir / "t.txt"));
     fs::remove_all(dir);
 }
+
+TEST_SUITE_END();

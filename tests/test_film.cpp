@@ -10,6 +10,8 @@
 
 using namespace strata;
 
+TEST_SUITE_BEGIN("unit");
+
 TEST_CASE("film folds device batches and reports mean and variance of the mean") {
     Film f(2, 1);
     // Two batches; pixel 0 gets samples {1, 3} then {5}, pixel 1 gets {2}.
@@ -69,3 +71,5 @@ TEST_CASE("alias table selects each emitter with its share of the weight") {
         }
     }
 }
+
+TEST_SUITE_END();

@@ -14,6 +14,8 @@
 #include "scene/scene.h"
 #include "util/error.h"
 
+TEST_SUITE_BEGIN("unit");
+
 namespace {
 
 using strata::LoadOptions;
@@ -384,3 +386,5 @@ TEST_CASE("scenes: shipped scenes load") {
         CHECK_VEC(m.emission(), glm::vec3(0.5f));
     }
 }
+
+TEST_SUITE_END();

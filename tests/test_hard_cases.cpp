@@ -11,6 +11,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 void addTriangle(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
@@ -231,3 +233,5 @@ TEST_CASE("degenerate triangles are never hit by the shader") {
     }
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

@@ -11,6 +11,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 TEST_CASE("the Cornell box moved by 1e4 and scaled by 1e-3 and 1e3 matches the original") {
     RenderSettings s;
     s.width = 32;
@@ -39,3 +41,5 @@ TEST_CASE("the Cornell box moved by 1e4 and scaled by 1e-3 and 1e3 matches the o
     CHECK(original.result.nonFinite == 0);
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

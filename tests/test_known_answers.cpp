@@ -23,6 +23,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 // scenes/square-light.gltf, from scripts/square_light.py.
@@ -93,7 +95,7 @@ std::vector<ExpectedPixel> expectedImage(const Camera& cam, int width, int heigh
     return out;
 }
 
-TEST_CASE("the reference values match the closed form") {
+TEST_CASE("the reference values match the closed form" * doctest::test_suite("unit")) {
     // Directly below the centre: 4 corners of X = Y = w / h = 0.5, so
     // F = (4 / pi) (0.5 / sqrt(1.25)) atan(0.5 / sqrt(1.25)) = 0.23945647...
     CHECK(emitterFormFactor(0.0, 0.0) == doctest::Approx(0.2394564704607735).epsilon(1e-12));
@@ -248,7 +250,7 @@ Convergence squareLightConvergence(std::uint32_t sampler, const std::vector<std:
 
 // Convergence: with independent samples and an exact answer, relMSE(N) = c / N,
 // a slope of -1 on log-log axes; a bias b adds a floor b^2 that flattens it.
-TEST_CASE("relMSE against spp falls with slope -1 within 0.15 on the square light; a 3% bias fails it") {
+TEST_CASE("relMSE against spp falls with slope -1 within 0.15 on the square light, and a 3% bias fails it") {
     const std::vector<std::uint32_t> levels = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024};
     const Convergence c = squareLightConvergence(gpu::kSamplerIndependent, levels, 4, 1.03);
     MESSAGE("slope " << c.slope << ", against the 3%-biased answer " << c.slopeBiased << "; relMSE at "
@@ -264,7 +266,7 @@ TEST_CASE("relMSE against spp falls with slope -1 within 0.15 on the square ligh
 // integrand (direct lighting from an area light): measured slopes at 1-1024
 // spp, 4 seeds: independent -1.01, regular -1.63, rotated -1.34, stratified
 // -1.64, sobol -1.64, bluenoise -1.66. Here at 1-256 spp to keep CI short.
-TEST_CASE("stratified, sobol and bluenoise converge with slope -1.3 or steeper on the square light") {
+TEST_CASE("stratified, sobol and bluenoise converge with slope -1.3 or steeper on the square light" * doctest::test_suite("slow")) {
     const std::vector<std::uint32_t> levels = {1, 4, 16, 64, 256};
     for (std::uint32_t kind : {gpu::kSamplerStratified, gpu::kSamplerSobol, gpu::kSamplerBlueNoise}) {
         const Convergence c = squareLightConvergence(kind, levels, 4);
@@ -275,3 +277,5 @@ TEST_CASE("stratified, sobol and bluenoise converge with slope -1.3 or steeper o
     }
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

@@ -8,6 +8,8 @@
 
 using namespace strata::gpu;
 
+TEST_SUITE_BEGIN("unit");
+
 TEST_CASE("shared structs have the std430 offsets the shaders assume") {
     CHECK(offsetof(BvhNode, leftOrFirst) == 12);
     CHECK(offsetof(BvhNode, bmax) == 16);
@@ -39,3 +41,5 @@ TEST_CASE("shared structs have the std430 offsets the shaders assume") {
     CHECK(sizeof(BvhNode4) == 7 * 16);
     CHECK(offsetof(BvhNode4, child) == 6 * 16);
 }
+
+TEST_SUITE_END();

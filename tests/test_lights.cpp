@@ -18,6 +18,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -98,7 +100,7 @@ std::pair<double, double> sphereBounds(const Scene& scene) {
 
 }  // namespace
 
-TEST_CASE("lights: KHR_lights_punctual lights are loaded in world space") {
+TEST_CASE("lights: KHR_lights_punctual lights are loaded in world space" * doctest::test_suite("unit")) {
     const Scene spot = loadGltf(lightsPath("spot-plane.gltf"));
     REQUIRE(spot.lights.size() == 1);
     const PunctualLight& l = spot.lights[0];
@@ -115,7 +117,7 @@ TEST_CASE("lights: KHR_lights_punctual lights are loaded in world space") {
     CHECK(glm::length(sun.lights[0].intensityRgb() - glm::vec3(3, 2.4f, 1.8f)) < 1e-6f);
 }
 
-TEST_CASE("lights: bad KHR_lights_punctual values are one-line errors naming the file") {
+TEST_CASE("lights: bad KHR_lights_punctual values are one-line errors naming the file" * doctest::test_suite("unit")) {
     struct Case {
         const char* file;
         const char* phrase;
@@ -145,7 +147,7 @@ TEST_CASE("lights: bad KHR_lights_punctual values are one-line errors naming the
     }
 }
 
-TEST_CASE("lights: the alias table weighs every kind of light by its estimated power") {
+TEST_CASE("lights: the alias table weighs every kind of light by its estimated power" * doctest::test_suite("unit")) {
     Scene scene = loadGltf(lightsPath("spot-plane.gltf"));  // plane [-10, 10]^2: R = sqrt(200)
     PunctualLight point;
     point.color = glm::vec3(1.0f, 0.5f, 0.25f);
@@ -438,3 +440,5 @@ TEST_CASE("lights: a constant environment and a directional light share the choi
     CHECK(c.mean.stdError < 2e-3 * exact);  // measured 1.5e-3: the 2.3% bias above is 15 standard errors
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

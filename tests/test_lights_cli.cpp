@@ -15,6 +15,8 @@
 namespace fs = std::filesystem;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
@@ -36,7 +38,7 @@ void expectError(const std::string& args, const std::string& prefix) {
 
 }  // namespace
 
-TEST_CASE("lights cli: every broken light file gives one error line naming it, exit 2 and no output") {
+TEST_CASE("lights cli: every broken light file gives one error line naming it, exit 2 and no output" * doctest::test_suite("unit")) {
     std::size_t checked = 0;
     for (const auto& entry : fs::directory_iterator(lights("broken"))) {
         const std::string file = entry.path().string();
@@ -46,7 +48,7 @@ TEST_CASE("lights cli: every broken light file gives one error line naming it, e
     CHECK(checked >= 7);
 }
 
-TEST_CASE("lights cli: bad environment input is one line, exit 2, no output") {
+TEST_CASE("lights cli: bad environment input is one line, exit 2, no output" * doctest::test_suite("unit")) {
     const std::string sphere = "render " + lights("sphere.gltf");
     const std::string missing = lights("does-not-exist.hdr");
     expectError(sphere + " --env " + missing, missing + ": error: ");
@@ -87,7 +89,7 @@ TEST_CASE("lights cli: bad environment input is one line, exit 2, no output") {
                 bright + ": error: the brightest texel times --env-intensity is 1e+39, beyond the float range (3.4e+38)");
 }
 
-TEST_CASE("lights cli: a scene lit only by the environment renders with render, reference and a map") {
+TEST_CASE("lights cli: a scene lit only by the environment renders with render, reference and a map" * doctest::test_suite("slow")) {
     TempDir out;
     const std::string sphere = lights("sphere.gltf");
     Run r = run("render " + sphere + " --env-color 0.5,0.6,0.7 --env-intensity 2 --env-rotate 45 -o " + out / "c.exr" + kSmall);
@@ -121,3 +123,5 @@ TEST_CASE("lights cli: a light's range is ignored with one warning") {
     CHECK(lines(r.output) == 1);
     CHECK(r.output.find(": warning: 1 punctual light(s) give a range") != std::string::npos);
 }
+
+TEST_SUITE_END();

@@ -13,6 +13,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 // scripts/make_material_tests.py
@@ -202,7 +204,7 @@ TEST_CASE("furnace: a white GGX metal plate reflects its directional albedo E(mu
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("Veach's MIS scene: BSDF-only, light-only and MIS agree in mean; MIS error stays near the better technique's in every block") {
+TEST_CASE("Veach's MIS scene: BSDF-only, light-only and MIS agree in mean, and MIS error stays near the better technique's in every block") {
     // Direct lighting (max depth 1) of scenes/veach-mis.gltf: four lights of
     // equal power and growing size over four plates of growing roughness.
     // Light sampling wins for small lights on rough plates, BSDF sampling for
@@ -292,3 +294,5 @@ TEST_CASE("Veach's MIS scene: BSDF-only, light-only and MIS agree in mean; MIS e
     CHECK(sums[0] < 0.5 * std::min(sums[1], sums[2]));
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

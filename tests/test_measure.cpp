@@ -18,6 +18,8 @@
 namespace fs = std::filesystem;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 const std::string kBox = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
@@ -34,7 +36,7 @@ void checkRejected(const std::string& args) {
 
 }  // namespace
 
-TEST_CASE("reference stores per-pixel variance; compare measures against it; converge reports") {
+TEST_CASE("reference stores per-pixel variance, compare measures against it, converge reports") {
     TempDir d;
     Run r = run("reference " + kBox + " --spp 64 --width 16 --height 16 --quiet -o " + (d / "ref.exr"));
     CAPTURE(r.output);
@@ -218,7 +220,7 @@ TEST_CASE("bench reports every section with consistent numbers") {
     CHECK(su["bvh_build_ms"].get<double>() == j["bvh"]["build_ms"].get<double>());
 }
 
-TEST_CASE("bench relMSE: zero against a reference of the same seed, positive against another seed") {
+TEST_CASE("bench relMSE: zero against a reference of the same seed, positive against another seed" * doctest::test_suite("slow")) {
     TempDir d;
     const std::string size = " --width 32 --height 24 --spp 2";
     for (int seed : {0, 1}) {
@@ -246,7 +248,7 @@ TEST_CASE("bench relMSE: zero against a reference of the same seed, positive aga
     }
 }
 
-TEST_CASE("bench takes render's environment flags: its image is the reference's, and black without them") {
+TEST_CASE("bench takes render's environment flags: its image is the reference's, and black without them" * doctest::test_suite("slow")) {
     TempDir d;
     const std::string board = std::string(STRATA_SOURCE_DIR) + "/scenes/materials-board-env.gltf";
     const std::string sky = std::string(STRATA_SOURCE_DIR) + "/scenes/env/sky.hdr";
@@ -278,12 +280,12 @@ TEST_CASE("bench takes render's environment flags: its image is the reference's,
     CHECK(j["path_tracing"]["relmse"].get<double>() > 0.1);
 }
 
-TEST_CASE("bench --traversal chooses the read mode; texel views and storage buffers find the same hits") {
+TEST_CASE("bench --reads chooses the read mode, and texel views and storage buffers find the same hits") {
     TempDir d;
     std::vector<nlohmann::json> rays;
     for (const char* mode : {"texel", "storage"}) {
         CAPTURE(mode);
-        const Run r = run("bench " + kBox + " --only traversal --width 32 --height 24 --reps 1 --traversal " +
+        const Run r = run("bench " + kBox + " --only traversal --width 32 --height 24 --reps 1 --reads " +
                           mode + " --json " + (d / "b.json"));
         CAPTURE(r.output);
         REQUIRE(r.status == 0);
@@ -315,3 +317,5 @@ TEST_CASE("bench rejects bad flags and a mismatched reference with one line and 
     }
     CHECK_FALSE(fs::exists(d / "b.txt"));
 }
+
+TEST_SUITE_END();

@@ -10,6 +10,8 @@
 
 using namespace strata;
 
+TEST_SUITE_BEGIN("unit");
+
 namespace {
 // Relative closeness: doctest::Approx's default scale of 1 would make its
 // epsilon absolute for values below 1.
@@ -111,7 +113,7 @@ TEST_CASE("metrics: trimming with ties at the threshold keeps the right number o
     CHECK(m.relMseTrimmed == rel((4.0 + 4.0 + 1.0) / 1.01 / 3, 1e-14));
 }
 
-TEST_CASE("metrics: invalid arguments throw; text states eps and trimming") {
+TEST_CASE("metrics: invalid arguments throw, and the text states eps and trimming") {
     const float a[] = {1, 2};
     CHECK_THROWS_AS(compareImages(a, a, 2, 0.0), std::invalid_argument);
     CHECK_THROWS_AS(compareImages(a, a, 2, -1.0), std::invalid_argument);
@@ -124,3 +126,5 @@ TEST_CASE("metrics: invalid arguments throw; text states eps and trimming") {
     CHECK(text.find("relMSE trim") != std::string::npos);
     CHECK(text.find("0.1% of terms dropped: 0") != std::string::npos);
 }
+
+TEST_SUITE_END();

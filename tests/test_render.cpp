@@ -10,6 +10,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 RenderSettings small(std::uint32_t spp, std::uint32_t maxDepth, std::uint32_t seed = 1) {
@@ -60,7 +62,7 @@ TEST_CASE("closed furnace matches Le (1 - a^(D+1)) / (1 - a) within 4 standard e
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("same seed and spp give a bit-identical image; another seed differs") {
+TEST_CASE("same seed and spp give a bit-identical image, and another seed differs") {
     const RenderSettings s = small(4, 16, 42);
     Rendered a = renderFile("scenes/cornell-box.gltf", s);
     Rendered b = renderFile("scenes/cornell-box.gltf", s);
@@ -206,7 +208,7 @@ TEST_CASE("an image larger than one dispatch tile is covered in full") {
 // 10^6 samples of a constant: the device sums float32 batches of at most 64
 // samples and the host folds them in double, so the mean does not drift. A
 // float32 running sum of 10^6 x 0.1f ends about 1% off, so this can fail.
-TEST_CASE("accumulation of 10^6 samples of a constant does not drift") {
+TEST_CASE("accumulation of 10^6 samples of a constant does not drift" * doctest::test_suite("slow")) {
     RenderSettings s = small(1000000, 0, 1);
     s.width = 8;
     s.height = 8;
@@ -249,7 +251,7 @@ void checkWavefrontMatches(const Scene& scene, RenderSettings s) {
 
 }  // namespace
 
-TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit") {
+TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit" * doctest::test_suite("slow")) {
     RenderSettings s = small(3, 6, 5);
     s.width = 40;
     s.height = 28;
@@ -266,3 +268,5 @@ TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit")
         checkWavefrontMatches(scene, s);
     }
 }
+
+TEST_SUITE_END();

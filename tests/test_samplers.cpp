@@ -15,6 +15,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 // True when the points form a (0, m, 2)-net in base 2: for every k in 0..m,
@@ -61,7 +63,7 @@ TEST_CASE("Sobol and bluenoise: the first 2^m samples of the pixel pair and of t
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("a block of pixels drawn in one dispatch holds each pixel's own samples; a block off the image is refused") {
+TEST_CASE("a block of pixels drawn in one dispatch holds each pixel's own samples, and a block off the image is refused") {
     // strata edges draws whole rows of its block at once; each pixel's
     // samples must be the ones a draw of that pixel alone gives.
     for (std::uint32_t kind : {gpu::kSamplerIndependent, gpu::kSamplerStratified, gpu::kSamplerSobol,
@@ -119,7 +121,7 @@ TEST_CASE("grid samplers: regular is the n x n grid, rotated has a row and colum
 // Same seed: bit-identical images. Different seeds: independent estimates, so
 // the errors of two renders of the closed furnace (exact answer 0.75 at max
 // depth 1) are uncorrelated: |Pearson r| below 4 / sqrt(pixels).
-TEST_CASE("every sampler is deterministic per seed, and renders at different seeds are uncorrelated") {
+TEST_CASE("every sampler is deterministic per seed, and renders at different seeds are uncorrelated" * doctest::test_suite("slow")) {
     for (const auto& info : samplers()) {
         const std::string name = info.name;
         CAPTURE(name);
@@ -147,3 +149,5 @@ TEST_CASE("every sampler is deterministic per seed, and renders at different see
     }
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

@@ -19,6 +19,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 constexpr double kAlpha = 0.01;
@@ -111,7 +113,7 @@ TEST_CASE("GLSL emitter choice through the alias table follows the power pmf (ch
 
 // Filter importance sampling: offsets drawn by the shader from the host's
 // inverse-CDF table follow f(x) f(y) / (integral of f)^2.
-TEST_CASE("GLSL pixel filter sampling follows the filter (chi-square; box, tent, gaussian, blackman-harris)") {
+TEST_CASE("GLSL pixel filter sampling follows the filter (chi-square: box, tent, gaussian, blackman-harris)") {
     for (const char* name : {"box", "tent", "gaussian", "blackman-harris"}) {
         const PixelFilter f = filterByName(name);
         const std::string filterName = name;
@@ -247,3 +249,5 @@ TEST_CASE("GLSL environment pdf integrates to 1 over the sphere and is the inten
     CHECK(static_cast<double>(agrees) >= 0.999 * p.count);
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

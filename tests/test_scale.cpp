@@ -23,6 +23,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 // Renders `scene` as the device allows and again with a storage range of 16
@@ -62,7 +64,7 @@ TEST_CASE("scale: past the storage range every array is read through texel views
     SUBCASE("environment map and a directional light") { checkLargePathMatches(envBoardWithSun()); }
 }
 
-TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a one-line error") {
+TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a one-line error" * doctest::test_suite("unit")) {
     GpuScene g;
     g.source = "big.glb";
     g.nodes.resize(100);     // 3200 bytes (BVH2)
@@ -84,7 +86,7 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
     CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsTexelAll);
     CHECK(chooseReads(l, g, ReadMode::Texel, false, false) == gpu::kReadsTexelAll);
     CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Storage, false, true),
-                         "big.glb: error: --traversal storage: the triangle vertices need 48000 bytes, more than "
+                         "big.glb: error: --reads storage: the triangle vertices need 48000 bytes, more than "
                          "the device's maxStorageBufferRange (16384 bytes)",
                          Error);
 
@@ -106,14 +108,14 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
     g.materials.resize(300);  // 24000 bytes: past the storage range, read through a texel view
     CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsTexelAll);
     CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Storage, false, false),
-                         "big.glb: error: --traversal storage: the materials need 24000 bytes, more than the "
+                         "big.glb: error: --reads storage: the materials need 24000 bytes, more than the "
                          "device's maxStorageBufferRange (16384 bytes)",
                          Error);
     g.materials.resize(1);
     g.envTables.resize(5000);  // 20000 bytes: the same
     CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsTexelAll);
     CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Storage, false, false),
-                         "big.glb: error: --traversal storage: the environment sampling tables need 20000 bytes, "
+                         "big.glb: error: --reads storage: the environment sampling tables need 20000 bytes, "
                          "more than the device's maxStorageBufferRange (16384 bytes)",
                          Error);
 }
@@ -205,7 +207,7 @@ void checkConsumingPack(const Scene& scene, int bvhWidth) {
 
 }  // namespace
 
-TEST_CASE("packSceneAndRelease packs what packScene packs, in several reorder chunks") {
+TEST_CASE("packSceneAndRelease packs what packScene packs, in several reorder chunks" * doctest::test_suite("unit")) {
     // 600,000 triangles: three chunks of the bucket pass (2^18), the last
     // partial; every 997th emissive, so emitters are numbered across chunks.
     std::mt19937 rng(11);
@@ -229,10 +231,12 @@ TEST_CASE("packSceneAndRelease packs what packScene packs, in several reorder ch
     checkConsumingPack(soup, 2);
 }
 
-TEST_CASE("packSceneAndRelease keeps texture coordinates and tangents with their triangles") {
+TEST_CASE("packSceneAndRelease keeps texture coordinates and tangents with their triangles" * doctest::test_suite("unit")) {
     const Scene scene = loadGltf(sourcePath("tests/data/textures/plane-tilted-map.gltf"));
     REQUIRE_FALSE(scene.texcoords.empty());
     REQUIRE_FALSE(scene.tangents.empty());
     checkConsumingPack(scene, 4);
     checkConsumingPack(scene, 2);
 }
+
+TEST_SUITE_END();

@@ -14,6 +14,8 @@
 
 using namespace strata::stats;
 
+TEST_SUITE_BEGIN("unit");
+
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -127,7 +129,7 @@ TEST_CASE("stats: histogram2D layout, closed domain, ignored samples") {
     CHECK(total == 4);  // the outside and NaN samples are not counted
 }
 
-TEST_CASE("stats: Gauss-Legendre integrates polynomials exactly; expected counts sum to N") {
+TEST_CASE("stats: Gauss-Legendre integrates polynomials exactly, and expected counts sum to N") {
     std::vector<double> t, w;
     gaussLegendre(8, t, w);
     double s15 = 0.0, s14 = 0.0, sw = 0.0;
@@ -234,7 +236,7 @@ TEST_CASE("stats: chi-square accepts a cosine lobe and rejects a 5% tilt") {
     CHECK_FALSE(bad.passed);
 }
 
-TEST_CASE("stats: chi-square on a product of triangles; a 5% tilted sampler is rejected") {
+TEST_CASE("stats: chi-square on a product of triangles, and a 5% tilted sampler is rejected") {
     std::mt19937 rng(2024);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     const std::size_t n = 1000000;
@@ -346,3 +348,5 @@ TEST_CASE("stats: log-log slope and bias-floor fits") {
     CHECK(f.b2 == rel(1e-4, 0.05));
     CHECK(f.c == rel(0.5, 0.05));
 }
+
+TEST_SUITE_END();

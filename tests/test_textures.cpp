@@ -23,6 +23,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 const std::string kDir = "tests/data/textures/";
@@ -369,7 +371,7 @@ PlaneFit fitPlane(const std::string& file, const glm::dvec3& n, std::uint32_t se
 
 }  // namespace
 
-TEST_CASE("texture: the polygon irradiance formula agrees with the square-light form factor") {
+TEST_CASE("texture: the polygon irradiance formula agrees with the square-light form factor" * doctest::test_suite("unit")) {
     // Below the centre, normal +Y: E = pi F, F = 0.2394564704607735
     // (tests/test_known_answers.cpp, Howell B-3).
     CHECK(polygonIrradiance({0, 0, 0}, {0, 1, 0}) ==
@@ -449,7 +451,7 @@ TEST_CASE("texture: a flat normal map (128, 128, 255) renders as no normal map")
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("texture: texture coordinates decode from normalized u8/u16, tangents go to world space") {
+TEST_CASE("texture: texture coordinates decode from normalized u8/u16, tangents go to world space" * doctest::test_suite("unit")) {
     const Scene scene = loadGltf(sourcePath(kDir + "loader.gltf"), LoadOptions{false, false});
     REQUIRE(scene.triangles.size() == 2);
     REQUIRE(scene.texcoords.size() == 2);  // the plain primitive is back-filled with zeros
@@ -467,7 +469,7 @@ TEST_CASE("texture: texture coordinates decode from normalized u8/u16, tangents 
     CHECK(m.normalScale == 0.5f);
 }
 
-TEST_CASE("texture: generated tangents follow +u, with glTF handedness, and survive degenerate uvs") {
+TEST_CASE("texture: generated tangents follow +u, with glTF handedness, and survive degenerate uvs" * doctest::test_suite("unit")) {
     // Unit quad in the XY plane facing +Z; image convention: v grows downwards (-Y).
     const std::vector<glm::vec3> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     const std::vector<glm::vec3> n(4, glm::vec3(0, 0, 1));
@@ -496,3 +498,5 @@ TEST_CASE("texture: generated tangents follow +u, with glTF handedness, and surv
         CHECK(glm::length(glm::vec3(t)) == doctest::Approx(1.0f));
     }
 }
+
+TEST_SUITE_END();

@@ -12,6 +12,8 @@
 using namespace strata;
 using namespace strata::test;
 
+TEST_SUITE_BEGIN("render");
+
 namespace {
 
 Scene randomSoup(std::size_t count, std::uint32_t seed) {
@@ -223,3 +225,5 @@ TEST_CASE("the trace kernel's work queue traces every ray once, with the plain d
     }
     CHECK(vk::validationMessageCount() == 0);
 }
+
+TEST_SUITE_END();

@@ -5,6 +5,8 @@
 
 using namespace strata;
 
+TEST_SUITE_BEGIN("render");
+
 TEST_CASE("validation layers are enabled under ctest and report misuse") {
     REQUIRE(vk::validationRequestedByEnvironment());
     vk::Context& ctx = test::context();
@@ -21,3 +23,5 @@ TEST_CASE("validation layers are enabled under ctest and report misuse") {
     CHECK(vk::validationMessageCount() > before);
     vk::resetValidationMessageCount();
 }
+
+TEST_SUITE_END();

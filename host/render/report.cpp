@@ -46,7 +46,7 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"closest_rays", r.closestRays},
                    {"shadow_rays", r.shadowRays},
                    {"non_finite_samples", r.nonFinite},
-                   {"traversal", readsName(r.reads)},
+                   {"reads", readsName(r.reads)},
                    {"bvh_width", r.bvhWidth},
                    {"bvh_stack", r.bvhStack},
                    {"sampler", samplerByKind(s.sampler).name},
@@ -86,11 +86,11 @@ std::string statsText(const nlohmann::json& j) {
     o << "start-up   " << startupText(su) << line;
     const auto& r = j["render"];
     std::snprintf(line, sizeof line,
-                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s (device %.3f s), %.3f Msamples/s, %s traversal of the BVH%d (stack in %s), %s sampler\n",
+                  "render     %dx%d, %u spp (of %u), max depth %u, %.3f s (device %.3f s), %.3f Msamples/s, %s reads, BVH%d (stack in %s), %s sampler\n",
                   r["width"].get<int>(), r["height"].get<int>(), r["spp"].get<unsigned>(),
                   r["spp_requested"].get<unsigned>(), r["max_depth"].get<unsigned>(),
                   r["seconds"].get<double>(), r["device_seconds"].get<double>(), r["msamples_per_second"].get<double>(),
-                  r["traversal"].get<std::string>().c_str(), r["bvh_width"].get<int>(),
+                  r["reads"].get<std::string>().c_str(), r["bvh_width"].get<int>(),
                   r["bvh_stack"].get<std::string>().c_str(),
                   r["sampler"].get<std::string>().c_str());
     o << line;

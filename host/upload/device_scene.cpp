@@ -167,12 +167,12 @@ std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, Read
     }
     if (mode == ReadMode::Storage) {
         if (beyondStorage)
-            fail(scene.source, "--traversal storage: " + need(*beyondStorage) + ", more than the device's " +
+            fail(scene.source, "--reads storage: " + need(*beyondStorage) + ", more than the device's " +
                                    storageLimit(limits));
         return gpu::kReadsStorage;
     }
     if (mode == ReadMode::Texel && bvhBeyondTexel)
-        fail(scene.source, "--traversal texel: " + need(*bvhBeyondTexel) + ", more than the device's " +
+        fail(scene.source, "--reads texel: " + need(*bvhBeyondTexel) + ", more than the device's " +
                                texelLimit(limits, *bvhBeyondTexel));
     if (beyondStorage) {  // past the storage range: everything through texel views, if they hold it
         if (beyondTexel)

@@ -161,26 +161,25 @@ VkDescriptorType Kernel::typeOf(std::uint32_t binding) const {
     throw DeviceError("kernel has no binding " + std::to_string(binding));
 }
 
-void Kernel::bind(std::uint32_t binding, const Buffer& buffer, VkDeviceSize range) {
-    VkDescriptorBufferInfo info{buffer.handle(), 0, range};
+void Kernel::write(std::uint32_t binding, const VkDescriptorBufferInfo* buffer, const VkBufferView* view) {
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set_;
     write.dstBinding = binding;
     write.descriptorCount = 1;
     write.descriptorType = typeOf(binding);
-    write.pBufferInfo = &info;
+    write.pBufferInfo = buffer;
+    write.pTexelBufferView = view;
     vkUpdateDescriptorSets(ctx_.device, 1, &write, 0, nullptr);
 }
 
+void Kernel::bind(std::uint32_t binding, const Buffer& buffer, VkDeviceSize range) {
+    const VkDescriptorBufferInfo info{buffer.handle(), 0, range};
+    write(binding, &info, nullptr);
+}
+
 void Kernel::bind(std::uint32_t binding, const TexelView& view) {
-    VkBufferView handle = view.handle();
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = set_;
-    write.dstBinding = binding;
-    write.descriptorCount = 1;
-    write.descriptorType = typeOf(binding);
-    write.pTexelBufferView = &handle;
-    vkUpdateDescriptorSets(ctx_.device, 1, &write, 0, nullptr);
+    const VkBufferView handle = view.handle();
+    write(binding, nullptr, &handle);
 }
 
 void Kernel::record(VkCommandBuffer cmd, const void* push) const {

@@ -85,6 +85,8 @@ public:
 
 private:
     VkDescriptorType typeOf(std::uint32_t binding) const;
+    // One descriptor of set_: a buffer range or a texel view.
+    void write(std::uint32_t binding, const VkDescriptorBufferInfo* buffer, const VkBufferView* view);
     void record(VkCommandBuffer cmd, const void* push) const;  // binds pipeline and set, pushes
     const Context& ctx_;
     std::vector<BindingDesc> bindings_;
