@@ -303,7 +303,7 @@ TEST_CASE("cli: render --reads and its old name --traversal both choose the read
         CAPTURE(r.output);
         REQUIRE(r.status == 0);
         std::ifstream f(out / (name + ".json"));
-        CHECK(nlohmann::json::parse(f)["render"]["traversal"] == "storage");
+        CHECK(nlohmann::json::parse(f)["render"]["reads"] == "storage");
     }
     const Run c = run("compare " + out / "reads.exr" + " " + out / "traversal.exr" + " --json " + out / "c.json");
     REQUIRE(c.status == 0);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <string_view>
 #include <system_error>
 
 #include <dlfcn.h>
@@ -41,6 +42,9 @@ const oiio::Api* loadModule(std::string& error) {
     std::vector<std::string> candidates;
     if (const char* env = std::getenv("STRATA_OIIO_MODULE")) {
         candidates.push_back(env);
+    } else if (!imageSupportBuilt()) {
+        error = "strata was built without OpenImageIO (cmake -DSTRATA_OIIO=OFF)";
+        return nullptr;
     } else {
         candidates.push_back(STRATA_OIIO_MODULE);
         std::error_code ec;
@@ -79,6 +83,13 @@ void writeOne(const std::string& path, const std::string& tmp, int w, int h, con
 }
 
 }  // namespace
+
+bool imageSupportBuilt() { return std::string_view(STRATA_OIIO_MODULE) != ""; }
+
+void requireImageSupport(const std::string& path) {
+    if (!imageSupportBuilt() && !std::getenv("STRATA_OIIO_MODULE"))
+        fail(path, "cannot read or write images: strata was built without OpenImageIO (cmake -DSTRATA_OIIO=OFF)");
+}
 
 const oiio::Api& imageModule(const std::string& path) {
     static std::string error;

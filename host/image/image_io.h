@@ -48,6 +48,12 @@ RgbImage readReference(const std::string& path);
 // Reads any image OpenImageIO can read, as float. Throws strata::Error.
 Image readImage(const std::string& path);
 
+// Whether this build has the OpenImageIO module (cmake -DSTRATA_OIIO), and
+// a one-line error naming `path` before any work when it has not (and
+// $STRATA_OIIO_MODULE names none).
+bool imageSupportBuilt();
+void requireImageSupport(const std::string& path);
+
 // The OpenImageIO module, loaded on the first call. Throws strata::Error
 // naming `path` (the file that needed it) when it cannot be loaded.
 const oiio::Api& imageModule(const std::string& path);

@@ -27,6 +27,7 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 int runRender(const RenderCommand& cmd) {
     for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
+    for (const auto& out : cmd.outputs) requireImageSupport(out);
     for (const auto& out : cmd.outputs) checkOutputPath(out);
     if (!cmd.statsJson.empty()) checkOutputPath(cmd.statsJson);
     checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
