@@ -70,8 +70,8 @@ TEST_CASE("cli parser: --filter-radius overrides the filter's own radius in eith
 TEST_CASE("cli parser: --reads and its old name --traversal set the read mode") {
     CHECK(cli::parseRender({"s.gltf", "--reads", "storage"}).settings.reads == ReadMode::Storage);
     CHECK(cli::parseRender({"s.gltf", "--traversal", "texel"}).settings.reads == ReadMode::Texel);
-    CHECK(cli::parseBench({"s.gltf", "--reads", "texel"}).reads == ReadMode::Texel);
-    CHECK(cli::parseBench({"s.gltf", "--traversal", "storage"}).reads == ReadMode::Storage);
+    CHECK(cli::parseBench({"s.gltf", "--reads", "texel"}).settings.reads == ReadMode::Texel);
+    CHECK(cli::parseBench({"s.gltf", "--traversal", "storage"}).settings.reads == ReadMode::Storage);
     // The error names the flag as written.
     CHECK(errorOf(cli::parseRender, {"s.gltf", "--reads", "fast"}) ==
           "strata: error: --reads expects auto, texel or storage, got 'fast'");
@@ -82,13 +82,13 @@ TEST_CASE("cli parser: --reads and its old name --traversal set the read mode") 
 TEST_CASE("cli parser: the shared groups set each command's own fields") {
     const BenchCommand b = cli::parseBench({"s.gltf", "--seed", "7", "--max-depth", "3", "--bvh", "2", "--env-color",
                                             "1,2,3", "--env-rotate", "-30", "--integrator", "wavefront"});
-    CHECK(b.seed == 7);
-    CHECK(b.maxDepth == 3);
-    CHECK(b.bvhWidth == 2);
+    CHECK(b.settings.seed == 7);
+    CHECK(b.settings.maxDepth == 3);
+    CHECK(b.settings.bvhWidth == 2);
     CHECK(b.env.hasColor);
     CHECK(b.env.color.z == 3.0f);
     CHECK(b.env.rotateDegrees == -30.0);
-    CHECK(b.integrator == IntegratorKind::Wavefront);
+    CHECK(b.settings.integrator == IntegratorKind::Wavefront);
     const ConvergeCommand c = cli::parseConverge(
         {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--seed", "5", "--spp", "1,4,16", "--sampler", "all"});
     CHECK(c.settings.seed == 5);

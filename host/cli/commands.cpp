@@ -47,8 +47,8 @@ std::string filterRadii() {
     return joined(radii, ", ");
 }
 
-// The shared groups. `settings` gives the struct that holds seed, maxDepth
-// and the traversal choices: RenderSettings, or the bench command itself.
+// The shared groups. `settings` gives the command's RenderSettings, which
+// holds seed, maxDepth and the traversal choices.
 template <class T, class Settings>
 Flag<T> seedFlag(Settings settings) {
     return integer<T>("--seed", "S", "seed of the sample sequences", 0, 0xffffffffu,
@@ -347,7 +347,7 @@ const CommandSpec<EdgesCommand>& edgesSpec() {
 
 const CommandSpec<BenchCommand>& benchSpec() {
     using C = BenchCommand;
-    const auto self = [](auto& c) -> auto& { return c; };
+    const auto settings = [](auto& c) -> auto& { return c.settings; };
     static const auto spec = makeSpec<C>(
         {"bench", "SCENE.gltf|.glb [options]", "Measure traversal, path tracing, dispatch and start-up speed.",
          "Sections: traversal (primary, diffuse and occlusion rays, the ray sets of\n"
@@ -356,12 +356,12 @@ const CommandSpec<BenchCommand>& benchSpec() {
          "timestamps, warm-up excluded.\n"},
         concat<C>({
             {
-                integer<C>("--width", "W", "image width in pixels", 1, 16384, STRATA_FIELD(width)),
-                integer<C>("--height", "H", "image height in pixels", 1, 16384, STRATA_FIELD(height)),
+                integer<C>("--width", "W", "image width in pixels", 1, 16384, STRATA_FIELD(settings.width)),
+                integer<C>("--height", "H", "image height in pixels", 1, 16384, STRATA_FIELD(settings.height)),
                 integer<C>("--reps", "R", "timed passes per ray set (the median is reported)", 1, 1000,
                            STRATA_FIELD(reps)),
                 integer<C>("--spp", "N", "samples per pixel of the path-tracing section", 1, 1u << 20,
-                           STRATA_FIELD(spp)),
+                           STRATA_FIELD(settings.spp)),
                 text<C>("--reference", "REF.exr",
                         "a reference of the same size: the relMSE of the path-tracing image",
                         STRATA_FIELD(reference)),
@@ -374,8 +374,8 @@ const CommandSpec<BenchCommand>& benchSpec() {
                         }),
                 text<C>("--json", "FILE", "also write the results to FILE as JSON", STRATA_FIELD(json)),
             },
-            pathFlags<C>(self),
-            traceFlags<C>(self),
+            pathFlags<C>(settings),
+            traceFlags<C>(settings),
             envFlags<C>(),
             deviceFlags<C>(),
         }));

@@ -91,13 +91,13 @@ struct Upload {
 // passes each).
 nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& gpu, const Framing& fr,
                                         const BenchCommand& cmd, Upload& upload) {
-    DeviceTracer tracer(ctx, gpu, cmd.reads, cmd.bvhWidth, cmd.bvhStack);
+    DeviceTracer tracer(ctx, gpu, cmd.settings.reads, cmd.settings.bvhWidth, cmd.settings.bvhStack);
     const glm::vec3 lo = fr.lo, hi = fr.hi;
     const Camera& cam = fr.camera;
     const float eps = 1e-4f * glm::length(hi - lo);
     const glm::vec3 light((lo.x + hi.x) * 0.5f, hi.y, (lo.z + hi.z) * 0.5f);
     // Primary rays through pixel centres, row 0 at the top.
-    const int W = cmd.width, H = cmd.height;
+    const int W = cmd.settings.width, H = cmd.settings.height;
     const float tanHalf = std::tan(cam.yfov * 0.5f);
     const glm::vec3 right = glm::normalize(glm::cross(cam.forward, cam.up));
     const glm::vec3 up = glm::cross(right, cam.forward);
@@ -276,10 +276,10 @@ int runBench(const BenchCommand& cmd) {
     RgbImage reference;
     if (!cmd.reference.empty()) {
         reference = readReference(cmd.reference);
-        if (reference.width != cmd.width || reference.height != cmd.height)
+        if (reference.width != cmd.settings.width || reference.height != cmd.settings.height)
             fail(cmd.reference, "reference is " + std::to_string(reference.width) + "x" +
                                     std::to_string(reference.height) + ", bench renders " +
-                                    std::to_string(cmd.width) + "x" + std::to_string(cmd.height) +
+                                    std::to_string(cmd.settings.width) + "x" + std::to_string(cmd.settings.height) +
                                     " (set --width and --height to match)");
     }
     LoadOptions options;
@@ -294,7 +294,7 @@ int runBench(const BenchCommand& cmd) {
 
     t0 = std::chrono::steady_clock::now();
     SceneBvh bvh = buildSceneBvh(scene);
-    GpuScene gpu = packSceneAndRelease(scene, std::move(bvh), cmd.bvhWidth);
+    GpuScene gpu = packSceneAndRelease(scene, std::move(bvh), cmd.settings.bvhWidth);
     const double packMs = msSince(t0);  // the BVH build and the packing
     t0 = std::chrono::steady_clock::now();
     vk::Context ctx({cmd.device, cmd.validation});

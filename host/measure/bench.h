@@ -23,22 +23,26 @@
 
 namespace strata {
 
+// The peer's image size (1024x768) and 4 spp for the path-tracing section;
+// the rest as `strata render`.
+inline RenderSettings benchDefaults() {
+    RenderSettings s;
+    s.width = 1024;
+    s.height = 768;
+    s.spp = 4;
+    return s;
+}
+
 struct BenchCommand {
     std::string scene;
-    int width = 1024, height = 768;   // the peer's defaults
+    RenderSettings settings = benchDefaults();  // size, spp, seed, max depth, BVH, reads,
+                                                // stack, integrator (the flags render has)
     int reps = 5;                     // timed passes per ray set (median)
     int camera = 0;
     int device = -1;
-    std::uint32_t spp = 4;            // path-tracing section
-    std::uint32_t seed = 0;
-    std::uint32_t maxDepth = 16;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
     EnvironmentOptions env;           // --env / --env-color, --env-intensity, --env-rotate (as render)
     bool quick = false;               // small dispatch section, for tests
-    int bvhWidth = 4;                 // --bvh: 4 (four-wide where it fits) or 2
-    ReadMode reads = ReadMode::Auto;    // --reads: the scene arrays through texel views or storage
-    BvhStack bvhStack = BvhStack::Auto;     // --bvh-stack: the four-wide traversal's stack
-    IntegratorKind integrator = IntegratorKind::Megakernel;  // --integrator: path tracing's (render/settings.h)
     std::string only;                 // "traversal": start-up, BVH and traversal sections only
     std::string json;
     bool validation = false;

@@ -18,16 +18,10 @@ double median(std::vector<double> v) {
 }
 
 RenderSettings settingsFor(const BenchCommand& cmd, int width, int height, std::uint32_t spp) {
-    RenderSettings s;
+    RenderSettings s = cmd.settings;
     s.width = width;
     s.height = height;
     s.spp = spp;
-    s.seed = cmd.seed;
-    s.maxDepth = cmd.maxDepth;
-    s.bvhWidth = cmd.bvhWidth;
-    s.reads = cmd.reads;
-    s.bvhStack = cmd.bvhStack;
-    s.integrator = cmd.integrator;
     return s;
 }
 
@@ -74,7 +68,7 @@ nlohmann::ordered_json dispatchFigures(const RenderResult& r) {
 nlohmann::ordered_json benchPathTracing(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                                         const BenchCommand& cmd, const RgbImage* reference,
                                         PipelineTimes& pipelines) {
-    const RenderSettings s = settingsFor(cmd, cmd.width, cmd.height, cmd.spp);
+    const RenderSettings s = settingsFor(cmd, cmd.settings.width, cmd.settings.height, cmd.settings.spp);
     const RenderResult r = timedRender(ctx, scene, camera, s, benchTuning(), pipelines);
     const double samples = static_cast<double>(r.film.pixels()) * r.spp;
     const double rays = static_cast<double>(r.closestRays + r.shadowRays);
