@@ -25,8 +25,8 @@ layout(set = 0, binding = BINDING_ENV_CDF_TEXEL) uniform usamplerBuffer envTable
 // on lavapipe when it is a storage load).
 float envTable(uint i) {
     if (!kTexelAll) return envTables[i];
-    uvec4 t = texelFetch(envTablesTexel, int(i >> 2u));
-    uint k = i & 3u;
+    uvec4 t = texelFetch(envTablesTexel, int(i / kTexelWords));
+    uint k = i % kTexelWords;
     return uintBitsToFloat(k == 0u ? t.x : k == 1u ? t.y : k == 2u ? t.z : t.w);
 }
 

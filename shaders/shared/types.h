@@ -405,4 +405,7 @@ static_assert(sizeof(SampleTestParams) == 80);
 }  // namespace strata::gpu
 #endif
 
+// The texel-view layouts of these structs (the shaders' decoders).
+#include "texel_layout.h"
+
 #endif
