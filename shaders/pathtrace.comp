@@ -15,20 +15,16 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "lib/scene.glsl"
-#include "lib/sampler.glsl"
+#include "lib/film.glsl"
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;  // any light at all
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;             // kMis* (types.h)
 layout(constant_id = SPEC_COUNT_RAYS) const uint kCountRays = 1u;       // count rays in RenderCounters
 layout(constant_id = SPEC_WORK_QUEUE) const uint kWorkQueue = 0u;       // 1: blocks in a permuted order
 
-layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
-layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
 layout(push_constant) uniform Push { DispatchParams params; };
 
 #include "lib/lights.glsl"
-#include "lib/filter.glsl"
 #include "lib/bsdf.glsl"
 #include "lib/path.glsl"
 
@@ -65,20 +61,10 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
 void shadePixel(uvec2 local) {
     if (local.x >= params.tileW || local.y >= params.tileH) return;
     uvec2 pixel = uvec2(params.tileX, params.tileY) + local;
-    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
-
-    Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
-    vec2 offset = sampleFilter(sample2D(smp));  // filter importance sampling, weight 1
-    vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
-    vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
-
-    if (any(isnan(L)) || any(isinf(L))) {
-        atomicAdd(counters.nonFinite, 1u);
-        return;
-    }
-    uint base = pixelIndex * kAccumVec4PerPixel;
-    accum[base] += vec4(L, 1.0);
-    accum[base + 1u] += vec4(L * L, 0.0);
+    Sampler smp;
+    vec3 dir;
+    cameraSample(pixel, params.sampleIndex, smp, dir);
+    accumulateSample(pixel.y * frame.image.x + pixel.x, tracePath(smp, frame.camOrigin.xyz, dir));
 }
 
 void main() {
