@@ -23,7 +23,7 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;
-layout(constant_id = SPEC_TRACE_MODE) const uint kStage = 0u;  // kStage* (types.h)
+layout(constant_id = SPEC_WAVE_STAGE) const uint kStage = kStageCamera;  // kStage* (types.h)
 
 layout(std430, set = 0, binding = BINDING_WAVE_STATE) buffer StateBuffer { PathState state[]; };
 layout(std430, set = 0, binding = BINDING_WAVE_LIVE) readonly buffer LiveBuffer { uint live[]; };

@@ -293,7 +293,7 @@ STRATA_CONST(uint, kQueueRaysPerSubgroup, 512u);
 // VkDispatchIndirectCommand (x, y, z).
 STRATA_CONST(uint, kQueueWords, 8u);
 
-// Wavefront integrator stages (wavefront.comp, SPEC_TRACE_MODE: one pipeline each).
+// Wavefront integrator stages (wavefront.comp, SPEC_WAVE_STAGE: one pipeline each).
 STRATA_CONST(uint, kStageCamera, 0u);
 STRATA_CONST(uint, kStageShade, 1u);
 STRATA_CONST(uint, kStageResolve, 2u);
