@@ -44,9 +44,8 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         PathNext o = pathShadeHit(v, smp, dir, hit, depth);
         if (o.shadowTried) {
             if (kCountRays != 0u) ++gShadowRays;
-            // One call site for both kinds of light (each call is inlined: a
-            // second copy of the traversal cost ~20% of pipeline creation on
-            // lavapipe).
+            // One call site for both kinds of light: each call is inlined,
+            // and a second copy of the traversal adds to pipeline creation.
             bool visible = o.shadowOpen && !bvhTraceAny(o.shadow.origin, o.shadow.dir, 0.0, o.shadow.tmax);
             if (visible) v.L += o.contrib;
         }
@@ -71,12 +70,12 @@ void main() {
     uvec2 local = gl_GlobalInvocationID.xy;
     if (kWorkQueue != 0u) {
         // lavapipe gives each thread one contiguous share of the workgroups:
-        // with blocks in row order, one thread took the tile's top rows and
-        // the other its bottom ones, and one waited for the other. Workgroup
+        // with blocks in row order, one thread takes the tile's top rows and
+        // the other its bottom ones, and one waits for the other. Workgroup
         // w shades block (w * blockStride) mod blocks instead (a permutation;
         // each share spreads over the whole tile). A path's loops cannot be
         // bounded, so the trace kernel's work queue, which runs many in one
-        // invocation, is not an option here (lib/bvh.glsl, gBvhTicks).
+        // invocation, is not an option here (lib/bvh_common.glsl, gBvhTicks).
         uint blocksX = (params.tileW + 7u) / 8u, blocks = blocksX * ((params.tileH + 7u) / 8u);
         uint w = (gl_WorkGroupID.y * blocksX + gl_WorkGroupID.x) * params.blockStride % blocks;
         local = uvec2(w % blocksX, w / blocksX) * 8u + gl_LocalInvocationID.xy;
