@@ -15,20 +15,16 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "lib/scene.glsl"
-#include "lib/sampler.glsl"
+#include "lib/film.glsl"
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;  // any light at all
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;             // kMis* (types.h)
 layout(constant_id = SPEC_COUNT_RAYS) const uint kCountRays = 1u;       // count rays in RenderCounters
 layout(constant_id = SPEC_WORK_QUEUE) const uint kWorkQueue = 0u;       // 1: blocks in a permuted order
 
-layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
-layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
-layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
 layout(push_constant) uniform Push { DispatchParams params; };
 
 #include "lib/lights.glsl"
-#include "lib/filter.glsl"
 #include "lib/bsdf.glsl"
 #include "lib/path.glsl"
 
@@ -48,9 +44,8 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         PathNext o = pathShadeHit(v, smp, dir, hit, depth);
         if (o.shadowTried) {
             if (kCountRays != 0u) ++gShadowRays;
-            // One call site for both kinds of light (each call is inlined: a
-            // second copy of the traversal cost ~20% of pipeline creation on
-            // lavapipe).
+            // One call site for both kinds of light: each call is inlined,
+            // and a second copy of the traversal adds to pipeline creation.
             bool visible = o.shadowOpen && !bvhTraceAny(o.shadow.origin, o.shadow.dir, 0.0, o.shadow.tmax);
             if (visible) v.L += o.contrib;
         }
@@ -65,32 +60,22 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
 void shadePixel(uvec2 local) {
     if (local.x >= params.tileW || local.y >= params.tileH) return;
     uvec2 pixel = uvec2(params.tileX, params.tileY) + local;
-    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
-
-    Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
-    vec2 offset = sampleFilter(sample2D(smp));  // filter importance sampling, weight 1
-    vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
-    vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
-
-    if (any(isnan(L)) || any(isinf(L))) {
-        atomicAdd(counters.nonFinite, 1u);
-        return;
-    }
-    uint base = pixelIndex * kAccumVec4PerPixel;
-    accum[base] += vec4(L, 1.0);
-    accum[base + 1u] += vec4(L * L, 0.0);
+    Sampler smp;
+    vec3 dir;
+    cameraSample(pixel, params.sampleIndex, smp, dir);
+    accumulateSample(pixel.y * frame.image.x + pixel.x, tracePath(smp, frame.camOrigin.xyz, dir));
 }
 
 void main() {
     uvec2 local = gl_GlobalInvocationID.xy;
     if (kWorkQueue != 0u) {
         // lavapipe gives each thread one contiguous share of the workgroups:
-        // with blocks in row order, one thread took the tile's top rows and
-        // the other its bottom ones, and one waited for the other. Workgroup
+        // with blocks in row order, one thread takes the tile's top rows and
+        // the other its bottom ones, and one waits for the other. Workgroup
         // w shades block (w * blockStride) mod blocks instead (a permutation;
         // each share spreads over the whole tile). A path's loops cannot be
         // bounded, so the trace kernel's work queue, which runs many in one
-        // invocation, is not an option here (lib/bvh.glsl, gBvhTicks).
+        // invocation, is not an option here (lib/bvh_common.glsl, gBvhTicks).
         uint blocksX = (params.tileW + 7u) / 8u, blocks = blocksX * ((params.tileH + 7u) / 8u);
         uint w = (gl_WorkGroupID.y * blocksX + gl_WorkGroupID.x) * params.blockStride % blocks;
         local = uvec2(w % blocksX, w / blocksX) * 8u + gl_LocalInvocationID.xy;

@@ -17,8 +17,8 @@ layout(std430, set = 0, binding = BINDING_RAYS) readonly buffer RayBuffer { Trac
 layout(std430, set = 0, binding = BINDING_HITS) writeonly buffer HitBuffer { TraceHit hits[]; };
 layout(push_constant) uniform Push { TraceParams params; };
 // A constant, not a push constant: lavapipe runs both sides of every branch,
-// uniform or not, so a mode chosen at run time cost the other modes'
-// traversals on every ray (primary rays 1.8x slower on the Cornell box).
+// uniform or not, so with a mode chosen at run time every ray would pay for
+// the other modes' traversals too.
 layout(constant_id = SPEC_TRACE_MODE) const uint kTraceMode = kTraceClosest;
 layout(constant_id = SPEC_WORK_QUEUE) const uint kWorkQueue = 0u;
 layout(std430, set = 0, binding = BINDING_WORK) coherent buffer WorkBuffer { uint work[]; };
@@ -54,11 +54,11 @@ void main() {
     }
     // Work queue (CPU devices). lavapipe hands each thread one contiguous
     // share of a dispatch's workgroups, so a thread whose rows cost more, or
-    // whose core other processes slow down, held the dispatch up. Here a
+    // whose core other processes slow down, holds the dispatch up. Here a
     // subgroup takes the next rays from this dispatch's counter, again and
     // again, so the threads share the work as they go and walk the image
     // side by side. lavapipe ends every loop of an invocation once 65535
-    // iterations are spent in all (lib/bvh.glsl, gBvhTicks), so a subgroup
+    // iterations are spent in all (lib/bvh_common.glsl, gBvhTicks), so a subgroup
     // first takes one ray per lane (with all of that budget, as without the
     // queue), then more only while it has spent less than kQueueTickBudget,
     // and only as many vectors of rays (one per lane each) as fit 4 times

@@ -1,5 +1,5 @@
 #version 460
-// The wavefront integrator (`--integrator wavefront`; host/render/wavefront.cpp
+// The wavefront integrator (`--integrator wavefront`; host/integrate/wavefront.cpp
 // drives it): pathtrace.comp's estimator split into stages, so that every
 // traversal runs in trace.comp over a list of live rays. One sample of a
 // tile: kStageCamera makes each pixel's camera ray and path state; then, per
@@ -19,13 +19,11 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 #include "lib/scene.glsl"
-#include "lib/sampler.glsl"
+#include "lib/film.glsl"
 
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;
-layout(constant_id = SPEC_TRACE_MODE) const uint kStage = 0u;  // kStage* (types.h)
-
-layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(constant_id = SPEC_WAVE_STAGE) const uint kStage = kStageCamera;  // kStage* (types.h)
 
 layout(std430, set = 0, binding = BINDING_WAVE_STATE) buffer StateBuffer { PathState state[]; };
 layout(std430, set = 0, binding = BINDING_WAVE_LIVE) readonly buffer LiveBuffer { uint live[]; };
@@ -50,20 +48,17 @@ uint appendIndex(uint word, bool want) {
     return base + subgroupBallotExclusiveBitCount(ballot);
 }
 
-layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
-layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
 layout(push_constant) uniform Push { WaveParams params; };
 
 #include "lib/lights.glsl"
-#include "lib/filter.glsl"
 #include "lib/bsdf.glsl"
 #include "lib/path.glsl"
 
 void cameraStage(uint k) {
     uvec2 pixel = uvec2(params.tileX + k % params.tileW, params.tileY + k / params.tileW);
-    Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
-    vec2 offset = sampleFilter(sample2D(smp));
-    vec3 dir = cameraRay(vec2(pixel) + 0.5 + offset);
+    Sampler smp;
+    vec3 dir;
+    cameraSample(pixel, params.sampleIndex, smp, dir);
     uint pixelIndex = pixel.y * frame.image.x + pixel.x;
     state[k] = PathState(vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0), uvec4(pixelIndex, 0u, 1u, 0u));
     nextRays[k] = TraceRay(frame.camOrigin.xyz, 0.0, dir, kRayMax);
@@ -77,7 +72,7 @@ void shadeStage(uint k) {
     PathVertex v = PathVertex(st.betaPdf.xyz, st.lDelta.xyz, st.betaPdf.w, st.lDelta.w != 0.0);
     uint depth = st.misc.y;
     uvec2 pixel = uvec2(st.misc.x % frame.image.x, st.misc.x / frame.image.x);
-    Sampler smp = samplerInit(pixel, frame.image.x, params.sampleIndex, frame.counts.w, frame.image.w);
+    Sampler smp = pixelSampler(pixel, params.sampleIndex);
     PathNext o;
     o.shadowOpen = false;
     o.alive = false;
@@ -107,17 +102,8 @@ void resolveStage(uint j) {
     state[slot].lDelta.xyz += shadowContrib[j].xyz;
 }
 
-// Path k's radiance into its pixel's sums, as pathtrace.comp's shadePixel.
-void accumulateStage(uint k) {
-    vec3 L = state[k].lDelta.xyz;
-    if (any(isnan(L)) || any(isinf(L))) {
-        atomicAdd(counters.nonFinite, 1u);
-        return;
-    }
-    uint base = state[k].misc.x * kAccumVec4PerPixel;
-    accum[base] += vec4(L, 1.0);
-    accum[base + 1u] += vec4(L * L, 0.0);
-}
+// Path k's radiance into its pixel's sums.
+void accumulateStage(uint k) { accumulateSample(state[k].misc.x, state[k].lDelta.xyz); }
 
 void main() {
     uint k = gl_GlobalInvocationID.x;

@@ -720,7 +720,7 @@ TEST_CASE("wide bvh: the collapse merges small subtrees into leaves where that l
 namespace {
 
 // The stack discipline of the shader's four-wide traversal
-// (shaders/lib/bvh.glsl, bvhTrace4) on the CPU with an unbounded stack: one
+// (shaders/lib/bvh4.glsl, bvhTrace4) on the CPU with an unbounded stack: one
 // entry per wide node on the path, pushed with its children still to visit.
 // (The shader groups these steps two node passes to an iteration and may
 // push a node back with a second leaf it cannot test yet, which changes

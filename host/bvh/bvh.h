@@ -12,7 +12,7 @@
 
 namespace strata {
 
-// Entries of the fixed traversal stack (here and in shaders/lib/bvh.glsl). A
+// Entries of the fixed traversal stack (here and in shaders/lib/bvh2.glsl). A
 // traversal holds at most maxDepth entries; buildBvh guarantees
 // stats.maxDepth < kBvhStackSize by splitting at the object median where
 // depth + ceil(log2(triangles)) would reach kBvhStackSize - 1.

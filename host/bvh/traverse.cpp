@@ -1,4 +1,4 @@
-// CPU reference traversal of the flattened BVH2. shaders/lib/bvh.glsl mirrors
+// CPU reference traversal of the flattened BVH2. shaders/lib/bvh2.glsl mirrors
 // it step for step (same triangle test, slab test, child order and tie rule).
 // Nothing here may be contracted into FMAs: watertightness relies on two
 // triangles evaluating a shared edge identically, and the comparison with

@@ -15,7 +15,7 @@
 namespace strata {
 
 // The four-wide traversal keeps one stack entry per wide node on its path
-// (shaders/lib/bvh.glsl), in at most kBvhMaxRegs registers; a tree deeper
+// (shaders/lib/bvh4.glsl), in at most kBvhMaxRegs registers; a tree deeper
 // than that is traversed as the BVH2.
 inline constexpr std::uint32_t kBvhMaxRegs = gpu::kBvhMaxWideDepth;
 

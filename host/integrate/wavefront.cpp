@@ -90,7 +90,8 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
 
     for (std::uint32_t stage = kStageCamera; stage <= kStageAccumulate; ++stage) {
         std::vector<std::uint32_t> spec = pathSpec(dev, s);
-        spec[SPEC_TRACE_MODE] = stage;
+        spec.resize(SPEC_WAVE_STAGE + 1, 0u);
+        spec[SPEC_WAVE_STAGE] = stage;
         std::vector<vk::BindingDesc> b = pathBindings();
         for (std::uint32_t i = BINDING_WAVE_STATE; i <= BINDING_WAVE_SHADOW_HITS; ++i)
             b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});

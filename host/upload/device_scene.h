@@ -22,7 +22,7 @@ namespace strata {
 
 enum class ReadMode { Auto, Texel, Storage };
 
-// Where the four-wide traversal keeps its stack (shaders/lib/bvh.glsl): in
+// Where the four-wide traversal keeps its stack (shaders/lib/bvh4.glsl): in
 // registers (CPU devices: lavapipe runs an indexed array as a scalar loop per
 // lane) or in an indexed array (GPUs, where shifting registers costs more).
 // Auto: registers on CPU devices, memory elsewhere.

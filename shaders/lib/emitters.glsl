@@ -1,5 +1,5 @@
 // The emitter buffer (Emitter[], shared/types.h) and emitterAt(), which reads
-// it through its RGBA32UI texel view (five texels per emitter) with kTexelAll.
+// it through its RGBA32UI texel view (shared/texel_layout.h) with kTexelAll.
 #ifndef STRATA_LIB_EMITTERS_GLSL
 #define STRATA_LIB_EMITTERS_GLSL
 
@@ -10,13 +10,13 @@ layout(set = 0, binding = BINDING_EMITTERS_TEXEL) uniform usamplerBuffer emitter
 
 Emitter emitterAt(uint i) {
     if (kTexelAll) {
-        int base = int(5u * i);
-        uvec4 a = texelFetch(emittersTexel, base), b = texelFetch(emittersTexel, base + 1),
-              c = texelFetch(emittersTexel, base + 2), d = texelFetch(emittersTexel, base + 3),
-              e = texelFetch(emittersTexel, base + 4);
-        return Emitter(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), uintBitsToFloat(b.w),
-                       uintBitsToFloat(c.xyz), uintBitsToFloat(c.w), uintBitsToFloat(d.xyz), d.w,
-                       uintBitsToFloat(e.x), e.y, e.z, e.w);
+        uvec4 t[kEmitterTexels] = texels5(emittersTexel, i);
+        return Emitter(TEXEL_VEC3(t, kEmitterWordV0), TEXEL_UINT(t, kEmitterWordTriangle),
+                       TEXEL_VEC3(t, kEmitterWordE1), TEXEL_FLOAT(t, kEmitterWordArea),
+                       TEXEL_VEC3(t, kEmitterWordE2), TEXEL_FLOAT(t, kEmitterWordPmf),
+                       TEXEL_VEC3(t, kEmitterWordRadiance), TEXEL_UINT(t, kEmitterWordFlags),
+                       TEXEL_FLOAT(t, kEmitterWordAliasProb), TEXEL_UINT(t, kEmitterWordAlias),
+                       TEXEL_UINT(t, kEmitterWordKind), TEXEL_UINT(t, kEmitterWordPad1));
     }
     return emitters[i];
 }

@@ -8,7 +8,7 @@
 // Texels are looked up nearest (constant over each texel, as the
 // distribution is), so sampling density and radiance agree texel by texel.
 // Needs `frame` (FrameUniforms) declared by the includer; tables are laid out
-// by host/render/env_tables.h.
+// by host/pack/env_tables.h.
 #ifndef STRATA_LIB_ENVIRONMENT_GLSL
 #define STRATA_LIB_ENVIRONMENT_GLSL
 
@@ -25,8 +25,8 @@ layout(set = 0, binding = BINDING_ENV_CDF_TEXEL) uniform usamplerBuffer envTable
 // on lavapipe when it is a storage load).
 float envTable(uint i) {
     if (!kTexelAll) return envTables[i];
-    uvec4 t = texelFetch(envTablesTexel, int(i >> 2u));
-    uint k = i & 3u;
+    uvec4 t = texelFetch(envTablesTexel, int(i / kTexelWords));
+    uint k = i % kTexelWords;
     return uintBitsToFloat(k == 0u ? t.x : k == 1u ? t.y : k == 2u ? t.z : t.w);
 }
 

@@ -1,7 +1,7 @@
 // Lights: one choice over all emitters (emissive triangles, KHR_lights_punctual
 // lights and the environment) in proportion to estimated power through the
 // host-built alias table (Walker 1977 / Vose 1991; weights in
-// render/gpu_scene.cpp), then a point or direction on the chosen one.
+// pack/gpu_scene.cpp), then a point or direction on the chosen one.
 // Code for punctual lights and the environment is compiled out through the
 // kFeature* bits when the scene has none. Needs `frame` (FrameUniforms)
 // declared by the includer; reads emitters through lib/emitters.glsl.

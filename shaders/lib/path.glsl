@@ -1,10 +1,10 @@
 // What the two path tracers (pathtrace.comp, the megakernel, and
-// wavefront.comp's stages) share: the sampler's dimensions per vertex, the
-// camera ray, and the shading of a path's vertex (emission found, the
-// next-event shadow ray, the BSDF-sampled next ray); the traversals are the
-// callers'. Needs `frame` (FrameUniforms), kHasEmitters (SPEC_HAS_EMITTERS)
-// and kMis (SPEC_MIS) declared by the includer, after lib/scene.glsl,
-// lib/lights.glsl and lib/bsdf.glsl.
+// wavefront.comp's stages) share along a path: the sampler's dimensions per
+// vertex and the shading of a path's vertex (emission found, the next-event
+// shadow ray, the BSDF-sampled next ray); the traversals are the callers',
+// the camera ray and the film lib/film.glsl's. Needs kHasEmitters
+// (SPEC_HAS_EMITTERS) and kMis (SPEC_MIS) declared by the includer, after
+// lib/scene.glsl, lib/film.glsl, lib/lights.glsl and lib/bsdf.glsl.
 #ifndef STRATA_LIB_PATH_GLSL
 #define STRATA_LIB_PATH_GLSL
 
@@ -16,12 +16,6 @@ const float kRayMax = 3.0e38;
 
 // Lambert only: no material of the scene has a specular or transmission lobe.
 const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
-
-vec3 cameraRay(vec2 pixel) {
-    vec2 ndc = vec2(2.0 * pixel.x / float(frame.image.x) - 1.0,
-                    1.0 - 2.0 * pixel.y / float(frame.image.y));
-    return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
-}
 
 // MIS weight of a light found by BSDF sampling with density bsdfPdf, which
 // light sampling finds with density lightPdf.

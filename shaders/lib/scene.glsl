@@ -29,25 +29,29 @@ uvec4 bvhNodeWord(uint index) {
     return kTexelBvh ? texelFetch(nodesTexel, int(index)) : nodeWords[index];
 }
 
+// The decoders below read fields at the words of shared/texel_layout.h.
 BvhNode bvhFetchNode(uint index) {
-    uvec4 a = bvhNodeWord(2u * index);
-    uvec4 b = bvhNodeWord(2u * index + 1u);
-    return BvhNode(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
+    uint base = kBvhNodeTexels * index;
+    uvec4 t[kBvhNodeTexels] = uvec4[](bvhNodeWord(base), bvhNodeWord(base + 1u));
+    return BvhNode(TEXEL_VEC3(t, kBvhNodeWordBmin), TEXEL_UINT(t, kBvhNodeWordLeftOrFirst),
+                   TEXEL_VEC3(t, kBvhNodeWordBmax), TEXEL_UINT(t, kBvhNodeWordCount));
 }
 
 BvhNode4 bvhFetchNode4(uint index) {
-    uint base = 7u * index;
-    return BvhNode4(uintBitsToFloat(bvhNodeWord(base)), uintBitsToFloat(bvhNodeWord(base + 1u)),
-                    uintBitsToFloat(bvhNodeWord(base + 2u)), uintBitsToFloat(bvhNodeWord(base + 3u)),
-                    uintBitsToFloat(bvhNodeWord(base + 4u)), uintBitsToFloat(bvhNodeWord(base + 5u)),
-                    bvhNodeWord(base + 6u));
+    uint base = kBvhNode4Texels * index;
+    uvec4 t[kBvhNode4Texels] = uvec4[](bvhNodeWord(base), bvhNodeWord(base + 1u), bvhNodeWord(base + 2u),
+                                       bvhNodeWord(base + 3u), bvhNodeWord(base + 4u), bvhNodeWord(base + 5u),
+                                       bvhNodeWord(base + 6u));
+    return BvhNode4(TEXEL_VEC4(t, kBvhNode4WordMinX), TEXEL_VEC4(t, kBvhNode4WordMaxX),
+                    TEXEL_VEC4(t, kBvhNode4WordMinY), TEXEL_VEC4(t, kBvhNode4WordMaxY),
+                    TEXEL_VEC4(t, kBvhNode4WordMinZ), TEXEL_VEC4(t, kBvhNode4WordMaxZ),
+                    TEXEL_UVEC4(t, kBvhNode4WordChild));
 }
 
 TriVerts bvhFetchTri(uint index) {
     if (kTexelBvh) {
-        uvec4 a, b, c;
-        texels3(trisTexel, index, a, b, c);
-        return TriVerts(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(c));
+        uvec4 t[kTriVertsTexels] = texels3(trisTexel, index);
+        return TriVerts(TEXEL_VEC4(t, kTriVertsWordV0), TEXEL_VEC4(t, kTriVertsWordV1), TEXEL_VEC4(t, kTriVertsWordV2));
     }
     return tris[index];
 }
@@ -55,39 +59,42 @@ TriVerts bvhFetchTri(uint index) {
 // Per-triangle arrays in BVH order, through texel views with kTexelAll.
 TriShading sceneShading(uint triangle) {
     if (kTexelAll) {
-        uvec4 a, b, c;
-        texels3(shadingTexel, triangle, a, b, c);
-        return TriShading(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w, uintBitsToFloat(c.xyz), c.w);
+        uvec4 t[kTriShadingTexels] = texels3(shadingTexel, triangle);
+        return TriShading(TEXEL_VEC3(t, kTriShadingWordN0), TEXEL_UINT(t, kTriShadingWordMaterial),
+                          TEXEL_VEC3(t, kTriShadingWordN1), TEXEL_UINT(t, kTriShadingWordLight),
+                          TEXEL_VEC3(t, kTriShadingWordN2), TEXEL_UINT(t, kTriShadingWordPad0));
     }
     return shading[triangle];
 }
 
 TriTexcoords sceneTexcoords(uint triangle) {
     if (!kTexelAll) return texcoords[triangle];
-    uvec4 a, b, c;
-    texels3(texcoordsTexel, triangle, a, b, c);
-    return TriTexcoords(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(c));
+    uvec4 t[kTriTexcoordsTexels] = texels3(texcoordsTexel, triangle);
+    return TriTexcoords(TEXEL_VEC4(t, kTriTexcoordsWordUv0), TEXEL_VEC4(t, kTriTexcoordsWordUv1),
+                        TEXEL_VEC4(t, kTriTexcoordsWordUv2));
 }
 
 TriTangents sceneTangents(uint triangle) {
     if (!kTexelAll) return tangents[triangle];
-    uvec4 a, b, c;
-    texels3(tangentsTexel, triangle, a, b, c);
-    return TriTangents(uintBitsToFloat(a), uintBitsToFloat(b), uintBitsToFloat(c));
+    uvec4 t[kTriTangentsTexels] = texels3(tangentsTexel, triangle);
+    return TriTangents(TEXEL_VEC4(t, kTriTangentsWordT0), TEXEL_VEC4(t, kTriTangentsWordT1),
+                       TEXEL_VEC4(t, kTriTangentsWordT2));
 }
 
-// materials[i], through its RGBA32UI texel view (five texels) with kTexelAll:
-// on lavapipe a storage-buffer load with a different index per lane is a
-// loop over the lanes for each of the struct's 20 words.
+// materials[i], through its RGBA32UI texel view with kTexelAll: on lavapipe
+// a storage-buffer load with a different index per lane is a loop over the
+// lanes for each of the struct's words.
 Material sceneMaterial(uint i) {
     if (!kTexelAll) return materials[i];
-    int base = int(5u * i);
-    uvec4 a = texelFetch(materialsTexel, base), b = texelFetch(materialsTexel, base + 1),
-          c = texelFetch(materialsTexel, base + 2), d = texelFetch(materialsTexel, base + 3),
-          e = texelFetch(materialsTexel, base + 4);
-    return Material(uintBitsToFloat(a), uintBitsToFloat(b.xyz), uintBitsToFloat(b.w), uintBitsToFloat(c.x),
-                    uintBitsToFloat(c.y), c.z, uintBitsToFloat(c.w), uintBitsToFloat(d.x), uintBitsToFloat(d.y),
-                    uintBitsToFloat(d.z), d.w, e.x, e.y, e.z, e.w);
+    uvec4 t[kMaterialTexels] = texels5(materialsTexel, i);
+    return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
+                    TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
+                    TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
+                    TEXEL_FLOAT(t, kMaterialWordAlphaCutoff), TEXEL_FLOAT(t, kMaterialWordTransmission),
+                    TEXEL_FLOAT(t, kMaterialWordSpecular), TEXEL_FLOAT(t, kMaterialWordNormalScale),
+                    TEXEL_UINT(t, kMaterialWordBaseColorTex), TEXEL_UINT(t, kMaterialWordMetallicRoughnessTex),
+                    TEXEL_UINT(t, kMaterialWordNormalTex), TEXEL_UINT(t, kMaterialWordEmissiveTex),
+                    TEXEL_UINT(t, kMaterialWordTransmissionTex));
 }
 
 #include "lib/sampling.glsl"

@@ -15,12 +15,13 @@
 layout(std430, set = 0, binding = BINDING_TEXREFS) readonly buffer TextureRefBuffer { TextureRef textureRefs[]; };
 layout(set = 0, binding = BINDING_TEXREFS_TEXEL) uniform usamplerBuffer textureRefsTexel;
 
-// textureRefs[i], through its RGBA32UI texel view (three texels) with kTexelAll.
+// textureRefs[i], through its RGBA32UI texel view (shared/texel_layout.h) with kTexelAll.
 TextureRef textureRefAt(uint i) {
     if (!kTexelAll) return textureRefs[i];
-    uvec4 a, b, c;
-    texels3(textureRefsTexel, i, a, b, c);
-    return TextureRef(a.x, a.y, a.z, a.w, uintBitsToFloat(b), uintBitsToFloat(c));
+    uvec4 t[kTextureRefTexels] = texels3(textureRefsTexel, i);
+    return TextureRef(TEXEL_UINT(t, kTextureRefWordOffset), TEXEL_UINT(t, kTextureRefWordWidth),
+                      TEXEL_UINT(t, kTextureRefWordHeight), TEXEL_UINT(t, kTextureRefWordFlags),
+                      TEXEL_VEC4(t, kTextureRefWordRow0), TEXEL_VEC4(t, kTextureRefWordRow1));
 }
 
 layout(set = 0, binding = BINDING_TEXELS) uniform usamplerBuffer texelWords;

@@ -38,7 +38,7 @@ STRATA_BINDING(BINDING_WORK, 24);         // storage uint[]: work-queue counters
 STRATA_BINDING(BINDING_MATERIALS_TEXEL, 25);  // usamplerBuffer over BINDING_MATERIALS (RGBA32UI)
 STRATA_BINDING(BINDING_TEXREFS_TEXEL, 26);    // usamplerBuffer over BINDING_TEXREFS (RGBA32UI)
 STRATA_BINDING(BINDING_ENV_CDF_TEXEL, 27);    // usamplerBuffer over BINDING_ENV_CDF (RGBA32UI)
-// The wavefront integrator's lists (wavefront.comp, render/wavefront.cpp).
+// The wavefront integrator's lists (wavefront.comp, integrate/wavefront.cpp).
 STRATA_BINDING(BINDING_WAVE_STATE, 28);        // storage PathState[], one per path of the tile
 STRATA_BINDING(BINDING_WAVE_LIVE, 29);         // storage uint[]: the path of each ray traced
 STRATA_BINDING(BINDING_WAVE_HITS, 30);         // storage TraceHit[]: their closest hits
@@ -63,6 +63,7 @@ STRATA_BINDING(SPEC_BVH_REGS, 6);         // four-wide traversal stack entries: 
 STRATA_BINDING(SPEC_TRACE_MODE, 7);       // trace kernel: kTraceClosest, kTraceAny or kTraceSpawn
 STRATA_BINDING(SPEC_WORK_QUEUE, 8);       // 1 (CPU devices): trace.comp's subgroups take rays from a counter,
                                           // pathtrace.comp shades a tile's 8x8 blocks in a permuted order
+STRATA_BINDING(SPEC_WAVE_STAGE, 9);       // wavefront.comp: kStage* (types.h), one pipeline each
 
 #ifdef __cplusplus
 }  // namespace strata::gpu

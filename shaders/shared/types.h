@@ -77,7 +77,7 @@ STRATA_CONST(uint, kNoLight, 0xffffffffu);
 // view the shader does not read covers only what the device allows.
 STRATA_CONST(uint, kReadsStorage, 0u);   // storage buffers
 STRATA_CONST(uint, kReadsTexelBvh, 1u);  // BVH nodes and triangle vertices through RGBA32UI texel
-                                         // views (faster on lavapipe, DESIGN.md), the rest storage
+                                         // views (faster on lavapipe: docs/architecture.md), the rest storage
 STRATA_CONST(uint, kReadsTexelAll, 2u);  // every array: also shading, texture coordinates, tangents,
                                          // emitters, materials, texture references and environment
                                          // tables (CPU devices; scenes past maxStorageBufferRange)
@@ -189,7 +189,7 @@ STRATA_CONST(uint, kLightEnvironment, 4u);
 // A light, selected through a Walker alias table built on the host: pick
 // slot i = floor(u * count), keep it if the second uniform is below
 // `aliasProb`, else take `alias`. `pmf` is the probability of choosing this
-// emitter (its share of the estimated power, render/gpu_scene.cpp).
+// emitter (its share of the estimated power, pack/gpu_scene.cpp).
 // Fields by kind (unused ones are 0):
 //   kLightTriangle: v0, e1 = v1 - v0, e2 = v2 - v0, triangle, area;
 //                   radiance = emitted radiance (W sr^-1 m^-2); flags.
@@ -293,7 +293,7 @@ STRATA_CONST(uint, kQueueRaysPerSubgroup, 512u);
 // VkDispatchIndirectCommand (x, y, z).
 STRATA_CONST(uint, kQueueWords, 8u);
 
-// Wavefront integrator stages (wavefront.comp, SPEC_TRACE_MODE: one pipeline each).
+// Wavefront integrator stages (wavefront.comp, SPEC_WAVE_STAGE: one pipeline each).
 STRATA_CONST(uint, kStageCamera, 0u);
 STRATA_CONST(uint, kStageShade, 1u);
 STRATA_CONST(uint, kStageResolve, 2u);
@@ -404,5 +404,8 @@ static_assert(sizeof(WaveParams) == 32);
 static_assert(sizeof(SampleTestParams) == 80);
 }  // namespace strata::gpu
 #endif
+
+// The texel-view layouts of these structs (the shaders' decoders).
+#include "texel_layout.h"
 
 #endif

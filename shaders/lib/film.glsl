@@ -1,0 +1,51 @@
+// What the two path tracers (pathtrace.comp and wavefront.comp) share at the
+// film: the Frame uniform, the accumulation buffer (kAccumVec4PerPixel vec4
+// per pixel, shared/types.h) and the RenderCounters, a pixel's sampler and
+// camera ray, and the adding of a sample to its pixel's sums.
+#ifndef STRATA_LIB_FILM_GLSL
+#define STRATA_LIB_FILM_GLSL
+
+#include "shared/types.h"
+#include "shared/bindings.h"
+#include "lib/sampler.glsl"
+#include "lib/filter.glsl"
+
+layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
+layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
+layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
+
+// The sampler of sample `sampleIndex` of `pixel`.
+Sampler pixelSampler(uvec2 pixel, uint sampleIndex) {
+    return samplerInit(pixel, frame.image.x, sampleIndex, frame.counts.w, frame.image.w);
+}
+
+// Unit direction of the camera ray through image position `pixel` (in
+// pixels from the top-left corner).
+vec3 cameraRay(vec2 pixel) {
+    vec2 ndc = vec2(2.0 * pixel.x / float(frame.image.x) - 1.0,
+                    1.0 - 2.0 * pixel.y / float(frame.image.y));
+    return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
+}
+
+// Sample `sampleIndex` of `pixel`: its sampler, and the direction of its
+// camera ray (from frame.camOrigin) through a point drawn by filter
+// importance sampling (weight 1) from the sampler's first pair.
+void cameraSample(uvec2 pixel, uint sampleIndex, out Sampler smp, out vec3 dir) {
+    smp = pixelSampler(pixel, sampleIndex);
+    vec2 offset = sampleFilter(sample2D(smp));
+    dir = cameraRay(vec2(pixel) + 0.5 + offset);
+}
+
+// Radiance L of one sample added to the sums of pixel `pixelIndex` (y * width
+// + x); a sample with a NaN or infinite channel is counted and dropped.
+void accumulateSample(uint pixelIndex, vec3 L) {
+    if (any(isnan(L)) || any(isinf(L))) {
+        atomicAdd(counters.nonFinite, 1u);
+    } else {
+        uint base = pixelIndex * kAccumVec4PerPixel;
+        accum[base] += vec4(L, 1.0);
+        accum[base + 1u] += vec4(L * L, 0.0);
+    }
+}
+
+#endif
