@@ -7,8 +7,7 @@
 namespace strata {
 
 struct Image {
-    int width = 0;
-    int height = 0;
+    int width = 0, height = 0;  // pixels
     int channels = 0;
     std::vector<std::string> channelNames;
     std::vector<float> pixels;  // row-major, interleaved channels, row 0 at the top

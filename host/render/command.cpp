@@ -25,6 +25,14 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+GpuScene buildAndPackReleasing(Scene& scene, int bvhWidth, double& ms) {
+    const auto t0 = std::chrono::steady_clock::now();
+    SceneBvh bvh = buildSceneBvh(scene);
+    GpuScene gpu = packSceneAndRelease(scene, std::move(bvh), bvhWidth);
+    ms = msSince(t0);
+    return gpu;
+}
+
 int runRender(const RenderCommand& cmd) {
     for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
     for (const auto& out : cmd.outputs) requireImageSupport(out);
@@ -40,14 +48,11 @@ int runRender(const RenderCommand& cmd) {
         fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist (the scene has " +
                             std::to_string(scene.cameras.size()) + " camera(s))");
 
-    t0 = std::chrono::steady_clock::now();
-    SceneBvh bvh = buildSceneBvh(scene);
-    GpuScene gpu = packSceneAndRelease(scene, std::move(bvh), cmd.settings.bvhWidth);
-    const double packMs = msSince(t0);  // the BVH build and the packing
-
-    t0 = std::chrono::steady_clock::now();
+    double packMs = 0.0;  // the BVH build and the packing
+    GpuScene gpu = buildAndPackReleasing(scene, cmd.settings.bvhWidth, packMs);
+    const auto t1 = std::chrono::steady_clock::now();
     vk::Context ctx({cmd.device, cmd.validation});
-    const double deviceMs = msSince(t0);
+    const double deviceMs = msSince(t1);
     if (!cmd.quiet)
         std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
                      ctx.info.type.c_str(), ctx.info.driver.c_str());

@@ -4,7 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "pack/gpu_scene.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 #include "scene/environment.h"
 
 namespace strata {
@@ -23,6 +25,10 @@ struct RenderCommand {
     bool validation = false;
     bool variance = false;              // EXR outputs get variance.R/G/B channels
 };
+
+// The BVH and packing stages as the commands run them, consuming the scene
+// (packSceneAndRelease); `ms` receives their host time together.
+GpuScene buildAndPackReleasing(Scene& scene, int bvhWidth, double& ms);
 
 // Returns the process exit status. Throws strata::Error for bad input and
 // vk::DeviceError for device failures; writes no output file on any error.

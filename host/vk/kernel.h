@@ -40,12 +40,12 @@ private:
 
 // What a Kernel compiles: shader module, set and pipeline layouts, pipeline.
 struct Program {
+    double pipelineMs = 0.0;  // host milliseconds vkCreateComputePipelines took
     VkDevice device = VK_NULL_HANDLE;
     VkShaderModule module = VK_NULL_HANDLE;
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkPipeline pipeline = VK_NULL_HANDLE;
-    double pipelineMs = 0.0;  // host milliseconds vkCreateComputePipelines took
     Program() = default;
     ~Program();
     Program(const Program&) = delete;

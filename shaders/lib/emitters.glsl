@@ -1,5 +1,7 @@
 // The emitter buffer (Emitter[], shared/types.h) and emitterAt(), which reads
 // it through its RGBA32UI texel view (shared/texel_layout.h) with kTexelAll.
+// Its decoder has the shape of lib/scene.glsl's sceneMaterial: each names
+// its own struct's fields and words.
 #ifndef STRATA_LIB_EMITTERS_GLSL
 #define STRATA_LIB_EMITTERS_GLSL
 

@@ -83,7 +83,8 @@ TriTangents sceneTangents(uint triangle) {
 
 // materials[i], through its RGBA32UI texel view with kTexelAll: on lavapipe
 // a storage-buffer load with a different index per lane is a loop over the
-// lanes for each of the struct's words.
+// lanes for each of the struct's words. (lib/emitters.glsl's emitterAt has
+// the same shape for its own struct.)
 Material sceneMaterial(uint i) {
     if (!kTexelAll) return materials[i];
     uvec4 t[kMaterialTexels] = texels5(materialsTexel, i);

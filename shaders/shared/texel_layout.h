@@ -105,6 +105,8 @@ STRATA_CONST(uint, kEmitterWordPad1, 19u);
     STRATA_WORD(T, field, word);          \
     static_assert((word) % kTexelWords == 0, #T "." #field ": starts a texel")
 
+// One list per struct, each repeating its struct's fields in order: the
+// repetition is the check (a list of the same shape as the next, by design).
 STRATA_TEXELS(BvhNode, kBvhNodeTexels);
 STRATA_TEXEL_WORD(BvhNode, bmin, kBvhNodeWordBmin);
 STRATA_WORD(BvhNode, leftOrFirst, kBvhNodeWordLeftOrFirst);

@@ -1,5 +1,7 @@
 // Buffer structs shared byte-for-byte by C++ (GLM) and GLSL (std430).
 // Every vec3 is paired with a 4-byte scalar so no member straddles padding.
+// Declarations only: lists of constants before the struct they describe
+// repeat one shape through the file, never logic.
 #ifndef STRATA_SHARED_TYPES_H
 #define STRATA_SHARED_TYPES_H
 
@@ -293,12 +295,6 @@ STRATA_CONST(uint, kQueueRaysPerSubgroup, 512u);
 // VkDispatchIndirectCommand (x, y, z).
 STRATA_CONST(uint, kQueueWords, 8u);
 
-// Wavefront integrator stages (wavefront.comp, SPEC_WAVE_STAGE: one pipeline each).
-STRATA_CONST(uint, kStageCamera, 0u);
-STRATA_CONST(uint, kStageShade, 1u);
-STRATA_CONST(uint, kStageResolve, 2u);
-STRATA_CONST(uint, kStageAccumulate, 3u);
-
 // One path's state between the wavefront stages (BINDING_WAVE_STATE).
 struct PathState {
     vec4 betaPdf;       // path throughput; w: the last BSDF sample's pdf
@@ -317,6 +313,12 @@ struct WaveParams {
     uint pad1;
     uint pad2;
 };
+
+// Wavefront integrator stages (wavefront.comp, SPEC_WAVE_STAGE: one pipeline each).
+STRATA_CONST(uint, kStageCamera, 0u);
+STRATA_CONST(uint, kStageShade, 1u);
+STRATA_CONST(uint, kStageResolve, 2u);
+STRATA_CONST(uint, kStageAccumulate, 3u);
 
 // Trace kernel push constants.
 struct TraceParams {
