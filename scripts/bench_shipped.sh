@@ -6,6 +6,9 @@
 #   scripts/bench_shipped.sh [--strata PATH] [--embree PATH] [--out DIR]
 #                            [--rounds N] [--reps R] [--size WxH] [--threads T]
 #                            [--pt-size WxH] [--spp N] [--ref-spp N] [--device I]
+#                            [--scene FILE]...
+# --scene (repeatable) measures those files instead of the shipped scenes
+# (e.g. make_bench_scene.py's); a row is named by the file's stem.
 # Without --embree (or when PATH is not executable) only strata's figures are
 # taken. References are rendered once into DIR (ref_<scene>.exr, kept for
 # later runs of the same --pt-size and --ref-spp). Results:
@@ -25,6 +28,7 @@ ptsize=128x128
 spp=64
 refspp=2048
 device=()
+files=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --strata) strata=$2; shift 2 ;;
@@ -38,6 +42,7 @@ while [ $# -gt 0 ]; do
         --spp) spp=$2; shift 2 ;;
         --ref-spp) refspp=$2; shift 2 ;;
         --device) device=(--device "$2"); shift 2 ;;
+        --scene) files+=("$2"); shift 2 ;;
         *) echo "bench_shipped.sh: error: unknown option '$1'" >&2; exit 2 ;;
     esac
 done
@@ -54,6 +59,16 @@ mkdir -p "$out"
 "$strata" devices > "$out/devices.txt"
 scenes=(cornell-box cornell-glass veach-mis furnace furnace-a0.8-le0.1 materials-board materials-board-env
         square-light)
+declare -A path
+for name in "${scenes[@]}"; do path[$name]="$root/scenes/$name.gltf"; done
+if [ ${#files[@]} -gt 0 ]; then
+    scenes=()
+    for f in "${files[@]}"; do
+        name=$(basename "${f%.*}")
+        scenes+=("$name")
+        path[$name]=$(cd "$(dirname "$f")" && pwd)/$(basename "$f")
+    done
+fi
 # Render options a scene needs: the environment-lit board has no other light.
 extra() {
     case "$1" in
@@ -65,13 +80,13 @@ for name in "${scenes[@]}"; do
     ref="$out/ref_${name}_${ptw}x${pth}_${refspp}.exr"
     if [ ! -f "$ref" ]; then
         # shellcheck disable=SC2046  # extra() gives flags and a path, no spaces inside
-        "$strata" reference "$root/scenes/$name.gltf" --spp "$refspp" --width "$ptw" --height "$pth" \
+        "$strata" reference "${path[$name]}" --spp "$refspp" --width "$ptw" --height "$pth" \
             $(extra "$name") "${device[@]}" --quiet -o "$ref"
     fi
 done
 for ((r = 1; r <= rounds; ++r)); do
     for name in "${scenes[@]}"; do
-        scene="$root/scenes/$name.gltf"
+        scene="${path[$name]}"
         "$strata" bench "$scene" --only traversal --reps "$reps" --width "$width" --height "$height" \
             "${device[@]}" --json "$out/traversal_${name}_strata_$r.json" > /dev/null
         if [ -n "$embree" ]; then

@@ -4,8 +4,7 @@
 #include <memory>
 
 #include "../../shaders/shared/bindings.h"
-#include "integrate/integrator.h"
-#include "integrate/wavefront.h"
+#include "integrate/megakernel.h"
 #include "vk/kernel.h"
 
 namespace strata {
@@ -45,11 +44,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Integrator> makeIntegrator(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s,
-                                           const RenderTuning& t, std::uint32_t maxTilePixels,
-                                           const FilmBuffers& film) {
-    if (s.integrator == IntegratorKind::Wavefront)
-        return std::make_unique<WavefrontIntegrator>(ctx, dev, s, t, maxTilePixels, film);
+std::unique_ptr<Integrator> makeMegakernel(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s,
+                                           const RenderTuning& t, const FilmBuffers& film) {
     return std::make_unique<Megakernel>(ctx, dev, s, t, film);
 }
 

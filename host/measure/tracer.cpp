@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../../shaders/shared/bindings.h"
 #include "integrate/kernels.h"
 #include "vk/timer.h"
 

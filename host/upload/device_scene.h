@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "../../shaders/shared/bindings.h"
 #include "pack/gpu_scene.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
@@ -20,6 +19,7 @@
 
 namespace strata {
 
+// --reads: how the shaders read the scene arrays (chooseReads below).
 enum class ReadMode { Auto, Texel, Storage };
 
 // Where the four-wide traversal keeps its stack (shaders/lib/bvh4.glsl): in
