@@ -54,7 +54,7 @@ TEST_CASE("cli parser: render's defaults, -o and --output, and a switch") {
     CHECK(cmd.settings.spp == 9);
     CHECK(cmd.quiet);
     CHECK_FALSE(cmd.settings.progress);
-    CHECK(cmd.camera == 2);
+    CHECK(cmd.view.camera == 2);
 }
 
 TEST_CASE("cli parser: --filter-radius overrides the filter's own radius in either order") {

@@ -261,10 +261,38 @@ TEST_CASE("gltf: a zero-area emissive triangle is kept, counted, and warned abou
     CHECK(strata::isEmissive(scene.materials[scene.triangles[4].material]));
 }
 
-TEST_CASE("gltf: requireCamera and requireEmitter can be turned off") {
-    CHECK(strata::loadGltf(dataPath("broken/no-camera.gltf"), {false, true}).cameras.empty());
-    CHECK(strata::loadGltf(dataPath("broken/no-emitter.gltf"), {true, false}).triangles.size() ==
-          4);
+// A file with no camera and nothing that emits loads: the default view is
+// the renderer's (scene/view.h), the light a white environment of radiance 1.
+TEST_CASE("gltf: a file without a camera or a light gets the default white environment and one warning") {
+    const std::string path = dataPath("lights/bare-sphere.gltf");
+    CerrCapture capture;
+    const Scene scene = strata::loadGltf(path);
+    CHECK(scene.cameras.empty());
+    CHECK(scene.lights.empty());
+    CHECK(scene.environment.enabled);
+    CHECK(scene.environment.source == strata::kDefaultEnvironment);
+    CHECK(scene.environment.scale == glm::vec3(1.0f));
+    CHECK(scene.environment.rotation == 0.0f);
+    CHECK(scene.environment.rgb.empty());
+    CHECK(capture.text() == path + ": warning: no light: lighting the scene with a uniform white environment of "
+                                   "radiance 1; --env or --env-color sets another\n");
+}
+
+TEST_CASE("gltf: without the default light an unlit file is the no-light error, and an external light needs none") {
+    const std::string path = dataPath("lights/bare-sphere.gltf");
+    LoadOptions strict;
+    strict.defaultLight = false;
+    CHECK_THROWS_WITH_AS(strata::loadGltf(path, strict),
+                         (path + ": error: no light: no triangle has an emissive material (emissiveFactor * "
+                                 "emissiveStrength > 0) and a non-zero area, no node has a KHR_lights_punctual "
+                                 "light, and no --env is given").c_str(),
+                         strata::Error);
+    LoadOptions external;
+    external.externalLight = true;
+    CerrCapture capture;
+    CHECK_FALSE(strata::loadGltf(path, external).environment.enabled);
+    CHECK(capture.text().empty());
+    CHECK(strata::loadGltf(path, kNoRequirements).triangles.size() == 1280);
 }
 
 TEST_CASE("gltf: every broken file fails with one line naming file and problem") {
@@ -283,8 +311,6 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
         {"nan-position.gltf",
          "accessor 4 (mesh 2 (\"Bad\") primitive 0 POSITION): vertex 1 has a NaN"},
         {"attribute-not-an-index.gltf", "invalid glTF: 'attributes' value is not an integer type."},
-        {"no-camera.gltf", "no camera"},
-        {"no-emitter.gltf", "no light: no triangle has an emissive material"},
         {"unsupported-required-extension.gltf",
          "unsupported required extension(s): KHR_mesh_quantization"},
         {"zero-area-only-emitter.gltf", "no light: "},

@@ -55,13 +55,25 @@ Flag<T> seedFlag(Settings settings) {
                       [settings](auto& c) -> auto& { return settings(c).seed; });
 }
 
-// --camera, --seed, --max-depth.
+// --camera, --look-from, --look-at, --up, --fov, --seed, --max-depth.
 template <class T, class Settings>
 std::vector<Flag<T>> pathFlags(Settings settings) {
     return {
         integer<T>("--camera", "I", "view through camera I, counting the scene's nodes with a camera in order", 0,
                    1u << 20,
-                   STRATA_FIELD(camera)),
+                   STRATA_FIELD(view.camera)),
+        flag<T>("--look-from", "X,Y,Z", "view from this point instead of the scene's camera; needs --look-at",
+                [](T& c, const std::string& given, const std::string& v) { c.view.lookFrom = parsePoint(given, v); }),
+        flag<T>("--look-at", "X,Y,Z", "the point the --look-from view looks at",
+                [](T& c, const std::string& given, const std::string& v) { c.view.lookAt = parsePoint(given, v); }),
+        flag<T>("--up", "X,Y,Z", "the up direction of the --look-from view",
+                [](T& c, const std::string& given, const std::string& v) { c.view.up = parsePoint(given, v); })
+            .withDefault("0,1,0"),
+        flag<T>("--fov", "DEGREES", "vertical field of view, in (0, 179]",
+                [](T& c, const std::string& given, const std::string& v) {
+                    c.view.fovDegrees = float(parsePositive(given, v, 179.0, "degrees"));
+                })
+            .withDefault("the scene camera's, else 40"),
         seedFlag<T>(settings),
         integer<T>("--max-depth", "D",
                    "scattering events per path (pbrt's count): 0 shows emitters only, 1 is direct lighting", 0, 1024,
@@ -117,6 +129,12 @@ std::vector<Flag<T>> envFlags() {
                   "turn the environment about +Y, counter-clockwise seen from above; any finite angle",
                   STRATA_FIELD(env.rotateDegrees)),
     };
+}
+
+void checkViewFlags(const ViewOptions& view) {
+    if (view.lookFrom.has_value() != view.lookAt.has_value())
+        badFlag(view.lookFrom ? "--look-from needs --look-at" : "--look-at needs --look-from");
+    if (view.up && !view.lookFrom) badFlag("--up needs --look-from and --look-at");
 }
 
 void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
@@ -227,6 +245,7 @@ RenderCommand parseRenderLike(const std::string& name, const std::vector<std::st
     if (parsed.positional.empty()) badFlag(name + " needs a scene file (see 'strata " + name + " --help')");
     cmd.scene = parsed.positional[0];
     checkEnvFlags(parsed, cmd.env);
+    checkViewFlags(cmd.view);
     if (cmd.outputs.empty()) {
         const std::string stem = std::filesystem::path(cmd.scene).stem().string();
         cmd.outputs = {stem + ".exr", stem + ".png"};
@@ -457,6 +476,7 @@ T parseSceneCommand(const CommandSpec<T>& spec, const std::vector<std::string>& 
     if (parsed.positional.empty()) badFlag(spec.name + " needs a scene file");
     cmd.scene = parsed.positional[0];
     checkEnvFlags(parsed, cmd.env);
+    checkViewFlags(cmd.view);
     return cmd;
 }
 

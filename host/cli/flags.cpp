@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "util/error.h"
 
@@ -46,22 +47,34 @@ double parseFinite(const std::string& flag, const std::string& value) {
     return v;
 }
 
-glm::vec3 parseColor(const std::string& flag, const std::string& value) {
+// Three comma-separated numbers, each finite and in [lo, hi]; `expects`
+// says what in the error.
+glm::dvec3 parseTriple(const std::string& flag, const std::string& value, double lo, double hi,
+                       const std::string& expects) {
     double c[3];
     std::size_t start = 0;
     for (int k = 0; k < 3; ++k) {
         const std::size_t comma = value.find(',', start);
-        if ((k < 2) != (comma != std::string::npos)) badFlag(flag + " expects R,G,B, got '" + value + "'");
+        if ((k < 2) != (comma != std::string::npos)) badFlag(flag + " expects " + expects + ", got '" + value + "'");
         const std::string item = value.substr(start, k < 2 ? comma - start : std::string::npos);
         char* end = nullptr;
         c[k] = std::strtod(item.c_str(), &end);
-        if (item.empty() || *end != '\0' || !std::isfinite(c[k]) || c[k] < 0.0 || c[k] > 1e30)
-            badFlag(flag + " expects R,G,B, three numbers in [0, 1e+30], got '" + value + "'");
+        if (item.empty() || *end != '\0' || !std::isfinite(c[k]) || c[k] < lo || c[k] > hi)
+            badFlag(flag + " expects " + expects + ", got '" + value + "'");
         start = comma + 1;
     }
-    if (c[0] == 0.0 && c[1] == 0.0 && c[2] == 0.0)
-        badFlag(flag + " is black; leave out --env-color for no environment");
-    return glm::vec3(c[0], c[1], c[2]);
+    return {c[0], c[1], c[2]};
+}
+
+glm::vec3 parseColor(const std::string& flag, const std::string& value) {
+    const glm::dvec3 c = parseTriple(flag, value, 0.0, 1e30, "R,G,B, three numbers in [0, 1e+30]");
+    if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) badFlag(flag + " is black; leave out --env-color for no environment");
+    return glm::vec3(c);
+}
+
+glm::vec3 parsePoint(const std::string& flag, const std::string& value) {
+    const double big = double(std::numeric_limits<float>::max());
+    return glm::vec3(parseTriple(flag, value, -big, big, "X,Y,Z, three finite numbers"));
 }
 
 std::string joined(const std::vector<std::string>& items, const std::string& separator) {

@@ -23,6 +23,7 @@ unsigned long parseUnsigned(const std::string& flag, const std::string& value, u
 double parsePositive(const std::string& flag, const std::string& value, double max, const char* what);
 double parseFinite(const std::string& flag, const std::string& value);
 glm::vec3 parseColor(const std::string& flag, const std::string& value);  // R,G,B in [0, 1e30], not all 0
+glm::vec3 parsePoint(const std::string& flag, const std::string& value);  // X,Y,Z, finite floats
 
 // 16, 1000000000, 1e+30: integers as integers up to 1e15, the rest as %g.
 std::string numberText(double v);

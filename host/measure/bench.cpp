@@ -59,24 +59,23 @@ struct Framing {
     glm::vec3 lo{1e30f}, hi{-1e30f};
 };
 
-// The scene's camera, or (none in the file) the peer's auto-framing.
+// The scene's camera or the --look-from view, else (none in the file) the
+// peer's auto-framing, not frameScene's: the rays must be the peer's.
 Framing frame(const Scene& scene, const BenchCommand& cmd) {
     Framing f;
     for (const auto& t : scene.triangles)
         for (const auto& v : t.v) f.lo = glm::min(f.lo, v), f.hi = glm::max(f.hi, v);
     const float diag = glm::length(f.hi - f.lo);
-    if (!scene.cameras.empty()) {
-        if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
-            fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist");
-        f.camera = scene.cameras[cmd.camera];
-        f.description = "camera " + std::to_string(cmd.camera);
+    if (!scene.cameras.empty() || cmd.view.lookGiven()) {
+        f.camera = chooseCamera(scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
+        f.description = cmd.view.lookGiven() ? "--look-from" : "camera " + std::to_string(cmd.view.camera);
     } else {
         const glm::vec3 c = (f.lo + f.hi) * 0.5f;
         Camera& cam = f.camera;
         cam.position = c + glm::normalize(glm::vec3(0.6f, 0.45f, 1.0f)) * (diag * 1.1f);
         cam.forward = glm::normalize(c - cam.position);
         cam.up = glm::cross(glm::normalize(glm::cross(cam.forward, glm::vec3(0, 1, 0))), cam.forward);
-        cam.yfov = 45.0f * std::numbers::pi_v<float> / 180.0f;
+        cam.yfov = cmd.view.fovDegrees.value_or(45.0f) * std::numbers::pi_v<float> / 180.0f;
         f.description = "none in file: auto-framed as the peer does";
     }
     return f;
@@ -284,7 +283,6 @@ int runBench(const BenchCommand& cmd) {
                                     " (set --width and --height to match)");
     }
     LoadOptions options;
-    options.requireCamera = false;   // auto-framed like the peer
     options.requireEmitter = false;  // traversal needs no light
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, options);

@@ -20,6 +20,7 @@
 #include "upload/device_scene.h"
 #include "render/renderer.h"
 #include "scene/environment.h"
+#include "scene/view.h"
 
 namespace strata {
 
@@ -38,7 +39,7 @@ struct BenchCommand {
     RenderSettings settings = benchDefaults();  // size, spp, seed, max depth, BVH, reads,
                                                 // stack, integrator (the flags render has)
     int reps = 5;                     // timed passes per ray set (median)
-    int camera = 0;
+    ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     int device = -1;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
     EnvironmentOptions env;           // --env / --env-color, --env-intensity, --env-rotate (as render)

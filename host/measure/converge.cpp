@@ -92,8 +92,7 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
     const RgbImage ref = readReference(cmd.reference);
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
-    if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
-        fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist");
+    const Camera camera = chooseCamera(scene, cmd.view, ref.width, ref.height);
     const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
     vk::Context ctx({cmd.device, cmd.validation});
 
@@ -120,12 +119,12 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
             ++level;
         };
         if (prefixes) {
-            render(ctx, dev, scene.cameras[cmd.camera], s, {}, Checkpoints{cmd.spp, measure});
+            render(ctx, dev, camera, s, {}, Checkpoints{cmd.spp, measure});
         } else {
             for (std::uint32_t spp : cmd.spp) {
                 RenderSettings one = s;
                 one.spp = spp;
-                measure(render(ctx, dev, scene.cameras[cmd.camera], one));
+                measure(render(ctx, dev, camera, one));
             }
         }
         if (!cmd.quiet) std::fprintf(stderr, "strata: converge: seed %u of %u done\n", k + 1, cmd.seeds);

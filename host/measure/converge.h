@@ -12,6 +12,7 @@
 
 #include "render/renderer.h"
 #include "scene/environment.h"
+#include "scene/view.h"
 
 namespace strata {
 
@@ -25,7 +26,7 @@ struct ConvergeCommand {
     RenderSettings settings;            // width/height come from the reference; settings.sampler
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     bool allSamplers = false;           // --sampler all: every sampler that suits the spp list
-    int camera = 0;
+    ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     int device = -1;
     bool validation = false;
     bool quiet = false;

@@ -44,9 +44,7 @@ int runRender(const RenderCommand& cmd) {
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
     const double loadMs = msSince(t0);
-    if (cmd.camera < 0 || static_cast<std::size_t>(cmd.camera) >= scene.cameras.size())
-        fail(cmd.scene, "--camera " + std::to_string(cmd.camera) + " does not exist (the scene has " +
-                            std::to_string(scene.cameras.size()) + " camera(s))");
+    const Camera camera = chooseCamera(scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
 
     double packMs = 0.0;  // the BVH build and the packing
     GpuScene gpu = buildAndPackReleasing(scene, cmd.settings.bvhWidth, packMs);
@@ -58,7 +56,7 @@ int runRender(const RenderCommand& cmd) {
                      ctx.info.type.c_str(), ctx.info.driver.c_str());
 
     const DeviceScene dev = uploadAndRelease(ctx, gpu, uploadOptions(cmd.settings, cmd.tuning));
-    RenderResult result = render(ctx, dev, scene.cameras[cmd.camera], cmd.settings, cmd.tuning);
+    RenderResult result = render(ctx, dev, camera, cmd.settings, cmd.tuning);
 
     StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs, deviceMs};
     nlohmann::json stats = statsJson(in);

@@ -8,6 +8,7 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "scene/environment.h"
+#include "scene/view.h"
 
 namespace strata {
 
@@ -17,7 +18,7 @@ struct RenderCommand {
     RenderSettings settings;
     RenderTuning tuning;                // tests lower tuning.limits; the command line never sets it
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
-    int camera = 0;
+    ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     int device = -1;
     bool quiet = false;
     bool stats = false;

@@ -62,7 +62,7 @@ Environment makeEnvironment(const EnvironmentOptions& o) {
 Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options, LoadOptions load) {
     load.externalLight = options.given();
     Scene scene = loadGltf(path, load);
-    scene.environment = makeEnvironment(options);
+    if (options.given()) scene.environment = makeEnvironment(options);
     return scene;
 }
 

@@ -433,10 +433,6 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
         scene.materials.push_back(fallback);
     }
 
-    if (options.requireCamera && scene.cameras.empty()) {
-        fail(path, "no camera: no node of scene " + std::to_string(sceneIndex) +
-                       " has a perspective camera");
-    }
     std::size_t emitters = 0;
     for (const Triangle& t : scene.triangles) {
         if (isEmitter(scene, t)) {
@@ -447,7 +443,15 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     }
     const std::string dropped =
         std::to_string(scene.droppedEmitters) + " emissive triangle(s) have zero area";
-    if (options.requireEmitter && emitters == 0 && scene.lights.empty() && !options.externalLight) {
+    const bool unlit = emitters == 0 && scene.lights.empty() && !options.externalLight;
+    if (unlit && options.defaultLight && scene.droppedEmitters == 0 && builder.zeroLights() == 0) {
+        // Nothing in the file emits or was meant to: what glTF viewers show.
+        scene.environment.enabled = true;
+        scene.environment.source = kDefaultEnvironment;
+        scene.environment.scale = glm::vec3(1.0f);
+        warn(path, "no light: lighting the scene with a uniform white environment of radiance 1; --env or "
+                   "--env-color sets another");
+    } else if (options.requireEmitter && unlit) {
         std::string msg =
             "no light: no triangle has an emissive material (emissiveFactor * emissiveStrength > 0)"
             " and a non-zero area, no node has a KHR_lights_punctual light, and no --env is given";

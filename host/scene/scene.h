@@ -182,9 +182,18 @@ inline bool isEmitter(const Scene& scene, const Triangle& t) {
            triangleArea(t) > 0.0f;
 }
 
+// Environment::source of the light a scene without any gets.
+inline constexpr const char* kDefaultEnvironment = "default (no light in the scene)";
+
 struct LoadOptions {
-    bool requireCamera = true;
-    bool requireEmitter = true;   // some light: an emitter triangle, a punctual light, or externalLight
+    // A scene where nothing emits or was meant to (no emissive material on a
+    // triangle, no punctual light) and no externalLight gets a uniform white
+    // environment of radiance 1, with a warning.
+    bool defaultLight = true;
+    // Otherwise some light is required: an emitter triangle of non-zero area,
+    // a punctual light, or externalLight (a scene whose only lights are black
+    // or have no area is an error).
+    bool requireEmitter = true;
     bool externalLight = false;   // an environment light comes from the command line
 };
 

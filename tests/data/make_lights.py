@@ -140,6 +140,14 @@ def convex_sphere():
     finish(w, "sphere.gltf", [w.add_node("Sphere", mesh=sphere), w.add_node("Camera", camera=cam, translation=[0, 0, 3])])
 
 
+def bare_sphere():
+    """sphere.gltf's sphere moved to (1, 2, -3), with no camera and no light:
+    strata frames it and lights it with its default white environment."""
+    w = GltfWriter(GEN)
+    sphere = add_sphere(w, 3, grey(w, 0.8), inward=False)
+    finish(w, "bare-sphere.gltf", [w.add_node("Sphere", mesh=sphere, translation=[1, 2, -3])])
+
+
 def env_plane():
     """A 40 x 40 plane through the origin facing n = normalize(1, 1.5, -0.5),
     albedo 0.5, no light; camera at 3 n looking along -n, yfov 0.5."""
@@ -214,6 +222,7 @@ def main():
     spot_plane()
     directional_plane()
     convex_sphere()
+    bare_sphere()
     env_plane()
     sky_hdr()
     broken("negative-intensity.gltf", type_="point", intensity=-1.0)
