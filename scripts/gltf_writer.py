@@ -104,7 +104,7 @@ class GltfWriter:
     # Scene objects -------------------------------------------------------
     def add_material(self, name, base_color=None, metallic=None, roughness=None,
                      emissive=None, strength=None, ior=None, double_sided=False,
-                     alpha_mode=None, alpha_cutoff=None, specular=None, transmission=None):
+                     alpha_mode=None, alpha_cutoff=None, specular=None, transmission=None, unlit=False):
         """base_color is RGBA; factors left as None are omitted (glTF defaults)."""
         mat = {"name": name}
         pbr = {}
@@ -127,6 +127,8 @@ class GltfWriter:
             ext["KHR_materials_specular"] = {"specularFactor": specular}
         if transmission is not None:
             ext["KHR_materials_transmission"] = {"transmissionFactor": transmission}
+        if unlit:
+            ext["KHR_materials_unlit"] = {}
         if ext:
             mat["extensions"] = ext
         if double_sided:

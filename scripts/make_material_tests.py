@@ -87,6 +87,31 @@ def black_gloss(w):
     return w.add_material("BlackGloss", base_color=(0, 0, 0, 1), metallic=0.0, roughness=0.0)
 
 
+def unlit():
+    """KHR_materials_unlit: a 4 x 4 quad at z = 0 of base colour UNLIT (and an
+    emissive factor, which unlit ignores) fills the view of a camera at
+    (0, 0, 2) looking down -Z (yfov 40 degrees), next to a point light and
+    under a lit white floor; every pixel shows UNLIT exactly."""
+    w = writer()
+    flat = w.add_material("Flat", base_color=UNLIT + (1,), emissive=(5, 5, 5), unlit=True)
+    white = w.add_material("White", base_color=(1, 1, 1, 1), metallic=0.0, roughness=1.0)
+    lamp = w.add_light("Lamp", "point", intensity=10.0)
+    quad = Quads().add((-2, -2, 0), (4, 0, 0), (0, 4, 0), (0, 0, 1))
+    floor = Quads().add((-3, -2.5, -3), (0, 0, 6), (6, 0, 0), (0, 1, 0))
+    roots = [
+        w.add_node("Flat", mesh=mesh(w, "Flat", quad, flat)),
+        w.add_node("Floor", mesh=mesh(w, "Floor", floor, white)),
+        w.add_node("Lamp", light=lamp, translation=[0, 0, 1]),
+        w.add_node("Camera", camera=camera(w, "Camera", 40.0), translation=[0, 0, 2]),
+    ]
+    w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_unlit", "KHR_lights_punctual"])
+    return w.gltf_text()
+
+
+UNLIT = (0.2, 0.5, 0.9)
+
+
 def main():
     out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data", "materials")
     os.makedirs(out, exist_ok=True)
@@ -99,6 +124,7 @@ def main():
         "plate-a0.5-mu1.gltf": plate(math.sqrt(0.5), 0.0),
         "plate-a0.5-mu0.5.gltf": plate(math.sqrt(0.5), 60.0),
         "plate-a0.1-mu1.gltf": plate(math.sqrt(0.1), 0.0),
+        "unlit.gltf": unlit(),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))

@@ -204,6 +204,37 @@ TEST_CASE("furnace: a white GGX metal plate reflects its directional albedo E(mu
     CHECK(vk::validationMessageCount() == 0);
 }
 
+// KHR_materials_unlit: the quad of unlit.gltf fills the view; a point light
+// and a lit floor are in the scene and its emissive factor is 5, yet every
+// pixel shows the base colour (0.2, 0.5, 0.9) and nothing more, at any depth
+// (float rounding of the sums: relative 1e-6).
+TEST_CASE("unlit: every pixel of an unlit surface is its base colour, whatever the light and the depth") {
+    const Scene scene = loadGltf(sourcePath("tests/data/materials/unlit.gltf"));
+    REQUIRE(scene.materials.at(0).unlit);
+    CHECK(scene.materials[0].emission() == glm::vec3(0.0f));
+    const GpuScene gpu = buildAndPack(scene);
+    CHECK((gpu.features.bits & gpu::kFeatureUnlit) != 0u);
+    const glm::vec3 expected(0.2f, 0.5f, 0.9f);
+    for (const std::uint32_t depth : {0u, 1u, 8u}) {
+        CAPTURE(depth);
+        RenderSettings s;
+        s.width = s.height = 16;
+        s.spp = 8;
+        s.maxDepth = depth;
+        const RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
+        const auto mean = r.film.mean();
+        for (std::size_t i = 0; i < mean.size(); ++i)
+            CHECK(mean[i] == doctest::Approx(expected[static_cast<int>(i % 3)]).epsilon(1e-6));
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("unlit: a scene without unlit materials has no unlit feature bit" * doctest::test_suite("unit")) {
+    const Scene scene = loadGltf(sourcePath("scenes/materials-board.gltf"));
+    for (const MaterialDesc& m : scene.materials) CHECK_FALSE(m.unlit);
+    CHECK((buildAndPack(scene).features.bits & gpu::kFeatureUnlit) == 0u);
+}
+
 TEST_CASE("Veach's MIS scene: BSDF-only, light-only and MIS agree in mean, and MIS error stays near the better technique's in every block") {
     // Direct lighting (max depth 1) of scenes/veach-mis.gltf: four lights of
     // equal power and growing size over four plates of growing roughness.

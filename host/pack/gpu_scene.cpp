@@ -22,7 +22,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureSpecular, "specular"},       {gpu::kFeatureTransmission, "transmission"},
         {gpu::kFeatureTextures, "textures"},       {gpu::kFeatureNormalMap, "normal-maps"},
         {gpu::kFeatureAlphaTest, "alpha-test"},    {gpu::kFeaturePunctual, "punctual-lights"},
-        {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"}};
+        {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"},
+        {gpu::kFeatureUnlit, "unlit"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -260,6 +261,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         gm.normalScale = m.normalScale;
         if (m.alphaMode == MaterialDesc::AlphaMode::Mask) gm.flags |= gpu::kMaterialAlphaMask;
         if (m.alphaMode == MaterialDesc::AlphaMode::Blend) gm.flags |= gpu::kMaterialAlphaBlend;
+        if (m.unlit) gm.flags |= gpu::kMaterialUnlit;
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex =
             gm.transmissionTex = gpu::kNoTexture;
         g.materials.push_back(gm);
@@ -355,6 +357,10 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
     for (std::size_t i = 0; i < g.materials.size(); ++i) {
         if (!used[i]) continue;
         const gpu::Material& m = g.materials[i];
+        if ((m.flags & gpu::kMaterialUnlit) != 0u) {  // no lobes
+            g.features.bits |= gpu::kFeatureUnlit;
+            continue;
+        }
         if (m.metallic > 0.0f || m.specular > 0.0f) g.features.bits |= gpu::kFeatureSpecular;
         if (m.transmission > 0.0f && m.metallic < 1.0f) g.features.bits |= gpu::kFeatureTransmission;
     }

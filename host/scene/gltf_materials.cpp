@@ -126,6 +126,10 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.transmission = unitFactor("KHR_materials_transmission", "transmissionFactor", 0.0);
     m.specular = unitFactor("KHR_materials_specular", "specularFactor", 1.0);
 
+    if (const auto unlit = src.extensions.find("KHR_materials_unlit"); unlit != src.extensions.end()) {
+        if (!unlit->second.IsObject()) fail(path, label + ": KHR_materials_unlit is not a JSON object");
+        m.unlit = true;
+    }
     m.doubleSided = src.doubleSided;
     if (src.alphaMode == "OPAQUE") {
         m.alphaMode = MaterialDesc::AlphaMode::Opaque;

@@ -21,9 +21,10 @@ namespace {
 
 // Extensions strata reads; others named in extensionsUsed are ignored with a
 // warning, and in extensionsRequired are an error.
-constexpr std::array<std::string_view, 6> kSupportedExtensions = {
+constexpr std::string_view kSupportedExtensions[] = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_specular", "KHR_materials_transmission", "KHR_texture_transform"};
+    "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
+    "KHR_texture_transform"};
 
 std::string supportedList() {
     std::string out;
@@ -145,8 +146,8 @@ void checkGlbHeader(const std::string& path, const std::vector<unsigned char>& b
 }
 
 bool isSupported(const std::string& extension) {
-    return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), extension) !=
-           kSupportedExtensions.end();
+    return std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), extension) !=
+           std::end(kSupportedExtensions);
 }
 
 }  // namespace

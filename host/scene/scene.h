@@ -58,7 +58,10 @@ struct MaterialDesc {
     TextureSlot emissiveTexture;           // sRGB
     TextureSlot transmissionTexture;       // linear R (KHR_materials_transmission)
     float normalScale = 1.0f;              // normalTexture.scale
-    glm::vec3 emission() const { return emissiveFactor * emissiveStrength; }
+    // KHR_materials_unlit: the surface shows baseColor (factor x texture) and
+    // does not scatter; the other properties, emission included, are ignored.
+    bool unlit = false;
+    glm::vec3 emission() const { return unlit ? glm::vec3(0.0f) : emissiveFactor * emissiveStrength; }
 };
 
 // A decoded image: RGBA, rows top to bottom (glTF uv (0, 0) is the top-left

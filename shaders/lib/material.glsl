@@ -100,6 +100,13 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     return sp;
 }
 
+// KHR_materials_unlit: what an unlit surface shows, baseColorFactor times
+// the baseColor texture.
+vec3 unlitColor(Material mat, uint triangle, vec2 bary) {
+    if ((kFeatures & kFeatureTextures) == 0u || mat.baseColorTex == kNoTexture) return mat.baseColor.rgb;
+    return mat.baseColor.rgb * materialTexture(mat.baseColorTex, texcoordsAt(triangle, bary)).rgb;
+}
+
 // Emitted radiance of material `materialIndex` at a point of `triangle`
 // (next-event estimation on textured emitters).
 vec3 emissionAt(uint materialIndex, uint triangle, vec2 bary) {

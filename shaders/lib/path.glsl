@@ -83,6 +83,11 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             v.L += v.beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
         }
     }
+    // KHR_materials_unlit: the surface's colour, seen from either side, and no scattering.
+    if (hasFeature(kFeatureUnlit) && (mat.flags & kMaterialUnlit) != 0u) {
+        v.L += v.beta * unlitColor(mat, hit.triangle, vec2(hit.u, hit.v));
+        return o;
+    }
     if (depth < maxDepth) {
 
         vec3 n = front ? ng : -ng;  // geometric normal on the incoming side

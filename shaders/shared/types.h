@@ -102,6 +102,7 @@ STRATA_CONST(uint, kFeatureAlphaTest, 16u);    // alphaMode MASK or BLEND
 STRATA_CONST(uint, kFeaturePunctual, 32u);     // KHR_lights_punctual lights
 STRATA_CONST(uint, kFeatureEnvironment, 64u);  // an environment light (constant or map)
 STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
+STRATA_CONST(uint, kFeatureUnlit, 256u);       // KHR_materials_unlit
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -114,6 +115,7 @@ STRATA_CONST(uint, kMisLight, 2u);   // light sampling only (emitters hit by BSD
 STRATA_CONST(uint, kMaterialDoubleSided, 1u);
 STRATA_CONST(uint, kMaterialAlphaMask, 2u);    // alphaMode MASK: alpha < alphaCutoff is a hole
 STRATA_CONST(uint, kMaterialAlphaBlend, 4u);   // alphaMode BLEND: stochastic transparency
+STRATA_CONST(uint, kMaterialUnlit, 8u);        // KHR_materials_unlit: shows baseColor, does not scatter
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
