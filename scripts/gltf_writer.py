@@ -104,7 +104,8 @@ class GltfWriter:
     # Scene objects -------------------------------------------------------
     def add_material(self, name, base_color=None, metallic=None, roughness=None,
                      emissive=None, strength=None, ior=None, double_sided=False,
-                     alpha_mode=None, alpha_cutoff=None, specular=None, transmission=None, unlit=False):
+                     alpha_mode=None, alpha_cutoff=None, specular=None, transmission=None, unlit=False,
+                     volume=None):
         """base_color is RGBA; factors left as None are omitted (glTF defaults)."""
         mat = {"name": name}
         pbr = {}
@@ -129,6 +130,9 @@ class GltfWriter:
             ext["KHR_materials_transmission"] = {"transmissionFactor": transmission}
         if unlit:
             ext["KHR_materials_unlit"] = {}
+        if volume is not None:  # (thicknessFactor, attenuationDistance, attenuationColor)
+            ext["KHR_materials_volume"] = {"thicknessFactor": volume[0], "attenuationDistance": volume[1],
+                                           "attenuationColor": list(volume[2])}
         if ext:
             mat["extensions"] = ext
         if double_sided:

@@ -112,6 +112,33 @@ def unlit():
 UNLIT = (0.2, 0.5, 0.9)
 
 
+def volume_slab():
+    """KHR_materials_volume: a closed 10 x 10 x 1 slab (z in [-0.5, 0.5]) of
+    clear glass of ior 1 (no reflection, no bending), attenuation distance 2
+    and colour VOLUME_COLOR, seen by a camera at (0, 0, 3) looking down -Z
+    (yfov 1 degree) against the default white environment (no light in the
+    file): every pixel shows VOLUME_COLOR^(1 / 2) to within 1e-4."""
+    w = writer()
+    glass = w.add_material("Tinted", base_color=(1, 1, 1, 1), metallic=0.0, roughness=0.0, ior=1.0,
+                           transmission=1.0, volume=(1.0, 2.0, VOLUME_COLOR))
+    h, t = 5.0, 0.5
+    box = Quads()
+    box.add((-h, -h, t), (2 * h, 0, 0), (0, 2 * h, 0), (0, 0, 1))       # front, +Z
+    box.add((-h, -h, -t), (0, 2 * h, 0), (2 * h, 0, 0), (0, 0, -1))     # back, -Z
+    box.add((-h, -h, -t), (0, 0, 2 * t), (0, 2 * h, 0), (-1, 0, 0))     # -X
+    box.add((h, -h, -t), (0, 2 * h, 0), (0, 0, 2 * t), (1, 0, 0))       # +X
+    box.add((-h, -h, -t), (2 * h, 0, 0), (0, 0, 2 * t), (0, -1, 0))     # -Y
+    box.add((-h, h, -t), (0, 0, 2 * t), (2 * h, 0, 0), (0, 1, 0))       # +Y
+    roots = [w.add_node("Slab", mesh=mesh(w, "Slab", box, glass)),
+             w.add_node("Camera", camera=camera(w, "Camera", 1.0), translation=[0, 0, 3])]
+    w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_ior", "KHR_materials_transmission", "KHR_materials_volume"])
+    return w.gltf_text()
+
+
+VOLUME_COLOR = (0.5, 0.25, 0.8)
+
+
 def main():
     out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data", "materials")
     os.makedirs(out, exist_ok=True)
@@ -125,6 +152,7 @@ def main():
         "plate-a0.5-mu0.5.gltf": plate(math.sqrt(0.5), 60.0),
         "plate-a0.1-mu1.gltf": plate(math.sqrt(0.1), 0.0),
         "unlit.gltf": unlit(),
+        "volume-slab.gltf": volume_slab(),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))

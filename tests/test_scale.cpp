@@ -105,10 +105,10 @@ TEST_CASE("scale: reads follow the device's limits, and a scene beyond them is a
     l = {16384, 1u << 20, 1u << 30};
     g.tris.resize(100);  // the per-triangle arrays fit the storage range again
     g.shading.resize(100);
-    g.materials.resize(300);  // 24000 bytes: past the storage range, read through a texel view
+    g.materials.resize(300);  // 28800 bytes: past the storage range, read through a texel view
     CHECK(chooseReads(l, g, ReadMode::Auto, false, false) == gpu::kReadsTexelAll);
     CHECK_THROWS_WITH_AS(chooseReads(l, g, ReadMode::Storage, false, false),
-                         "big.glb: error: --reads storage: the materials need 24000 bytes, more than the "
+                         "big.glb: error: --reads storage: the materials need 28800 bytes, more than the "
                          "device's maxStorageBufferRange (16384 bytes)",
                          Error);
     g.materials.resize(1);

@@ -23,7 +23,7 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureTextures, "textures"},       {gpu::kFeatureNormalMap, "normal-maps"},
         {gpu::kFeatureAlphaTest, "alpha-test"},    {gpu::kFeaturePunctual, "punctual-lights"},
         {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"},
-        {gpu::kFeatureUnlit, "unlit"}};
+        {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -31,6 +31,23 @@ std::vector<std::string> SceneFeatures::names() const {
 }
 
 namespace {
+
+// KHR_materials_volume's attenuation coefficient sigma = -ln(color) / distance
+// per channel, for a material whose volume attenuates: thickness > 0 (not
+// thin-walled), transmissive, finite distance, a colour below 1. Zero
+// otherwise. A channel of colour 0 absorbs everything (float max).
+glm::vec3 volumeAttenuation(const MaterialDesc& m) {
+    const bool volume = m.thickness > 0.0f && m.transmission > 0.0f && m.metallic < 1.0f && !m.unlit &&
+                        std::isfinite(m.attenuationDistance) && glm::any(glm::lessThan(m.attenuationColor, glm::vec3(1.0f)));
+    if (!volume) return glm::vec3(0.0f);
+    glm::vec3 sigma;
+    for (int k = 0; k < 3; ++k) {
+        const double c = m.attenuationColor[k];
+        sigma[k] = c > 0.0 ? static_cast<float>(-std::log(c) / double(m.attenuationDistance))
+                           : std::numeric_limits<float>::max();
+    }
+    return sigma;
+}
 
 double sceneRadius(const Scene& scene) {
     if (scene.triangles.empty()) return 1.0;
@@ -262,6 +279,9 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         if (m.alphaMode == MaterialDesc::AlphaMode::Mask) gm.flags |= gpu::kMaterialAlphaMask;
         if (m.alphaMode == MaterialDesc::AlphaMode::Blend) gm.flags |= gpu::kMaterialAlphaBlend;
         if (m.unlit) gm.flags |= gpu::kMaterialUnlit;
+        gm.attenuation = volumeAttenuation(m);
+        gm.thickness = m.thickness;
+        if (gm.attenuation != glm::vec3(0.0f)) gm.flags |= gpu::kMaterialVolume;
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex =
             gm.transmissionTex = gpu::kNoTexture;
         g.materials.push_back(gm);
@@ -363,6 +383,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         }
         if (m.metallic > 0.0f || m.specular > 0.0f) g.features.bits |= gpu::kFeatureSpecular;
         if (m.transmission > 0.0f && m.metallic < 1.0f) g.features.bits |= gpu::kFeatureTransmission;
+        if ((m.flags & gpu::kMaterialVolume) != 0u) g.features.bits |= gpu::kFeatureVolume;
     }
     if constexpr (consume) releaseGeometry(scene);
     return g;

@@ -33,6 +33,22 @@ double extensionNumber(const std::string& path, const std::string& label,
     return value.GetNumberAsDouble();
 }
 
+// KHR_materials_volume.attenuationColor: three numbers in [0, 1], default white.
+glm::vec3 volumeColor(const std::string& path, const std::string& label, const tinygltf::Material& material) {
+    const auto it = material.extensions.find("KHR_materials_volume");
+    if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has("attenuationColor"))
+        return glm::vec3(1.0f);
+    const tinygltf::Value& c = it->second.Get("attenuationColor");
+    glm::vec3 color(0.0f);
+    bool ok = c.IsArray() && c.ArrayLen() == 3;
+    for (int k = 0; ok && k < 3; ++k) {
+        ok = c.Get(k).IsNumber() && c.Get(k).GetNumberAsDouble() >= 0.0 && c.Get(k).GetNumberAsDouble() <= 1.0;
+        if (ok) color[k] = static_cast<float>(c.Get(k).GetNumberAsDouble());
+    }
+    if (!ok) fail(path, label + ": KHR_materials_volume.attenuationColor is not three numbers in [0, 1]");
+    return color;
+}
+
 // The KHR_texture_transform object of a textureInfo's extensions, or nullptr.
 const tinygltf::Value* textureTransform(const tinygltf::ExtensionMap& extensions) {
     const auto it = extensions.find("KHR_texture_transform");
@@ -130,6 +146,16 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
         if (!unlit->second.IsObject()) fail(path, label + ": KHR_materials_unlit is not a JSON object");
         m.unlit = true;
     }
+    m.thickness = static_cast<float>(extensionNumber(path, label, src, "KHR_materials_volume", "thicknessFactor", 0.0));
+    if (!(m.thickness >= 0.0f) || !std::isfinite(m.thickness))
+        fail(path, label + ": KHR_materials_volume.thicknessFactor " + formatNumber(m.thickness) +
+                       " is not a finite number >= 0");
+    const double distance = extensionNumber(path, label, src, "KHR_materials_volume", "attenuationDistance",
+                                            std::numeric_limits<double>::infinity());
+    if (!(distance > 0.0))
+        fail(path, label + ": KHR_materials_volume.attenuationDistance " + formatNumber(distance) + " is not > 0");
+    m.attenuationDistance = static_cast<float>(distance);
+    m.attenuationColor = volumeColor(path, label, src);
     m.doubleSided = src.doubleSided;
     if (src.alphaMode == "OPAQUE") {
         m.alphaMode = MaterialDesc::AlphaMode::Opaque;

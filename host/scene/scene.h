@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,12 @@ struct MaterialDesc {
     // KHR_materials_unlit: the surface shows baseColor (factor x texture) and
     // does not scatter; the other properties, emission included, are ignored.
     bool unlit = false;
+    // KHR_materials_volume: thicknessFactor (0: thin-walled, no volume), and
+    // the Beer-Lambert attenuation inside: a path of length x keeps
+    // attenuationColor^(x / attenuationDistance) (infinite distance: none).
+    float thickness = 0.0f;
+    float attenuationDistance = std::numeric_limits<float>::infinity();
+    glm::vec3 attenuationColor{1.0f};
     glm::vec3 emission() const { return unlit ? glm::vec3(0.0f) : emissiveFactor * emissiveStrength; }
 };
 

@@ -75,6 +75,11 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     TriShading sh = sceneShading(hit.triangle);
     Material mat = sceneMaterial(sh.material);
 
+    // KHR_materials_volume: a ray that reaches a back face of a volume has
+    // travelled hit.t inside it (volumes closed and not nested): Beer-Lambert.
+    if (hasFeature(kFeatureVolume) && !front && (mat.flags & kMaterialVolume) != 0u)
+        v.beta *= exp(-mat.attenuation * hit.t);
+
     // Emission found by the previous vertex's BSDF sample (or directly).
     if (kHasEmitters != 0u && sh.light != kNoLight) {
         if (front || (mat.flags & kMaterialDoubleSided) != 0u) {

@@ -87,7 +87,12 @@ TriTangents sceneTangents(uint triangle) {
 // the same shape for its own struct.)
 Material sceneMaterial(uint i) {
     if (!kTexelAll) return materials[i];
-    uvec4 t[kMaterialTexels] = texels5(materialsTexel, i);
+    // The volume's texel only when a material of the scene has one.
+    int base = int(kMaterialTexels * i);
+    uvec4 t[kMaterialTexels] = uvec4[kMaterialTexels](
+        texelFetch(materialsTexel, base), texelFetch(materialsTexel, base + 1), texelFetch(materialsTexel, base + 2),
+        texelFetch(materialsTexel, base + 3), texelFetch(materialsTexel, base + 4),
+        hasFeature(kFeatureVolume) ? texelFetch(materialsTexel, base + 5) : uvec4(0u));
     return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
                     TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
                     TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
@@ -95,7 +100,8 @@ Material sceneMaterial(uint i) {
                     TEXEL_FLOAT(t, kMaterialWordSpecular), TEXEL_FLOAT(t, kMaterialWordNormalScale),
                     TEXEL_UINT(t, kMaterialWordBaseColorTex), TEXEL_UINT(t, kMaterialWordMetallicRoughnessTex),
                     TEXEL_UINT(t, kMaterialWordNormalTex), TEXEL_UINT(t, kMaterialWordEmissiveTex),
-                    TEXEL_UINT(t, kMaterialWordTransmissionTex));
+                    TEXEL_UINT(t, kMaterialWordTransmissionTex), TEXEL_VEC3(t, kMaterialWordAttenuation),
+                    TEXEL_FLOAT(t, kMaterialWordThickness));
 }
 
 #include "lib/sampling.glsl"

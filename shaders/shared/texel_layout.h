@@ -46,7 +46,7 @@ STRATA_CONST(uint, kTriShadingWordLight, 7u);
 STRATA_CONST(uint, kTriShadingWordN2, 8u);
 STRATA_CONST(uint, kTriShadingWordPad0, 11u);
 
-STRATA_CONST(uint, kMaterialTexels, 5u);
+STRATA_CONST(uint, kMaterialTexels, 6u);
 STRATA_CONST(uint, kMaterialWordBaseColor, 0u);
 STRATA_CONST(uint, kMaterialWordEmission, 4u);
 STRATA_CONST(uint, kMaterialWordMetallic, 7u);
@@ -62,6 +62,8 @@ STRATA_CONST(uint, kMaterialWordMetallicRoughnessTex, 16u);
 STRATA_CONST(uint, kMaterialWordNormalTex, 17u);
 STRATA_CONST(uint, kMaterialWordEmissiveTex, 18u);
 STRATA_CONST(uint, kMaterialWordTransmissionTex, 19u);
+STRATA_CONST(uint, kMaterialWordAttenuation, 20u);
+STRATA_CONST(uint, kMaterialWordThickness, 23u);
 
 STRATA_CONST(uint, kTriTexcoordsTexels, 3u);
 STRATA_CONST(uint, kTriTexcoordsWordUv0, 0u);
@@ -151,6 +153,8 @@ STRATA_WORD(Material, metallicRoughnessTex, kMaterialWordMetallicRoughnessTex);
 STRATA_WORD(Material, normalTex, kMaterialWordNormalTex);
 STRATA_WORD(Material, emissiveTex, kMaterialWordEmissiveTex);
 STRATA_WORD(Material, transmissionTex, kMaterialWordTransmissionTex);
+STRATA_TEXEL_WORD(Material, attenuation, kMaterialWordAttenuation);
+STRATA_WORD(Material, thickness, kMaterialWordThickness);
 
 STRATA_TEXELS(TriTexcoords, kTriTexcoordsTexels);
 STRATA_TEXEL_WORD(TriTexcoords, uv0, kTriTexcoordsWordUv0);

@@ -103,6 +103,7 @@ STRATA_CONST(uint, kFeaturePunctual, 32u);     // KHR_lights_punctual lights
 STRATA_CONST(uint, kFeatureEnvironment, 64u);  // an environment light (constant or map)
 STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
 STRATA_CONST(uint, kFeatureUnlit, 256u);       // KHR_materials_unlit
+STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with attenuation
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -116,6 +117,7 @@ STRATA_CONST(uint, kMaterialDoubleSided, 1u);
 STRATA_CONST(uint, kMaterialAlphaMask, 2u);    // alphaMode MASK: alpha < alphaCutoff is a hole
 STRATA_CONST(uint, kMaterialAlphaBlend, 4u);   // alphaMode BLEND: stochastic transparency
 STRATA_CONST(uint, kMaterialUnlit, 8u);        // KHR_materials_unlit: shows baseColor, does not scatter
+STRATA_CONST(uint, kMaterialVolume, 16u);      // KHR_materials_volume: attenuates paths inside
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -139,6 +141,10 @@ struct Material {
     uint normalTex;
     uint emissiveTex;
     uint transmissionTex;
+    // KHR_materials_volume (kMaterialVolume): the attenuation coefficient per
+    // unit length, -ln(attenuationColor) / attenuationDistance.
+    vec3 attenuation;
+    float thickness;        // thicknessFactor (the shader takes lengths from the geometry)
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_0.xy,
@@ -392,7 +398,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 80);
+static_assert(sizeof(Material) == 96);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
