@@ -238,7 +238,7 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
         {"no-camera.gltf", "no camera"},
         {"no-emitter.gltf", "no light: no triangle has an emissive material"},
         {"unsupported-required-extension.gltf",
-         "unsupported required extension(s): KHR_mesh_quantization"},
+         "unsupported required extension(s): KHR_draco_mesh_compression"},
         {"zero-area-only-emitter.gltf", "no light: "},
         {"lines-mode.gltf",
          "mesh 2 (\"Cube\") primitive 0: mode 1 (LINES) is not supported; only TRIANGLES"},

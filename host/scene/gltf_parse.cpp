@@ -21,9 +21,10 @@ namespace {
 
 // Extensions strata reads; others named in extensionsUsed are ignored with a
 // warning, and in extensionsRequired are an error.
-constexpr std::array<std::string_view, 6> kSupportedExtensions = {
+constexpr std::array<std::string_view, 7> kSupportedExtensions = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_specular", "KHR_materials_transmission", "KHR_texture_transform"};
+    "KHR_materials_specular", "KHR_materials_transmission", "KHR_mesh_quantization",
+    "KHR_texture_transform"};
 
 std::string supportedList() {
     std::string out;

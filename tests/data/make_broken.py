@@ -107,7 +107,7 @@ def main():
     write("no-emitter.gltf", w, roots)
 
     w, roots = scene()
-    w.use_extensions(["KHR_mesh_quantization"], required=["KHR_mesh_quantization"])
+    w.use_extensions(["KHR_draco_mesh_compression"], required=["KHR_draco_mesh_compression"])
     write("unsupported-required-extension.gltf", w, roots)
 
     # A zero-area emissive triangle next to a valid emitter: loads, warns,
