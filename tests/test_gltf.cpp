@@ -241,7 +241,8 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
          "unsupported required extension(s): KHR_draco_mesh_compression"},
         {"zero-area-only-emitter.gltf", "no light: "},
         {"lines-mode.gltf",
-         "mesh 2 (\"Cube\") primitive 0: mode 1 (LINES) is not supported; only TRIANGLES"},
+         "no triangles to render: skipped 1 primitive(s) that are not triangles: mesh 0 (\"Cube\") "
+         "primitive 0 (LINES)"},
         {"orthographic-camera.gltf", "camera 0 (\"Ortho\") is orthographic"},
         {"no-scenes.gltf", "no scenes"},
         {"node-two-parents.gltf",

@@ -71,18 +71,29 @@ struct LocalPrimitive {
     std::vector<glm::vec2> texcoords[2];
     std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices;
-    int material = -1;  // glTF material index, -1 for none
+    int material = -1;      // glTF material index, -1 for none
+    std::size_t index = 0;  // in the mesh's primitives (for messages)
 };
 
-// Decodes every primitive of `mesh` (gltf_mesh.cpp): TRIANGLES only. Accessor storage: POSITION float VEC3
+// The triangle primitives of a mesh, and the others it skips.
+struct LocalMesh {
+    std::vector<LocalPrimitive> primitives;
+    // One entry per POINTS/LINES/LINE_LOOP/LINE_STRIP primitive, in file
+    // order: `mesh 1 ("Wire") primitive 0 (LINES)`.
+    std::vector<std::string> skipped;
+};
+
+// Decodes every primitive of `mesh` (gltf_mesh.cpp). TRIANGLES as they are;
+// TRIANGLE_STRIP and TRIANGLE_FAN (at least 3 indices) converted to
+// triangles with the glTF 2.0 3.7.2.1 winding, dropping those that repeat an
+// index; the point and line modes skipped; any other mode is an error. Accessor storage: POSITION float VEC3
 // with finite values, NORMAL float VEC3 (optional), TEXCOORD_0/1 VEC2 float
 // or normalized u8/u16 (optional), TANGENT float VEC4 (optional); with
 // KHR_mesh_quantization declared also POSITION and TEXCOORD_n as
 // i8/u8/i16/u16 (normalized or not), NORMAL and TANGENT as normalized
 // i8/i16. Indices u8/u16/u32 in range. Every accessor inside its bufferView
 // and buffer, or without a bufferView (zeros); sparse accessors anywhere.
-std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::Model& model,
-                                       int mesh);
+LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int mesh);
 
 // pbrMetallicRoughness factors, emissive factor, KHR_materials_emissive_strength,
 // KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.

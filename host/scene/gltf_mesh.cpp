@@ -1,6 +1,6 @@
 // Mesh primitives for the glTF loader: the accessor storages each attribute
 // accepts (glTF 2.0 3.7.2.1, and KHR_mesh_quantization when the file declares
-// it).
+// it), and the triangles of each primitive mode.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -55,6 +55,28 @@ bool declares(const tinygltf::Model& model, const std::string& extension) {
     return in(model.extensionsUsed) || in(model.extensionsRequired);
 }
 
+// Triangles of a TRIANGLE_STRIP or TRIANGLE_FAN over the vertex sequence `v`
+// (its indices, or 0..n-1), n >= 3, by glTF 2.0 3.7.2.1: strip triangle i is
+// (v[i], v[i+1], v[i+2]) for even i and (v[i], v[i+2], v[i+1]) for odd i; fan
+// triangle i is (v[i+1], v[i+2], v[0]). A triangle that repeats an index is
+// dropped: it has no area (writers repeat indices to join strips), and an
+// emissive one would be reported as a zero-area emitter.
+std::vector<std::uint32_t> stripOrFanTriangles(const std::vector<std::uint32_t>& v, int mode) {
+    std::vector<std::uint32_t> out;
+    out.reserve(3 * (v.size() - 2));
+    for (std::size_t i = 0; i + 2 < v.size(); ++i) {
+        std::uint32_t a = v[i], b = v[i + 1], c = v[i + 2];
+        if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            a = v[i + 1], b = v[i + 2], c = v[0];
+        } else if (i % 2 == 1) {
+            std::swap(b, c);
+        }
+        if (a == b || b == c || a == c) continue;
+        out.insert(out.end(), {a, b, c});
+    }
+    return out;
+}
+
 template <int N>
 std::vector<glm::vec<N, float>> readAttribute(const std::string& path, const tinygltf::Model& model,
                                               int index, const std::string& use,
@@ -100,18 +122,27 @@ std::vector<glm::vec4> readTangents(const std::string& path, const tinygltf::Mod
 
 }  // namespace
 
-std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::Model& model,
-                                       int mesh) {
+LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int mesh) {
     const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(mesh)];
     const bool quantization = declares(model, "KHR_mesh_quantization");
-    std::vector<LocalPrimitive> out;
-    out.reserve(m.primitives.size());
+    LocalMesh out;
+    out.primitives.reserve(m.primitives.size());
     for (std::size_t p = 0; p < m.primitives.size(); ++p) {
         const tinygltf::Primitive& prim = m.primitives[p];
         const std::string label = meshLabel(model, mesh) + " primitive " + std::to_string(p);
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
-            fail(path, label + ": mode " + std::to_string(prim.mode) + " (" + modeName(prim.mode) +
-                           ") is not supported; only TRIANGLES");
+        switch (prim.mode) {
+            case TINYGLTF_MODE_TRIANGLES:
+            case TINYGLTF_MODE_TRIANGLE_STRIP:
+            case TINYGLTF_MODE_TRIANGLE_FAN: break;
+            case TINYGLTF_MODE_POINTS:
+            case TINYGLTF_MODE_LINE:
+            case TINYGLTF_MODE_LINE_LOOP:
+            case TINYGLTF_MODE_LINE_STRIP:
+                out.skipped.push_back(label + " (" + modeName(prim.mode) + ")");
+                continue;
+            default:
+                fail(path, label + ": mode " + std::to_string(prim.mode) +
+                               " is not a glTF primitive mode (0 to 6)");
         }
         if (prim.material < -1 || (prim.material >= 0 && static_cast<std::size_t>(prim.material) >=
                                                              model.materials.size())) {
@@ -120,6 +151,7 @@ std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::
         }
         LocalPrimitive local;
         local.material = prim.material;
+        local.index = p;
 
         const auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");
@@ -157,32 +189,44 @@ std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::
             sameCount(local.tangents.size(), "TANGENT");
         }
 
+        const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES;
+        std::vector<std::uint32_t> sequence;
         if (prim.indices >= 0) {
-            local.indices = readIndices(path, model, prim.indices, label + " indices");
-            if (local.indices.size() % 3 != 0) {
-                fail(path, label + ": index count " + std::to_string(local.indices.size()) +
+            sequence = readIndices(path, model, prim.indices, label + " indices");
+            if (triangles && sequence.size() % 3 != 0) {
+                fail(path, label + ": index count " + std::to_string(sequence.size()) +
                                " is not a multiple of 3");
             }
-            for (std::size_t i = 0; i < local.indices.size(); ++i) {
-                if (local.indices[i] >= vertexCount) {
-                    fail(path, label + ": index " + std::to_string(local.indices[i]) +
-                                   " (indices[" + std::to_string(i) + "], accessor " +
+            for (std::size_t i = 0; i < sequence.size(); ++i) {
+                if (sequence[i] >= vertexCount) {
+                    fail(path, label + ": index " + std::to_string(sequence[i]) + " (indices[" +
+                                   std::to_string(i) + "], accessor " +
                                    std::to_string(prim.indices) +
                                    ") is out of range: POSITION has " +
                                    std::to_string(vertexCount) + " vertices");
                 }
             }
         } else {
-            if (vertexCount % 3 != 0) {
+            if (triangles && vertexCount % 3 != 0) {
                 fail(path, label + ": vertex count " + std::to_string(vertexCount) +
                                " of a non-indexed primitive is not a multiple of 3");
             }
-            local.indices.resize(vertexCount);
+            sequence.resize(vertexCount);
             for (std::size_t i = 0; i < vertexCount; ++i) {
-                local.indices[i] = static_cast<std::uint32_t>(i);
+                sequence[i] = static_cast<std::uint32_t>(i);
             }
         }
-        out.push_back(std::move(local));
+        if (triangles) {
+            local.indices = std::move(sequence);
+        } else {
+            if (sequence.size() < 3) {
+                fail(path, label + ": " + (prim.indices >= 0 ? "index count " : "vertex count ") +
+                               std::to_string(sequence.size()) + " of a " + modeName(prim.mode) +
+                               " primitive is less than 3");
+            }
+            local.indices = stripOrFanTriangles(sequence, prim.mode);
+        }
+        out.primitives.push_back(std::move(local));
     }
     return out;
 }
