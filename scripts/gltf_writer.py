@@ -1,5 +1,5 @@
 """Minimal glTF 2.0 writer (Python 3 stdlib only), used by scripts/make_scenes.py
-and by tests/data/make_features.py and make_broken.py.
+and by tests/data/make_features.py, make_broken.py and make_geometry.py.
 
 One GltfWriter collects JSON objects and a single binary buffer; write_gltf
 embeds the buffer as a base64 data URI (or writes a sibling .bin), write_glb
@@ -13,6 +13,7 @@ import struct
 
 BYTE = 5120
 UNSIGNED_BYTE = 5121
+SHORT = 5122
 UNSIGNED_SHORT = 5123
 UNSIGNED_INT = 5125
 FLOAT = 5126
@@ -76,15 +77,30 @@ class GltfWriter:
         return self._add("bufferViews", view)
 
     def add_accessor(self, view, component_type, count, type_, byte_offset=0,
-                     min_=None, max_=None):
-        acc = {"bufferView": view, "componentType": component_type, "count": count,
-               "type": type_}
+                     min_=None, max_=None, normalized=False, sparse=None):
+        """view None: an accessor without bufferView (zeros); sparse: a dict
+        from sparse()."""
+        acc = {} if view is None else {"bufferView": view}
+        acc.update({"componentType": component_type, "count": count, "type": type_})
         if byte_offset:
             acc["byteOffset"] = byte_offset
         if min_ is not None:
             acc["min"] = min_
             acc["max"] = max_
+        if normalized:
+            acc["normalized"] = True
+        if sparse is not None:
+            acc["sparse"] = sparse
         return self._add("accessors", acc)
+
+    def sparse(self, indices, values, index_type=UNSIGNED_BYTE):
+        """An accessor's sparse object: indices (packed as index_type) and the
+        packed bytes of the values that replace those elements."""
+        fmt = INDEX_FORMAT[index_type]
+        index_view = self.add_view(b"".join(struct.pack(fmt, i) for i in indices))
+        return {"count": len(indices),
+                "indices": {"bufferView": index_view, "componentType": index_type},
+                "values": {"bufferView": self.add_view(values)}}
 
     def add_vec3(self, points, with_bounds=True):
         """Tightly packed float VEC3 accessor (POSITION bounds when with_bounds)."""
@@ -143,10 +159,14 @@ class GltfWriter:
             mat["alphaCutoff"] = alpha_cutoff
         return self._add("materials", mat)
 
-    def primitive(self, position, normal=None, indices=None, material=None, mode=None):
+    def primitive(self, position, normal=None, indices=None, material=None, mode=None,
+                  attributes=None):
+        """attributes: more {semantic: accessor}, after POSITION and NORMAL."""
         prim = {"attributes": {"POSITION": position}}
         if normal is not None:
             prim["attributes"]["NORMAL"] = normal
+        if attributes:
+            prim["attributes"].update(attributes)
         if indices is not None:
             prim["indices"] = indices
         if material is not None:

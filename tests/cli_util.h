@@ -60,4 +60,18 @@ struct TempDir {
     bool empty() const { return std::filesystem::is_empty(path); }
 };
 
+// `strata render FILE` (8 x 8, 1 spp, an EXR and a PNG asked for) fails as
+// bad input: exit status 2, one line starting "FILE: error: ", no file written.
+inline void checkRenderRefuses(const std::string& file) {
+    CAPTURE(file);
+    TempDir out;
+    const Run r = run("render " + file + " -o " + out / "a.exr" + " -o " + out / "a.png" +
+                      " --spp 1 --width 8 --height 8 --quiet");
+    CAPTURE(r.output);
+    CHECK(r.status == 2);
+    CHECK(lines(r.output) == 1);
+    CHECK(r.output.rfind(file + ": error: ", 0) == 0);
+    CHECK(out.empty());
+}
+
 }  // namespace strata::test

@@ -26,6 +26,7 @@ namespace strata {
 
 namespace {
 
+using gltf::LocalMesh;
 using gltf::LocalPrimitive;
 using gltf::quoted;
 
@@ -161,7 +162,7 @@ public:
         for (const Frame& v : visits) {
             const int mesh = model_.nodes[static_cast<std::size_t>(v.node)].mesh;
             if (mesh < 0 || static_cast<std::size_t>(mesh) >= model_.meshes.size()) continue;  // visit reports it
-            for (const LocalPrimitive& prim : decodedMesh(mesh)) triangles += prim.indices.size() / 3;
+            for (const LocalPrimitive& prim : decodedMesh(mesh).primitives) triangles += prim.indices.size() / 3;
         }
         reserveHuge(scene_.triangles, triangles);
         for (const Frame& v : visits) visit(v.node, v.world);
@@ -169,6 +170,21 @@ public:
 
     bool usesDefaultMaterial() const { return usesDefault_; }
     std::size_t zeroLights() const { return zeroLights_; }
+
+    // The primitives skipped as not triangles (points, lines), in the order
+    // their meshes were first reached: `N primitive(s) that are not
+    // triangles: mesh 1 ("Wire") primitive 0 (LINES), ...`, the first three
+    // named; empty when none.
+    std::string skippedPrimitives() const {
+        if (skipped_.empty()) return {};
+        constexpr std::size_t kNamed = 3;
+        std::string out = std::to_string(skipped_.size()) + " primitive(s) that are not triangles: ";
+        for (std::size_t i = 0; i < std::min(skipped_.size(), kNamed); ++i) {
+            out += (i == 0 ? "" : ", ") + skipped_[i];
+        }
+        if (skipped_.size() > kNamed) out += " and " + std::to_string(skipped_.size() - kNamed) + " more";
+        return out;
+    }
 
     // One warning each, after the walk: zero-power lights dropped, ranges ignored.
     void warnLights() const {
@@ -189,7 +205,7 @@ private:
     // textures read; drops TANGENT when the material has no normalTexture and
     // generates tangents (tangents.h) when it has one and no TANGENT. Runs
     // on the cached local primitive, so once per mesh in practice.
-    void prepareTextureInputs(int mesh, std::size_t p, LocalPrimitive& prim) {
+    void prepareTextureInputs(int mesh, LocalPrimitive& prim) {
         const MaterialDesc& m = scene_.materials[static_cast<std::size_t>(prim.material)];
         const std::pair<const TextureSlot*, const char*> slots[] = {
             {&m.baseColorTexture, "baseColorTexture"},
@@ -199,7 +215,7 @@ private:
             {&m.transmissionTexture, "transmissionTexture"}};
         for (const auto& [slot, name] : slots) {
             if (slot->used() && prim.texcoords[slot->texCoord].empty()) {
-                fail(path_, gltf::meshLabel(model_, mesh) + " primitive " + std::to_string(p) +
+                fail(path_, gltf::meshLabel(model_, mesh) + " primitive " + std::to_string(prim.index) +
                                 ": material " + std::to_string(prim.material) + " " + name +
                                 " reads TEXCOORD_" + std::to_string(slot->texCoord) +
                                 ", which the primitive does not have");
@@ -247,9 +263,12 @@ private:
         return node >= 0 && static_cast<std::size_t>(node) < model_.nodes.size();
     }
 
-    std::vector<LocalPrimitive>& decodedMesh(int mesh) {
+    LocalMesh& decodedMesh(int mesh) {
         auto& decoded = meshes_[static_cast<std::size_t>(mesh)];
-        if (!decoded) decoded = gltf::decodeMesh(path_, model_, mesh);
+        if (!decoded) {
+            decoded = gltf::decodeMesh(path_, model_, mesh);
+            skipped_.insert(skipped_.end(), decoded->skipped.begin(), decoded->skipped.end());
+        }
         return *decoded;
     }
 
@@ -323,7 +342,7 @@ private:
                             " does not exist (" + std::to_string(model_.meshes.size()) +
                             " meshes)");
         }
-        std::vector<LocalPrimitive>& decoded = decodedMesh(node.mesh);
+        std::vector<LocalPrimitive>& decoded = decodedMesh(node.mesh).primitives;
 
         const glm::dmat3 linear(world);
         const double det = glm::determinant(linear);
@@ -337,12 +356,11 @@ private:
 
         std::vector<glm::dvec3> positions;
         std::vector<glm::dvec3> normals;
-        for (std::size_t p = 0; p < decoded.size(); ++p) {
-            LocalPrimitive& prim = decoded[p];
+        for (LocalPrimitive& prim : decoded) {
             std::uint32_t material = 0;
             if (prim.material >= 0) {
                 material = static_cast<std::uint32_t>(prim.material);
-                prepareTextureInputs(node.mesh, p, prim);
+                prepareTextureInputs(node.mesh, prim);
             } else {
                 material = static_cast<std::uint32_t>(model_.materials.size());
                 usesDefault_ = true;
@@ -399,7 +417,8 @@ private:
     const std::string& path_;
     const tinygltf::Model& model_;
     Scene& scene_;
-    std::vector<std::optional<std::vector<LocalPrimitive>>> meshes_;  // decoded on first use
+    std::vector<std::optional<LocalMesh>> meshes_;  // decoded on first use
+    std::vector<std::string> skipped_;              // LocalMesh::skipped of each decoded mesh
     bool usesDefault_ = false;
     std::size_t zeroLights_ = 0;
     std::size_t rangeIgnored_ = 0;
@@ -427,6 +446,8 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     }
     SceneBuilder builder(path, model, scene);
     builder.walk(sceneIndex);
+    const std::string skipped = builder.skippedPrimitives();
+    if (scene.triangles.empty() && !skipped.empty()) fail(path, "no triangles to render: skipped " + skipped);
     if (builder.usesDefaultMaterial() || scene.materials.empty()) {
         MaterialDesc fallback;  // glTF defaults
         fallback.name = "default";
@@ -461,6 +482,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
         fail(path, msg);
     }
     builder.warnLights();
+    if (!skipped.empty()) warn(path, "skipped " + skipped);
     if (scene.droppedEmitters > 0) {
         warn(path, dropped + "; they are kept as geometry but emit no light");
     }

@@ -1,9 +1,9 @@
 // Accessor decoding for the glTF loader: every read is range-checked against
-// its bufferView and buffer before any byte is touched.
+// its bufferView and buffer before any byte is touched; an accessor without a
+// bufferView is zeros; sparse substitution; integer components to floats.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <initializer_list>
 #include <limits>
 #include <sstream>
 
@@ -129,62 +129,57 @@ const char* typeName(int type) {
     }
 }
 
-const char* modeName(int mode) {
-    switch (mode) {
-        case TINYGLTF_MODE_POINTS: return "POINTS";
-        case TINYGLTF_MODE_LINE: return "LINES";
-        case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-        case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-        case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
-        case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
-        case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
-        default: return "unknown";
-    }
+bool isIndexType(int componentType) {
+    return componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+           componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+           componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
 }
 
-// The validated bytes of one accessor: element i starts at data + i * stride
-// and its elementSize bytes lie inside the buffer.
-struct AccessorView {
+// Type and component type in `format`.
+bool typeFits(const AccessorFormat& format, const tinygltf::Accessor& acc) {
+    return acc.type == format.type &&
+           std::find(format.componentTypes.begin(), format.componentTypes.end(),
+                     acc.componentType) != format.componentTypes.end();
+}
+
+// Type, component type and the normalized flag in `format`.
+bool fits(const AccessorFormat& format, const tinygltf::Accessor& acc) {
+    return typeFits(format, acc) && (acc.normalized || !format.normalizedIntegers ||
+                                     acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT);
+}
+
+// `FLOAT/UNSIGNED_BYTE/UNSIGNED_SHORT VEC2, integers normalized`
+std::string formatText(const AccessorFormat& format) {
+    std::string out;
+    bool integers = false;
+    for (const int c : format.componentTypes) {
+        if (!out.empty()) out += "/";
+        out += componentName(c);
+        integers = integers || c != TINYGLTF_COMPONENT_TYPE_FLOAT;
+    }
+    out += std::string(" ") + typeName(format.type);
+    if (format.normalizedIntegers && integers) out += ", integers normalized";
+    return out;
+}
+
+// The bytes of bufferView `index`, checked to lie inside its buffer. `who`
+// names what refers to it, e.g. `accessor 3 (...): sparse.indices`.
+struct ViewBytes {
     const unsigned char* data = nullptr;
-    std::size_t stride = 0;
-    std::size_t count = 0;
-    int componentType = 0;
+    std::size_t byteLength = 0;
+    std::size_t byteStride = 0;
+    std::string label;  // `bufferView 2`
 };
 
-// `use` names what the accessor is read for, e.g. `mesh 0 ("Quad") primitive 0
-// POSITION`; `componentTypes` lists the accepted component types.
-AccessorView viewAccessor(const std::string& path, const tinygltf::Model& model, int index,
-                          const std::string& use, int type,
-                          std::initializer_list<int> componentTypes) {
-    if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
-        fail(path, use + ": accessor " + std::to_string(index) + " does not exist (" +
-                       std::to_string(model.accessors.size()) + " accessors)");
-    }
-    const tinygltf::Accessor& acc = model.accessors[static_cast<std::size_t>(index)];
-    const std::string label = "accessor " + std::to_string(index) + " (" + use + ")";
-
-    std::string accepted;
-    bool componentOk = false;
-    for (const int c : componentTypes) {
-        if (!accepted.empty()) accepted += "/";
-        accepted += componentName(c);
-        componentOk = componentOk || acc.componentType == c;
-    }
-    if (acc.type != type || !componentOk) {
-        fail(path, label + " is " + componentName(acc.componentType) + " " + typeName(acc.type) +
-                       "; expected " + accepted + " " + typeName(type));
-    }
-    if (acc.sparse.isSparse) fail(path, label + " is sparse; sparse accessors are not supported");
-    if (acc.bufferView < 0) {
-        fail(path, label + " has no bufferView; accessors without one are not supported");
-    }
-    if (static_cast<std::size_t>(acc.bufferView) >= model.bufferViews.size()) {
-        fail(path, label + " refers to bufferView " + std::to_string(acc.bufferView) +
+ViewBytes viewBytes(const std::string& path, const tinygltf::Model& model, int index,
+                    const std::string& who) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.bufferViews.size()) {
+        fail(path, who + " refers to bufferView " + std::to_string(index) +
                        ", which does not exist (" + std::to_string(model.bufferViews.size()) +
                        " bufferViews)");
     }
-    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(acc.bufferView)];
-    const std::string viewLabel = "bufferView " + std::to_string(acc.bufferView);
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(index)];
+    const std::string viewLabel = "bufferView " + std::to_string(index);
     if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) {
         fail(path, viewLabel + " refers to buffer " + std::to_string(view.buffer) +
                        ", which does not exist (" + std::to_string(model.buffers.size()) +
@@ -200,29 +195,24 @@ AccessorView viewAccessor(const std::string& path, const tinygltf::Model& model,
                        std::to_string(view.byteLength) + " > buffer size " +
                        std::to_string(bytes.size()));
     }
+    return {bytes.data() + view.byteOffset, view.byteLength, view.byteStride, viewLabel};
+}
 
-    const std::size_t elementSize = componentSize(acc.componentType) * componentCount(acc.type);
-    const std::size_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
-    if (stride < elementSize) {
-        fail(path, label + ": " + viewLabel + " byteStride " + std::to_string(stride) +
-                       " is smaller than the element size " + std::to_string(elementSize));
-    }
-    AccessorView out;
-    out.stride = stride;
-    out.count = acc.count;
-    out.componentType = acc.componentType;
-    if (acc.count == 0) return out;
-
-    // offset + stride * (count - 1) + elementSize <= byteLength, overflow-checked.
+// byteOffset + stride * (count - 1) + elementSize <= view.byteLength,
+// overflow-checked; nothing to check for count 0.
+void checkExtent(const std::string& path, const std::string& who, const ViewBytes& view,
+                 std::size_t byteOffset, std::size_t stride, std::size_t count,
+                 std::size_t elementSize) {
+    if (count == 0) return;
     std::size_t span = 0;
     std::size_t end = 0;
-    const bool overflow = __builtin_mul_overflow(stride, acc.count - 1, &span) ||
+    const bool overflow = __builtin_mul_overflow(stride, count - 1, &span) ||
                           __builtin_add_overflow(span, elementSize, &end) ||
-                          __builtin_add_overflow(end, acc.byteOffset, &end);
+                          __builtin_add_overflow(end, byteOffset, &end);
     if (overflow || end > view.byteLength) {
         std::ostringstream msg;
-        msg << label << " is out of range of " << viewLabel << ": byteOffset " << acc.byteOffset
-            << " + byteStride " << stride << " * (count " << acc.count << " - 1) + element size "
+        msg << who << " is out of range of " << view.label << ": byteOffset " << byteOffset
+            << " + byteStride " << stride << " * (count " << count << " - 1) + element size "
             << elementSize << " = ";
         if (overflow) {
             msg << "overflow";
@@ -232,187 +222,229 @@ AccessorView viewAccessor(const std::string& path, const tinygltf::Model& model,
         msg << " > byteLength " << view.byteLength;
         fail(path, msg.str());
     }
-    out.data = bytes.data() + view.byteOffset + acc.byteOffset;
-    return out;
 }
 
-std::vector<glm::vec3> readVec3(const std::string& path, const tinygltf::Model& model, int index,
-                                const std::string& use, bool requireFinite) {
-    const AccessorView view =
-        viewAccessor(path, model, index, use, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
-    std::vector<glm::vec3> out(view.count);
-    for (std::size_t i = 0; i < view.count; ++i) {
-        float xyz[3];
-        std::memcpy(xyz, view.data + i * view.stride, sizeof xyz);
-        out[i] = glm::vec3(xyz[0], xyz[1], xyz[2]);
-        if (requireFinite &&
-            !(std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2]))) {
-            std::ostringstream msg;
-            msg << "accessor " << index << " (" << use << "): vertex " << i
-                << " has a NaN or Inf coordinate (" << xyz[0] << ", " << xyz[1] << ", " << xyz[2]
-                << ")";
-            fail(path, msg.str());
+std::uint32_t decodeIndex(const unsigned char* p, int componentType) {
+    if (componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return p[0];
+    if (componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        std::uint16_t v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
+    std::uint32_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+// One component as a float: for normalized integers the int-to-float table
+// of glTF 2.0 3.11 and KHR_mesh_quantization, otherwise the integer value.
+float decodeComponent(const unsigned char* p, int componentType, bool normalized) {
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            std::int8_t c;
+            std::memcpy(&c, p, sizeof c);
+            return normalized ? std::max(static_cast<float>(c) / 127.0f, -1.0f)
+                              : static_cast<float>(c);
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return normalized ? static_cast<float>(p[0]) / 255.0f : static_cast<float>(p[0]);
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            std::int16_t c;
+            std::memcpy(&c, p, sizeof c);
+            return normalized ? std::max(static_cast<float>(c) / 32767.0f, -1.0f)
+                              : static_cast<float>(c);
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            std::uint16_t c;
+            std::memcpy(&c, p, sizeof c);
+            return normalized ? static_cast<float>(c) / 65535.0f : static_cast<float>(c);
+        }
+        default: {  // FLOAT
+            float f;
+            std::memcpy(&f, p, sizeof f);
+            return f;
         }
     }
-    return out;
 }
 
-// TEXCOORD_n: float, or unsigned byte/short normalized to [0, 1] (glTF 2.0
-// 3.7.2.1: c / 255, c / 65535).
-std::vector<glm::vec2> readTexcoords(const std::string& path, const tinygltf::Model& model,
-                                     int index, const std::string& use) {
-    const AccessorView view =
-        viewAccessor(path, model, index, use, TINYGLTF_TYPE_VEC2,
-                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
-    const auto& acc = model.accessors[static_cast<std::size_t>(index)];
-    if (view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !acc.normalized) {
-        fail(path, "accessor " + std::to_string(index) + " (" + use + ") is " +
-                       componentName(view.componentType) + " but not normalized");
+// The validated bytes of one accessor: element i starts at data + i * stride
+// (no data: every element is zero), then sparseIndices[j] is replaced by the
+// element at sparseValues + j * elementSize. Every such element lies inside
+// its buffer.
+struct AccessorView {
+    const unsigned char* data = nullptr;
+    std::size_t stride = 0;
+    std::size_t count = 0;
+    std::size_t elementSize = 0;
+    int componentType = 0;
+    bool normalized = false;
+    std::vector<std::uint32_t> sparseIndices;  // strictly increasing, < count
+    const unsigned char* sparseValues = nullptr;
+};
+
+// Calls element(i, bytes) for each element of the dense part, then for each
+// sparse substitution in order.
+template <class Element>
+void forEachElement(const AccessorView& view, Element element) {
+    if (view.data != nullptr) {
+        for (std::size_t i = 0; i < view.count; ++i) element(i, view.data + i * view.stride);
     }
-    std::vector<glm::vec2> out(view.count);
-    for (std::size_t i = 0; i < view.count; ++i) {
-        const unsigned char* p = view.data + i * view.stride;
-        if (view.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
-            float uv[2];
-            std::memcpy(uv, p, sizeof uv);
-            if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) {
-                fail(path, "accessor " + std::to_string(index) + " (" + use + "): element " +
-                               std::to_string(i) + " is NaN or Inf");
-            }
-            out[i] = glm::vec2(uv[0], uv[1]);
-        } else if (view.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
-            out[i] = glm::vec2(p[0], p[1]) / 255.0f;
+    for (std::size_t j = 0; j < view.sparseIndices.size(); ++j) {
+        element(view.sparseIndices[j], view.sparseValues + j * view.elementSize);
+    }
+}
+
+// A sparse byteOffset (an int in tinygltf) as a size.
+std::size_t sparseOffset(const std::string& path, const std::string& who, int byteOffset) {
+    if (byteOffset < 0) fail(path, who + " byteOffset " + std::to_string(byteOffset) + " is negative");
+    return static_cast<std::size_t>(byteOffset);
+}
+
+// glTF 2.0 3.6.2.3: sparse.count in [1, count], indices u8/u16/u32 strictly
+// increasing and < count, both bufferViews in range and read tightly packed.
+void viewSparse(const std::string& path, const tinygltf::Model& model,
+                const tinygltf::Accessor& acc, const std::string& label, AccessorView& out) {
+    const auto& sparse = acc.sparse;
+    if (sparse.count < 1 || static_cast<std::size_t>(sparse.count) > acc.count) {
+        fail(path, label + ": sparse.count " + std::to_string(sparse.count) + " is not in [1, " +
+                       std::to_string(acc.count) + "] (the accessor's count)");
+    }
+    const auto count = static_cast<std::size_t>(sparse.count);
+    const std::string indicesLabel = label + ": sparse.indices";
+    const int indexType = sparse.indices.componentType;
+    if (!isIndexType(indexType)) {
+        fail(path, indicesLabel + " componentType " + std::to_string(indexType) + " (" +
+                       componentName(indexType) +
+                       ") is not UNSIGNED_BYTE/UNSIGNED_SHORT/UNSIGNED_INT");
+    }
+    const std::size_t indexSize = componentSize(indexType);
+    const ViewBytes indexView = viewBytes(path, model, sparse.indices.bufferView, indicesLabel);
+    const std::size_t indexOffset = sparseOffset(path, indicesLabel, sparse.indices.byteOffset);
+    checkExtent(path, indicesLabel, indexView, indexOffset, indexSize, count, indexSize);
+
+    const std::string valuesLabel = label + ": sparse.values";
+    const ViewBytes valueView = viewBytes(path, model, sparse.values.bufferView, valuesLabel);
+    const std::size_t valueOffset = sparseOffset(path, valuesLabel, sparse.values.byteOffset);
+    checkExtent(path, valuesLabel, valueView, valueOffset, out.elementSize, count, out.elementSize);
+
+    out.sparseIndices.resize(count);
+    for (std::size_t j = 0; j < count; ++j) {
+        const std::uint32_t i = decodeIndex(indexView.data + indexOffset + j * indexSize, indexType);
+        const std::string at = "sparse index " + std::to_string(i) + " (sparse.indices[" +
+                               std::to_string(j) + "])";
+        if (i >= acc.count) {
+            fail(path, label + ": " + at + " is out of range: the accessor has " +
+                           std::to_string(acc.count) + " elements");
+        }
+        if (j > 0 && i <= out.sparseIndices[j - 1]) {
+            fail(path, label + ": " + at + " is not greater than the previous one, " +
+                           std::to_string(out.sparseIndices[j - 1]) +
+                           "; sparse indices must be strictly increasing");
+        }
+        out.sparseIndices[j] = i;
+    }
+    out.sparseValues = valueView.data + valueOffset;
+}
+
+AccessorView viewAccessor(const std::string& path, const tinygltf::Model& model, int index,
+                          const std::string& use, const AccessorFormat& format,
+                          const AccessorFormat* undeclared) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size()) {
+        fail(path, use + ": accessor " + std::to_string(index) + " does not exist (" +
+                       std::to_string(model.accessors.size()) + " accessors)");
+    }
+    const tinygltf::Accessor& acc = model.accessors[static_cast<std::size_t>(index)];
+    const std::string label = "accessor " + std::to_string(index) + " (" + use + ")";
+    if (!fits(format, acc)) {
+        std::string msg = label + " is " + componentName(acc.componentType);
+        if (typeFits(format, acc)) {
+            msg += " but not normalized";
         } else {
-            std::uint16_t uv[2];
-            std::memcpy(uv, p, sizeof uv);
-            out[i] = glm::vec2(uv[0], uv[1]) / 65535.0f;
+            msg += std::string(" ") + typeName(acc.type) + "; expected " + formatText(format);
         }
+        if (undeclared != nullptr && fits(*undeclared, acc)) {
+            msg += " (KHR_mesh_quantization allows it, but the file does not declare that extension)";
+        }
+        fail(path, msg);
     }
+    AccessorView out;
+    out.count = acc.count;
+    out.componentType = acc.componentType;
+    out.normalized = acc.normalized;
+    out.elementSize = componentSize(acc.componentType) * componentCount(acc.type);
+    if (acc.bufferView < 0) {
+        // Zeros (the schema's accessor.bufferView; then the sparse
+        // substitution, glTF 2.0 3.6.2.3). The count is bounded here, as a
+        // bufferView's length bounds it otherwise.
+        if (acc.count > std::numeric_limits<std::uint32_t>::max()) {
+            fail(path, label + " has no bufferView and count " + std::to_string(acc.count) +
+                           "; at most " +
+                           std::to_string(std::numeric_limits<std::uint32_t>::max()) +
+                           " elements");
+        }
+    } else {
+        const ViewBytes view = viewBytes(path, model, acc.bufferView, label);
+        const std::size_t stride = view.byteStride != 0 ? view.byteStride : out.elementSize;
+        if (stride < out.elementSize) {
+            fail(path, label + ": " + view.label + " byteStride " + std::to_string(stride) +
+                           " is smaller than the element size " + std::to_string(out.elementSize));
+        }
+        checkExtent(path, label, view, acc.byteOffset, stride, acc.count, out.elementSize);
+        out.stride = stride;
+        if (acc.count > 0) out.data = view.data + acc.byteOffset;
+    }
+    if (acc.sparse.isSparse) viewSparse(path, model, acc, label, out);
     return out;
 }
 
-// TANGENT: float VEC4, xyz the tangent, w = +-1 the handedness.
-std::vector<glm::vec4> readTangents(const std::string& path, const tinygltf::Model& model,
-                                    int index, const std::string& use) {
-    const AccessorView view =
-        viewAccessor(path, model, index, use, TINYGLTF_TYPE_VEC4, {TINYGLTF_COMPONENT_TYPE_FLOAT});
-    std::vector<glm::vec4> out(view.count);
-    for (std::size_t i = 0; i < view.count; ++i) {
-        float t[4];
-        std::memcpy(t, view.data + i * view.stride, sizeof t);
-        out[i] = glm::vec4(t[0], t[1], t[2], t[3] < 0.0f ? -1.0f : 1.0f);
-    }
-    return out;
-}
-
-std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::Model& model,
-                                       int index, const std::string& use) {
-    const AccessorView view =
-        viewAccessor(path, model, index, use, TINYGLTF_TYPE_SCALAR,
-                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
-    std::vector<std::uint32_t> out(view.count);
-    for (std::size_t i = 0; i < view.count; ++i) {
-        const unsigned char* p = view.data + i * view.stride;
-        if (view.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
-            out[i] = p[0];
-        } else if (view.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
-            std::uint16_t v;
-            std::memcpy(&v, p, sizeof v);
-            out[i] = v;
-        } else {
-            std::memcpy(&out[i], p, sizeof out[i]);
-        }
-    }
-    return out;
-}
+const AccessorFormat kIndexFormat{TINYGLTF_TYPE_SCALAR,
+                                  {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                                  false};
 
 }  // namespace
 
-std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::Model& model,
-                                       int mesh) {
-    const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(mesh)];
-    std::vector<LocalPrimitive> out;
-    out.reserve(m.primitives.size());
-    for (std::size_t p = 0; p < m.primitives.size(); ++p) {
-        const tinygltf::Primitive& prim = m.primitives[p];
-        const std::string label = meshLabel(model, mesh) + " primitive " + std::to_string(p);
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
-            fail(path, label + ": mode " + std::to_string(prim.mode) + " (" + modeName(prim.mode) +
-                           ") is not supported; only TRIANGLES");
+template <int N>
+std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygltf::Model& model,
+                                           int index, const std::string& use,
+                                           const AccessorFormat& format,
+                                           const AccessorFormat* undeclared) {
+    using Vec = glm::vec<N, float>;
+    static_assert(sizeof(Vec) == N * sizeof(float));
+    const AccessorView view = viewAccessor(path, model, index, use, format, undeclared);
+    std::vector<Vec> out(view.count, Vec(0.0f));
+    const std::size_t size = componentSize(view.componentType);
+    forEachElement(view, [&](std::size_t i, const unsigned char* p) {
+        if (view.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+            std::memcpy(&out[i], p, sizeof(Vec));
+            return;
         }
-        if (prim.material < -1 || (prim.material >= 0 && static_cast<std::size_t>(prim.material) >=
-                                                             model.materials.size())) {
-            fail(path, label + ": material " + std::to_string(prim.material) + " does not exist (" +
-                           std::to_string(model.materials.size()) + " materials)");
+        for (int k = 0; k < N; ++k) {
+            out[i][k] = decodeComponent(p + static_cast<std::size_t>(k) * size, view.componentType,
+                                        view.normalized);
         }
-        LocalPrimitive local;
-        local.material = prim.material;
+    });
+    return out;
+}
 
-        const auto position = prim.attributes.find("POSITION");
-        if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");
-        local.positions = readVec3(path, model, position->second, label + " POSITION", true);
-        const std::size_t vertexCount = local.positions.size();
-        if (vertexCount > std::numeric_limits<std::uint32_t>::max()) {
-            fail(path, label + ": " + std::to_string(vertexCount) + " vertices is too many");
-        }
+template std::vector<glm::vec2> readFloats<2>(const std::string&, const tinygltf::Model&, int,
+                                              const std::string&, const AccessorFormat&,
+                                              const AccessorFormat*);
+template std::vector<glm::vec3> readFloats<3>(const std::string&, const tinygltf::Model&, int,
+                                              const std::string&, const AccessorFormat&,
+                                              const AccessorFormat*);
+template std::vector<glm::vec4> readFloats<4>(const std::string&, const tinygltf::Model&, int,
+                                              const std::string&, const AccessorFormat&,
+                                              const AccessorFormat*);
 
-        const auto normal = prim.attributes.find("NORMAL");
-        if (normal != prim.attributes.end()) {
-            local.normals = readVec3(path, model, normal->second, label + " NORMAL", false);
-            if (local.normals.size() != vertexCount) {
-                fail(path, label + ": NORMAL has " + std::to_string(local.normals.size()) +
-                               " elements but POSITION has " + std::to_string(vertexCount));
-            }
-        }
-
-        auto sameCount = [&](std::size_t n, const std::string& name) {
-            if (n != vertexCount) {
-                fail(path, label + ": " + name + " has " + std::to_string(n) +
-                               " elements but POSITION has " + std::to_string(vertexCount));
-            }
-        };
-        for (int set = 0; set < 2; ++set) {
-            const std::string name = "TEXCOORD_" + std::to_string(set);
-            const auto uv = prim.attributes.find(name);
-            if (uv == prim.attributes.end()) continue;
-            local.texcoords[set] = readTexcoords(path, model, uv->second, label + " " + name);
-            sameCount(local.texcoords[set].size(), name);
-        }
-        const auto tangent = prim.attributes.find("TANGENT");
-        if (tangent != prim.attributes.end()) {
-            local.tangents = readTangents(path, model, tangent->second, label + " TANGENT");
-            sameCount(local.tangents.size(), "TANGENT");
-        }
-
-        if (prim.indices >= 0) {
-            local.indices = readIndices(path, model, prim.indices, label + " indices");
-            if (local.indices.size() % 3 != 0) {
-                fail(path, label + ": index count " + std::to_string(local.indices.size()) +
-                               " is not a multiple of 3");
-            }
-            for (std::size_t i = 0; i < local.indices.size(); ++i) {
-                if (local.indices[i] >= vertexCount) {
-                    fail(path, label + ": index " + std::to_string(local.indices[i]) +
-                                   " (indices[" + std::to_string(i) + "], accessor " +
-                                   std::to_string(prim.indices) +
-                                   ") is out of range: POSITION has " +
-                                   std::to_string(vertexCount) + " vertices");
-                }
-            }
-        } else {
-            if (vertexCount % 3 != 0) {
-                fail(path, label + ": vertex count " + std::to_string(vertexCount) +
-                               " of a non-indexed primitive is not a multiple of 3");
-            }
-            local.indices.resize(vertexCount);
-            for (std::size_t i = 0; i < vertexCount; ++i) {
-                local.indices[i] = static_cast<std::uint32_t>(i);
-            }
-        }
-        out.push_back(std::move(local));
-    }
+std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::Model& model,
+                                       int index, const std::string& use) {
+    const AccessorView view = viewAccessor(path, model, index, use, kIndexFormat, nullptr);
+    std::vector<std::uint32_t> out(view.count, 0);
+    forEachElement(view, [&](std::size_t i, const unsigned char* p) {
+        out[i] = decodeIndex(p, view.componentType);
+    });
     return out;
 }
 

@@ -32,6 +32,35 @@ std::string oneLine(const std::string& text);
 // `mesh 2 ("Cube")`, or `mesh 2` for an unnamed mesh.
 std::string meshLabel(const tinygltf::Model& model, int mesh);
 
+// The accessor storages an attribute accepts: its type, the component types,
+// and whether integer components must be `normalized` (FLOAT ignores it).
+struct AccessorFormat {
+    int type = 0;                     // TINYGLTF_TYPE_*
+    std::vector<int> componentTypes;  // TINYGLTF_COMPONENT_TYPE_*
+    bool normalizedIntegers = false;
+};
+
+// The elements of accessor `index` (of `format`'s type, N components) as
+// floats: from its bufferView, or zeros without one (accessor.bufferView in
+// the glTF 2.0 schema), then the sparse substitution (3.6.2.3). Normalized integers become floats by the glTF
+// formulas (max(c / 127, -1), c / 255, max(c / 32767, -1), c / 65535),
+// others their integer value. `use` names what the accessor is read for, e.g.
+// `mesh 0 ("Quad") primitive 0 POSITION`. `undeclared`, when not null, is the
+// format KHR_mesh_quantization would accept: the file does not declare it,
+// and an accessor that fits it is told so in the error. Instantiated for N =
+// 2, 3, 4.
+template <int N>
+std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygltf::Model& model,
+                                           int index, const std::string& use,
+                                           const AccessorFormat& format,
+                                           const AccessorFormat* undeclared);
+
+// A SCALAR u8/u16/u32 accessor (indices), dense, zeros or sparse as above.
+// (tinygltf 2.7 itself refuses a primitive whose indices accessor has no
+// bufferView, before this is reached.)
+std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::Model& model,
+                                       int index, const std::string& use);
+
 // One primitive of a mesh decoded in the mesh's local space. `indices` always
 // holds 3 entries per triangle (0,1,2,... for a non-indexed primitive), each
 // < positions.size(). `normals`, `texcoords[k]` (TEXCOORD_k) and `tangents`
@@ -42,15 +71,29 @@ struct LocalPrimitive {
     std::vector<glm::vec2> texcoords[2];
     std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices;
-    int material = -1;  // glTF material index, -1 for none
+    int material = -1;      // glTF material index, -1 for none
+    std::size_t index = 0;  // in the mesh's primitives (for messages)
 };
 
-// Decodes every primitive of `mesh`: TRIANGLES only, POSITION float VEC3
+// The triangle primitives of a mesh, and the others it skips.
+struct LocalMesh {
+    std::vector<LocalPrimitive> primitives;
+    // One entry per POINTS/LINES/LINE_LOOP/LINE_STRIP primitive, in file
+    // order: `mesh 1 ("Wire") primitive 0 (LINES)`.
+    std::vector<std::string> skipped;
+};
+
+// Decodes every primitive of `mesh` (gltf_mesh.cpp). TRIANGLES as they are;
+// TRIANGLE_STRIP and TRIANGLE_FAN (at least 3 indices) converted to
+// triangles with the glTF 2.0 3.7.2.1 winding, dropping those that repeat an
+// index; the point and line modes skipped; any other mode is an error. Accessor storage: POSITION float VEC3
 // with finite values, NORMAL float VEC3 (optional), TEXCOORD_0/1 VEC2 float
-// or normalized u8/u16 (optional), TANGENT float VEC4 (optional), indices
-// u8/u16/u32 in range, every accessor inside its bufferView and buffer.
-std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::Model& model,
-                                       int mesh);
+// or normalized u8/u16 (optional), TANGENT float VEC4 (optional); with
+// KHR_mesh_quantization declared also POSITION and TEXCOORD_n as
+// i8/u8/i16/u16 (normalized or not), NORMAL and TANGENT as normalized
+// i8/i16. Indices u8/u16/u32 in range. Every accessor inside its bufferView
+// and buffer, or without a bufferView (zeros); sparse accessors anywhere.
+LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int mesh);
 
 // pbrMetallicRoughness factors, emissive factor, KHR_materials_emissive_strength,
 // KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.

@@ -101,7 +101,7 @@ def main():
     write("attribute-not-an-index.gltf", w, roots)
 
     w, roots = scene()
-    w.use_extensions(["KHR_mesh_quantization"], required=["KHR_mesh_quantization"])
+    w.use_extensions(["KHR_draco_mesh_compression"], required=["KHR_draco_mesh_compression"])
     write("unsupported-required-extension.gltf", w, roots)
 
     # A zero-area emissive triangle next to a valid emitter: loads, warns,
@@ -115,12 +115,14 @@ def main():
     w, roots = scene(light_points=[(0, 1, 0), (1, 1, 0), (2, 1, 0), (0, 1, 0)])
     write("zero-area-only-emitter.gltf", w, roots)
 
-    # Mesh 2 ("Cube") primitive 0 drawn as LINES.
-    w, roots = scene()
+    # The only mesh, 0 ("Cube"), is drawn as LINES: no triangle is left.
+    # (Lines next to triangles are skipped with a warning: tests/data/geometry.)
+    w = GltfWriter("strata tests/data/make_broken.py")
     pos = w.add_vec3([(0, 0, 0), (1, 0, 0)])
     cube = w.add_mesh("Cube", [w.primitive(pos, mode=1)])
-    roots.append(w.add_node("Cube", mesh=cube))
-    write("lines-mode.gltf", w, roots)
+    cam = w.add_perspective("Camera", 0.7)
+    write("lines-mode.gltf", w, [w.add_node("Cube", mesh=cube),
+                                 w.add_node("Camera", camera=cam, translation=[0, 0.5, 3])])
 
     # Node 1 ("Light") is a root and also the child of a "Group" root: two
     # parents (chains of such nodes multiply the instances exponentially).

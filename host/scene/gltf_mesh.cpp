@@ -1,0 +1,234 @@
+// Mesh primitives for the glTF loader: the accessor storages each attribute
+// accepts (glTF 2.0 3.7.2.1, and KHR_mesh_quantization when the file declares
+// it), and the triangles of each primitive mode.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "scene/gltf_internal.h"
+#include "util/error.h"
+
+namespace strata::gltf {
+
+namespace {
+
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
+constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+
+// An attribute's storages in core glTF 2.0 (3.7.2.1) and with
+// KHR_mesh_quantization ("Extending Mesh Attributes"; the core ones included).
+struct AttributeFormats {
+    AccessorFormat core;
+    AccessorFormat quantized;
+};
+
+const AttributeFormats kPosition{{TINYGLTF_TYPE_VEC3, {kFloat}, false},
+                                 {TINYGLTF_TYPE_VEC3, {kFloat, kByte, kUByte, kShort, kUShort}, false}};
+const AttributeFormats kNormal{{TINYGLTF_TYPE_VEC3, {kFloat}, false},
+                               {TINYGLTF_TYPE_VEC3, {kFloat, kByte, kShort}, true}};
+const AttributeFormats kTangent{{TINYGLTF_TYPE_VEC4, {kFloat}, false},
+                                {TINYGLTF_TYPE_VEC4, {kFloat, kByte, kShort}, true}};
+const AttributeFormats kTexcoord{{TINYGLTF_TYPE_VEC2, {kFloat, kUByte, kUShort}, true},
+                                 {TINYGLTF_TYPE_VEC2, {kFloat, kByte, kUByte, kShort, kUShort}, false}};
+
+const char* modeName(int mode) {
+    switch (mode) {
+        case TINYGLTF_MODE_POINTS: return "POINTS";
+        case TINYGLTF_MODE_LINE: return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+        case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
+        case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
+        default: return "unknown";
+    }
+}
+
+bool declares(const tinygltf::Model& model, const std::string& extension) {
+    auto in = [&](const std::vector<std::string>& list) {
+        return std::find(list.begin(), list.end(), extension) != list.end();
+    };
+    return in(model.extensionsUsed) || in(model.extensionsRequired);
+}
+
+// Triangles of a TRIANGLE_STRIP or TRIANGLE_FAN over the vertex sequence `v`
+// (its indices, or 0..n-1), n >= 3, by glTF 2.0 3.7.2.1: strip triangle i is
+// (v[i], v[i+1], v[i+2]) for even i and (v[i], v[i+2], v[i+1]) for odd i; fan
+// triangle i is (v[i+1], v[i+2], v[0]). A triangle that repeats an index is
+// dropped: it has no area (writers repeat indices to join strips), and an
+// emissive one would be reported as a zero-area emitter.
+std::vector<std::uint32_t> stripOrFanTriangles(const std::vector<std::uint32_t>& v, int mode) {
+    std::vector<std::uint32_t> out;
+    out.reserve(3 * (v.size() - 2));
+    for (std::size_t i = 0; i + 2 < v.size(); ++i) {
+        std::uint32_t a = v[i], b = v[i + 1], c = v[i + 2];
+        if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            a = v[i + 1], b = v[i + 2], c = v[0];
+        } else if (i % 2 == 1) {
+            std::swap(b, c);
+        }
+        if (a == b || b == c || a == c) continue;
+        out.insert(out.end(), {a, b, c});
+    }
+    return out;
+}
+
+template <int N>
+std::vector<glm::vec<N, float>> readAttribute(const std::string& path, const tinygltf::Model& model,
+                                              int index, const std::string& use,
+                                              const AttributeFormats& formats, bool quantization) {
+    return readFloats<N>(path, model, index, use, quantization ? formats.quantized : formats.core,
+                         quantization ? nullptr : &formats.quantized);
+}
+
+std::vector<glm::vec3> readPositions(const std::string& path, const tinygltf::Model& model,
+                                     int index, const std::string& use, bool quantization) {
+    std::vector<glm::vec3> out = readAttribute<3>(path, model, index, use, kPosition, quantization);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const glm::vec3 p = out[i];
+        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) {
+            std::ostringstream msg;
+            msg << "accessor " << index << " (" << use << "): vertex " << i
+                << " has a NaN or Inf coordinate (" << p.x << ", " << p.y << ", " << p.z << ")";
+            fail(path, msg.str());
+        }
+    }
+    return out;
+}
+
+std::vector<glm::vec2> readTexcoords(const std::string& path, const tinygltf::Model& model,
+                                     int index, const std::string& use, bool quantization) {
+    std::vector<glm::vec2> out = readAttribute<2>(path, model, index, use, kTexcoord, quantization);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (!std::isfinite(out[i].x) || !std::isfinite(out[i].y)) {
+            fail(path, "accessor " + std::to_string(index) + " (" + use + "): element " +
+                           std::to_string(i) + " is NaN or Inf");
+        }
+    }
+    return out;
+}
+
+// TANGENT: xyz the tangent, w = +-1 the handedness.
+std::vector<glm::vec4> readTangents(const std::string& path, const tinygltf::Model& model,
+                                    int index, const std::string& use, bool quantization) {
+    std::vector<glm::vec4> out = readAttribute<4>(path, model, index, use, kTangent, quantization);
+    for (glm::vec4& t : out) t.w = t.w < 0.0f ? -1.0f : 1.0f;
+    return out;
+}
+
+}  // namespace
+
+LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int mesh) {
+    const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(mesh)];
+    const bool quantization = declares(model, "KHR_mesh_quantization");
+    LocalMesh out;
+    out.primitives.reserve(m.primitives.size());
+    for (std::size_t p = 0; p < m.primitives.size(); ++p) {
+        const tinygltf::Primitive& prim = m.primitives[p];
+        const std::string label = meshLabel(model, mesh) + " primitive " + std::to_string(p);
+        switch (prim.mode) {
+            case TINYGLTF_MODE_TRIANGLES:
+            case TINYGLTF_MODE_TRIANGLE_STRIP:
+            case TINYGLTF_MODE_TRIANGLE_FAN: break;
+            case TINYGLTF_MODE_POINTS:
+            case TINYGLTF_MODE_LINE:
+            case TINYGLTF_MODE_LINE_LOOP:
+            case TINYGLTF_MODE_LINE_STRIP:
+                out.skipped.push_back(label + " (" + modeName(prim.mode) + ")");
+                continue;
+            default:
+                fail(path, label + ": mode " + std::to_string(prim.mode) +
+                               " is not a glTF primitive mode (0 to 6)");
+        }
+        if (prim.material < -1 || (prim.material >= 0 && static_cast<std::size_t>(prim.material) >=
+                                                             model.materials.size())) {
+            fail(path, label + ": material " + std::to_string(prim.material) + " does not exist (" +
+                           std::to_string(model.materials.size()) + " materials)");
+        }
+        LocalPrimitive local;
+        local.material = prim.material;
+        local.index = p;
+
+        const auto position = prim.attributes.find("POSITION");
+        if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");
+        local.positions =
+            readPositions(path, model, position->second, label + " POSITION", quantization);
+        const std::size_t vertexCount = local.positions.size();
+        if (vertexCount > std::numeric_limits<std::uint32_t>::max()) {
+            fail(path, label + ": " + std::to_string(vertexCount) + " vertices is too many");
+        }
+
+        auto sameCount = [&](std::size_t n, const std::string& name) {
+            if (n != vertexCount) {
+                fail(path, label + ": " + name + " has " + std::to_string(n) +
+                               " elements but POSITION has " + std::to_string(vertexCount));
+            }
+        };
+        const auto normal = prim.attributes.find("NORMAL");
+        if (normal != prim.attributes.end()) {
+            local.normals = readAttribute<3>(path, model, normal->second, label + " NORMAL", kNormal,
+                                             quantization);
+            sameCount(local.normals.size(), "NORMAL");
+        }
+        for (int set = 0; set < 2; ++set) {
+            const std::string name = "TEXCOORD_" + std::to_string(set);
+            const auto uv = prim.attributes.find(name);
+            if (uv == prim.attributes.end()) continue;
+            local.texcoords[set] =
+                readTexcoords(path, model, uv->second, label + " " + name, quantization);
+            sameCount(local.texcoords[set].size(), name);
+        }
+        const auto tangent = prim.attributes.find("TANGENT");
+        if (tangent != prim.attributes.end()) {
+            local.tangents =
+                readTangents(path, model, tangent->second, label + " TANGENT", quantization);
+            sameCount(local.tangents.size(), "TANGENT");
+        }
+
+        const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES;
+        std::vector<std::uint32_t> sequence;
+        if (prim.indices >= 0) {
+            sequence = readIndices(path, model, prim.indices, label + " indices");
+            if (triangles && sequence.size() % 3 != 0) {
+                fail(path, label + ": index count " + std::to_string(sequence.size()) +
+                               " is not a multiple of 3");
+            }
+            for (std::size_t i = 0; i < sequence.size(); ++i) {
+                if (sequence[i] >= vertexCount) {
+                    fail(path, label + ": index " + std::to_string(sequence[i]) + " (indices[" +
+                                   std::to_string(i) + "], accessor " +
+                                   std::to_string(prim.indices) +
+                                   ") is out of range: POSITION has " +
+                                   std::to_string(vertexCount) + " vertices");
+                }
+            }
+        } else {
+            if (triangles && vertexCount % 3 != 0) {
+                fail(path, label + ": vertex count " + std::to_string(vertexCount) +
+                               " of a non-indexed primitive is not a multiple of 3");
+            }
+            sequence.resize(vertexCount);
+            for (std::size_t i = 0; i < vertexCount; ++i) {
+                sequence[i] = static_cast<std::uint32_t>(i);
+            }
+        }
+        if (triangles) {
+            local.indices = std::move(sequence);
+        } else {
+            if (sequence.size() < 3) {
+                fail(path, label + ": " + (prim.indices >= 0 ? "index count " : "vertex count ") +
+                               std::to_string(sequence.size()) + " of a " + modeName(prim.mode) +
+                               " primitive is less than 3");
+            }
+            local.indices = stripOrFanTriangles(sequence, prim.mode);
+        }
+        out.primitives.push_back(std::move(local));
+    }
+    return out;
+}
+
+}  // namespace strata::gltf

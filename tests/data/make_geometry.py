@@ -1,0 +1,326 @@
+#!/usr/bin/env python3
+"""Writes tests/data/geometry/: primitive modes, sparse accessors and
+KHR_mesh_quantization for the loader (tests/test_gltf_geometry.cpp).
+
+The valid files each have a camera and an emissive material, so `strata
+render` draws them; geometry/broken/ holds one defect per file. The numbers
+below are mirrored in tests/test_gltf_geometry.cpp; change both. Run from
+anywhere:
+    python3 tests/data/make_geometry.py
+"""
+
+import os
+import struct
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True  # keep the tree free of __pycache__
+SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(HERE)), "scripts")
+sys.path.insert(0, SCRIPTS)
+
+from gltf_writer import (BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT,  # noqa: E402
+                         UNSIGNED_SHORT, GltfWriter, pack_vec3)
+from make_texture_scenes import data_uri, png  # noqa: E402
+
+OUT = os.path.join(HERE, "geometry")
+BROKEN = os.path.join(OUT, "broken")
+
+POINTS, LINES, LINE_LOOP, LINE_STRIP, TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN = range(7)
+QUANTIZATION = "KHR_mesh_quantization"
+
+# struct format and size of one component.
+COMPONENT = {BYTE: ("b", 1), UNSIGNED_BYTE: ("B", 1), SHORT: ("h", 2),
+             UNSIGNED_SHORT: ("H", 2), FLOAT: ("f", 4)}
+
+# Non-indexed strip, front face +Z: triangles (0,1,2) (1,3,2) (2,3,4) (3,5,4).
+STRIP = [(0, 1, 0), (0, 0, 0), (1, 1, 0), (1, 0, 0), (2, 1, 0), (2, 0, 0)]
+# Non-indexed fan around FAN[0], front face +Z: (1,2,0) (2,3,0) (3,4,0).
+FAN = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (-1, 1, 0)]
+UP3 = (0, 3, 0)  # the indexed copy of a strip or fan is moved by this
+TRIANGLE = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+QUAD = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+
+# POSITION values per component type (each triangle counter-clockwise in xy).
+QUANTIZED_POSITIONS = {
+    BYTE: [(-128, 0, 0), (127, 0, -127), (0, 64, 1)],
+    UNSIGNED_BYTE: [(0, 0, 0), (255, 0, 0), (0, 128, 1)],
+    SHORT: [(-32768, 0, 0), (32767, 0, -32767), (0, 16384, 1)],
+    UNSIGNED_SHORT: [(0, 0, 0), (65535, 0, 0), (0, 32768, 1)],
+}
+# TEXCOORD_0 values per component type.
+QUANTIZED_UVS = {
+    BYTE: [(-128, 127), (0, 64), (-1, 1)],
+    UNSIGNED_BYTE: [(0, 255), (128, 1), (255, 0)],
+    SHORT: [(-32768, 32767), (16384, 0), (-1, 1)],
+    UNSIGNED_SHORT: [(0, 65535), (32768, 1), (65535, 0)],
+}
+# NORMAL and TANGENT xyz (normalized); -128 and -32768 decode to -1 exactly.
+QUANTIZED_NORMALS = {
+    BYTE: [(-128, 0, 127), (0, 0, 127), (127, 0, 127)],
+    SHORT: [(-32768, 0, 32767), (0, 0, 32767), (32767, 0, 32767)],
+}
+QUANTIZED_TANGENT_W = {BYTE: (127, -128, 127), SHORT: (32767, -32768, 32767)}
+
+
+def moved(points, by):
+    return [tuple(p[i] + by[i] for i in range(3)) for p in points]
+
+
+def packed(values, component, per_element):
+    """Elements of per_element components, each padded to 4 bytes (glTF 2.0
+    3.6.2.4); returns (bytes, stride)."""
+    fmt, size = COMPONENT[component]
+    stride = -(-size * per_element // 4) * 4
+    pad = stride - size * per_element
+    data = b"".join(struct.pack("<" + fmt * per_element, *v) + b"\0" * pad for v in values)
+    return data, stride
+
+
+class File:
+    """One output file: a writer, its root nodes (a camera first), an
+    emissive material."""
+
+    def __init__(self):
+        self.w = GltfWriter("strata tests/data/make_geometry.py")
+        self.roots = []
+        self.glow = self.w.add_material("Glow", base_color=(0.5, 0.5, 0.5, 1), metallic=0,
+                                        roughness=1, emissive=(1, 1, 1))
+        cam = self.w.add_perspective("Camera", 0.9)
+        self.roots.append(self.w.add_node("Camera", camera=cam, translation=[0.5, 1, 6]))
+
+    def values(self, values, component, type_, normalized=False, with_bounds=False):
+        """An accessor of the given integer or float values (4-byte aligned)."""
+        n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[type_]
+        rows = [v if isinstance(v, tuple) else (v,) for v in values]
+        data, stride = packed(rows, component, n)
+        view = self.w.add_view(data, stride=stride if stride != COMPONENT[component][1] * n
+                               else None)
+        lo = hi = None
+        if with_bounds:
+            lo = [min(r[i] for r in rows) for i in range(n)]
+            hi = [max(r[i] for r in rows) for i in range(n)]
+        return self.w.add_accessor(view, component, len(rows), type_, 0, lo, hi, normalized)
+
+    def mesh(self, name, primitives, **node):
+        mesh = self.w.add_mesh(name, primitives)
+        self.roots.append(self.w.add_node(name, mesh=mesh, **node))
+        return mesh
+
+    def write(self, name, folder=OUT, extensions=()):
+        if extensions:
+            self.w.use_extensions(list(extensions), required=list(extensions))
+        self.w.set_scene(self.roots)
+        self.w.write_gltf(os.path.join(folder, name))
+
+
+def modes():
+    # strip.gltf: the strip non-indexed, then indexed (u8) over its vertices
+    # stored in reverse order and moved by UP3, with one more index repeating
+    # the last vertex: the fifth triangle (4, 5, 5) is degenerate and dropped.
+    f = File()
+    w = f.w
+    reverse = list(reversed(moved(STRIP, UP3)))
+    f.mesh("Strip", [
+        w.primitive(w.add_vec3(STRIP), material=f.glow, mode=TRIANGLE_STRIP),
+        w.primitive(w.add_vec3(reverse), indices=w.add_indices([5, 4, 3, 2, 1, 0, 0], UNSIGNED_BYTE),
+                    material=f.glow, mode=TRIANGLE_STRIP)])
+    f.write("strip.gltf")
+
+    # fan.gltf: the fan non-indexed, then indexed (u16) over its vertices
+    # stored as FAN[1], FAN[3], FAN[0], FAN[4], FAN[2] moved by UP3, with the
+    # last index repeated: the fourth triangle (FAN[4], FAN[4], FAN[0]) is dropped.
+    f = File()
+    w = f.w
+    order = [1, 3, 0, 4, 2]
+    stored = [moved(FAN, UP3)[k] for k in order]
+    indices = [order.index(k) for k in range(5)] + [order.index(4)]
+    f.mesh("Fan", [
+        w.primitive(w.add_vec3(FAN), material=f.glow, mode=TRIANGLE_FAN),
+        w.primitive(w.add_vec3(stored), indices=w.add_indices(indices, UNSIGNED_SHORT),
+                    material=f.glow, mode=TRIANGLE_FAN)])
+    f.write("fan.gltf")
+
+    # lines-and-triangles.gltf: mesh 0 "Tri" (one triangle); mesh 1 "Wire":
+    # LINES, TRIANGLES (TRIANGLE at z = 1), POINTS, on two nodes (the second
+    # moved by (3, 0, 0)); mesh 2 "Loop": LINE_LOOP, LINE_STRIP. 3 triangles,
+    # 4 primitives skipped.
+    f = File()
+    w = f.w
+    line = w.add_vec3([(0, 0, 0), (1, 1, 0), (1, 0, 0)])
+    f.mesh("Tri", [w.primitive(w.add_vec3(TRIANGLE), material=f.glow)])
+    wire = f.mesh("Wire", [
+        w.primitive(line, indices=w.add_indices([0, 1, 1, 2]), mode=LINES),
+        w.primitive(w.add_vec3(moved(TRIANGLE, (0, 0, 1))), material=f.glow),
+        w.primitive(line, mode=POINTS)])
+    f.roots.append(w.add_node("Wire again", mesh=wire, translation=[3, 0, 0]))
+    f.mesh("Loop", [w.primitive(line, mode=LINE_LOOP), w.primitive(line, mode=LINE_STRIP)])
+    f.write("lines-and-triangles.gltf")
+
+
+def sparse():
+    # sparse.gltf, three meshes:
+    # "Base": QUAD with a bufferView, sparse u8 indices [1, 3] -> (2, 0, 0),
+    #   (0, 3, 0); NORMAL (0, 0, 1) everywhere, sparse u16 index [2] -> (0, 1, 1);
+    #   indices 0 1 2 0 2 3.
+    # "Zeros": POSITION without bufferView, count 3, sparse u32 indices [1, 2]
+    #   -> (1, 0, 0), (0, 1, 0); non-indexed; node moved by (5, 0, 0).
+    # "Indices": QUAD moved by (10, 0, 0); u16 indices 0 1 2 0 1 2 with sparse
+    #   u8 indices [4, 5] -> u16 2, 3: the triangles 0 1 2 and 0 2 3.
+    f = File()
+    w = f.w
+    pos = w.add_accessor(w.add_view(pack_vec3(QUAD)), FLOAT, 4, "VEC3", 0, [0, 0, 0], [2, 3, 0],
+                         sparse=w.sparse([1, 3], pack_vec3([(2, 0, 0), (0, 3, 0)])))
+    nrm = w.add_accessor(w.add_view(pack_vec3([(0, 0, 1)] * 4)), FLOAT, 4, "VEC3",
+                         sparse=w.sparse([2], pack_vec3([(0, 1, 1)]), UNSIGNED_SHORT))
+    f.mesh("Base", [w.primitive(pos, nrm, w.add_indices([0, 1, 2, 0, 2, 3]), f.glow)])
+    zeros = w.add_accessor(None, FLOAT, 3, "VEC3", 0, [0, 0, 0], [1, 1, 0],
+                           sparse=w.sparse([1, 2], pack_vec3([(1, 0, 0), (0, 1, 0)]),
+                                           UNSIGNED_INT))
+    f.mesh("Zeros", [w.primitive(zeros, material=f.glow)], translation=[5, 0, 0])
+    idx_view = w.add_view(struct.pack("<6H", 0, 1, 2, 0, 1, 2))
+    idx = w.add_accessor(idx_view, UNSIGNED_SHORT, 6, "SCALAR",
+                         sparse=w.sparse([4, 5], struct.pack("<2H", 2, 3)))
+    f.mesh("Indices", [w.primitive(w.add_vec3(moved(QUAD, (10, 0, 0))), indices=idx,
+                                   material=f.glow)])
+    f.write("sparse.gltf")
+
+
+def quantized():
+    # quantized-positions.gltf: one triangle per mesh with QUANTIZED_POSITIONS,
+    # in the order BYTE, BYTE normalized, UNSIGNED_BYTE, ..., UNSIGNED_SHORT
+    # normalized; a last node "Dequantized" draws the UNSIGNED_SHORT mesh
+    # (not normalized) scaled by 0.5 and moved by (1, 2, 3).
+    f = File()
+    meshes = {}
+    for component in (BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT):
+        for normalized in (False, True):
+            pos = f.values(QUANTIZED_POSITIONS[component], component, "VEC3", normalized, True)
+            name = COMPONENT_NAME[component] + (" normalized" if normalized else "")
+            meshes[(component, normalized)] = f.mesh(
+                name, [f.w.primitive(pos, material=f.glow)])
+    f.roots.append(f.w.add_node("Dequantized", mesh=meshes[(UNSIGNED_SHORT, False)],
+                                scale=[0.5, 0.5, 0.5], translation=[1, 2, 3]))
+    f.write("quantized-positions.gltf", extensions=[QUANTIZATION])
+
+    # quantized-texcoords.gltf: TRIANGLE with TEXCOORD_0 of QUANTIZED_UVS, one
+    # mesh per component type and normalized flag in the same order.
+    f = File()
+    pos = f.w.add_vec3(TRIANGLE)
+    for component in (BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT):
+        for normalized in (False, True):
+            uv = f.values(QUANTIZED_UVS[component], component, "VEC2", normalized)
+            name = COMPONENT_NAME[component] + (" normalized" if normalized else "")
+            f.mesh(name, [f.w.primitive(pos, material=f.glow, attributes={"TEXCOORD_0": uv})])
+    f.write("quantized-texcoords.gltf", extensions=[QUANTIZATION])
+
+    # quantized-normals.gltf: TRIANGLE with NORMAL and TANGENT (xyz
+    # QUANTIZED_NORMALS, w QUANTIZED_TANGENT_W), normalized BYTE, then
+    # normalized SHORT; the material has a normal map (so tangents are kept)
+    # and float TEXCOORD_0.
+    f = File()
+    w = f.w
+    image = w._add("images", {"uri": data_uri(png([[(128, 128, 255)]]))})
+    texture = w._add("textures", {"source": image})
+    mapped = w._add("materials", {"name": "Mapped", "normalTexture": {"index": texture},
+                                  "emissiveFactor": [1, 1, 1]})
+    pos = w.add_vec3(TRIANGLE)
+    uv = f.values([(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)], FLOAT, "VEC2")
+    for component in (BYTE, SHORT):
+        nrm = f.values(QUANTIZED_NORMALS[component], component, "VEC3", True)
+        tangents = [n + (t,) for n, t in zip(QUANTIZED_NORMALS[component],
+                                               QUANTIZED_TANGENT_W[component])]
+        tan = f.values(tangents, component, "VEC4", True)
+        f.mesh(COMPONENT_NAME[component], [w.primitive(
+            pos, nrm, material=mapped, attributes={"TEXCOORD_0": uv, "TANGENT": tan})])
+    f.write("quantized-normals.gltf", extensions=[QUANTIZATION])
+
+
+COMPONENT_NAME = {BYTE: "BYTE", UNSIGNED_BYTE: "UNSIGNED_BYTE", SHORT: "SHORT",
+                  UNSIGNED_SHORT: "UNSIGNED_SHORT", FLOAT: "FLOAT"}
+
+
+def broken():
+    """One defect each, in mesh 0 "Bad" (the scene has a camera and an
+    emitter, so only the defect stops a render); tests/test_gltf_geometry.cpp
+    lists the error each must give."""
+
+    def bad(name, attributes=None, extensions=(), mode=None, indices=None, position=None):
+        f = File()
+        w = f.w
+        pos = position(f) if position else w.add_vec3(TRIANGLE)
+        idx = indices(f) if indices else None
+        f.mesh("Bad", [w.primitive(pos, indices=idx, material=f.glow, mode=mode,
+                                   attributes=attributes(f) if attributes else None)])
+        f.write(name, BROKEN, extensions)
+
+    def sparse_position(indices, count=None, index_type=UNSIGNED_BYTE, values=2, edit=None):
+        def make(f):
+            s = f.w.sparse(indices, pack_vec3([(1, 1, 1)] * values), index_type)
+            if count is not None:
+                s["count"] = count
+            if edit:
+                edit(f.w, s)
+            return f.w.add_accessor(f.w.add_view(pack_vec3(TRIANGLE)), FLOAT, 3, "VEC3",
+                                    sparse=s)
+        return make
+
+    bad("sparse-index-out-of-range.gltf", position=sparse_position([1, 3]))
+    bad("sparse-not-increasing.gltf", position=sparse_position([1, 1]))
+    bad("sparse-count.gltf", position=sparse_position([0, 1, 2, 2], values=4, count=4))
+
+    def past_end(w, s):  # the two u8 indices start at the view's last byte
+        s["indices"]["byteOffset"] = 1
+    bad("sparse-indices-out-of-view.gltf", position=sparse_position([0, 1], edit=past_end))
+    bad("sparse-values-out-of-view.gltf", position=sparse_position([0, 1], values=1))
+
+    def float_indices(w, s):
+        s["indices"]["componentType"] = FLOAT
+    bad("sparse-index-type.gltf", position=sparse_position([0, 1], edit=float_indices))
+
+    def missing_view(w, s):
+        s["values"]["bufferView"] = 99
+    bad("sparse-missing-view.gltf", position=sparse_position([0, 1], edit=missing_view))
+
+    def negative_offset(w, s):
+        s["indices"]["byteOffset"] = -4
+    bad("sparse-negative-offset.gltf", position=sparse_position([0, 1], edit=negative_offset))
+
+    # Valid glTF, refused by tinygltf 2.7 before strata reads it: an indices
+    # accessor without bufferView (zeros with a sparse substitution).
+    bad("indices-without-bufferview.gltf", indices=lambda f: f.w.add_accessor(
+        None, UNSIGNED_SHORT, 3, "SCALAR", sparse=f.w.sparse([1, 2], struct.pack("<2H", 1, 2)))
+    )
+    bad("no-bufferview-count.gltf",
+        position=lambda f: f.w.add_accessor(None, FLOAT, 1 << 32, "VEC3"))
+
+    short_triangle = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    bad("quantized-undeclared.gltf",
+        position=lambda f: f.values(short_triangle, SHORT, "VEC3", with_bounds=True))
+    bad("quantized-position-vec2.gltf", extensions=[QUANTIZATION],
+        position=lambda f: f.values([(0, 0), (1, 0), (0, 1)], SHORT, "VEC2"))
+    bad("quantized-normal-ubyte.gltf", extensions=[QUANTIZATION],
+        attributes=lambda f: {"NORMAL": f.values([(0, 0, 1)] * 3, UNSIGNED_BYTE, "VEC3")})
+    bad("quantized-normal-unnormalized.gltf", extensions=[QUANTIZATION],
+        attributes=lambda f: {"NORMAL": f.values([(0, 0, 127)] * 3, BYTE, "VEC3")})
+    bad("quantized-texcoord-undeclared.gltf",
+        attributes=lambda f: {"TEXCOORD_0": f.values([(0, 0), (1, 0), (0, 1)],
+                                                     UNSIGNED_BYTE, "VEC2")})
+
+    bad("strip-too-short.gltf", mode=TRIANGLE_STRIP,
+        indices=lambda f: f.w.add_indices([0, 1], UNSIGNED_BYTE))
+    bad("fan-index-out-of-range.gltf", mode=TRIANGLE_FAN,
+        indices=lambda f: f.w.add_indices([0, 1, 2, 9], UNSIGNED_BYTE))
+    bad("unknown-mode.gltf", mode=7)
+
+
+def main():
+    os.makedirs(BROKEN, exist_ok=True)
+    modes()
+    sparse()
+    quantized()
+    broken()
+    print("wrote", OUT)
+
+
+if __name__ == "__main__":
+    main()
