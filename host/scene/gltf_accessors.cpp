@@ -349,6 +349,11 @@ std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::
         }
         LocalPrimitive local;
         local.material = prim.material;
+        // KHR_draco_mesh_compression: the Draco stream instead of the accessors.
+        if (decodeDracoPrimitive(path, model, prim, label, local)) {
+            out.push_back(std::move(local));
+            continue;
+        }
 
         const auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");
