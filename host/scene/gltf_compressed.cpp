@@ -1,7 +1,7 @@
-// What the compressed-mesh decoders share (KHR_draco_mesh_compression): the
-// JSON that tinygltf 2.7 refuses, rewritten before it parses and restored
-// after; the range check of compressed bytes; the extension objects'
-// integer fields; which decoders this build has.
+// What the KHR_draco_mesh_compression and EXT_meshopt_compression decoders
+// share: the JSON that tinygltf 2.7 refuses, rewritten before it parses and
+// restored after; the range check of compressed bytes; the extension
+// objects' integer fields; which decoders this build has.
 #include <cstring>
 #include <limits>
 
@@ -17,6 +17,12 @@ namespace {
 using Json = nlohmann::json;
 
 constexpr std::string_view kDraco = "KHR_draco_mesh_compression";
+constexpr std::string_view kMeshopt = "EXT_meshopt_compression";
+
+// A one-byte buffer that tinygltf loads in place of a placeholder buffer
+// (its data is emptied again after the parse): tinygltf refuses an empty
+// data uri.
+constexpr const char* kPlaceholderUri = "data:application/octet-stream;base64,AA==";
 
 std::uint32_t readU32(const unsigned char* p) {
     return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
@@ -63,6 +69,46 @@ void hideIndicesWithoutView(Json& root, TinygltfFixups& fixups) {
     }
 }
 
+// EXT_meshopt_compression's fallback buffers (spec, "Fallback buffers"): a
+// buffer tagged {"fallback": true}, or one without uri (other than a GLB's
+// first, which is the BIN chunk) that a compressed bufferView names as its
+// own buffer. tinygltf 2.7 refuses a buffer without uri in a .gltf and gives
+// one in a GLB the BIN chunk's bytes, so such a buffer becomes a placeholder.
+// With the decoder a tagged buffer is never read and becomes one too.
+void replaceFallbackBuffers(Json& root, bool binary, TinygltfFixups& fixups) {
+    Json* buffers = root.is_object() && root.contains("buffers") ? &root["buffers"] : nullptr;
+    if (!buffers || !buffers->is_array()) return;
+    std::vector<bool> parentOfCompressed(buffers->size(), false);
+    if (const Json* views = member(root, "bufferViews"); views && views->is_array()) {
+        for (const Json& view : *views) {
+            const Json* extensions = member(view, "extensions");
+            const Json* buffer = member(view, "buffer");
+            if (!extensions || !member(*extensions, kMeshopt.data()) || !buffer ||
+                !buffer->is_number_unsigned()) {
+                continue;
+            }
+            const auto b = buffer->get<std::uint64_t>();
+            if (b < parentOfCompressed.size()) parentOfCompressed[b] = true;
+        }
+    }
+    for (std::size_t b = 0; b < buffers->size(); ++b) {
+        Json& buffer = (*buffers)[b];
+        if (!buffer.is_object()) continue;
+        const Json* extensions = member(buffer, "extensions");
+        const Json* ext = extensions ? member(*extensions, kMeshopt.data()) : nullptr;
+        const Json* tag = ext ? member(*ext, "fallback") : nullptr;
+        const bool tagged = tag && tag->is_boolean() && tag->get<bool>();
+        const bool hasUri = member(buffer, "uri") != nullptr;
+        const bool binChunk = binary && b == 0 && !hasUri;
+        const bool placeholder = (!hasUri && !binChunk && (tagged || parentOfCompressed[b])) ||
+                                 (tagged && STRATA_MESHOPT);
+        if (!placeholder) continue;
+        buffer["uri"] = kPlaceholderUri;
+        buffer["byteLength"] = 1;
+        fixups.placeholders.push_back(b);
+    }
+}
+
 // A GLB with its JSON chunk replaced (padded with spaces to a 4-byte
 // boundary, as glTF 2.0's "Binary glTF Layout" asks) and every later chunk
 // kept; `jsonEnd` is where the old JSON chunk ends, `length` the header's
@@ -103,11 +149,12 @@ TinygltfFixups prepareForTinygltf(const std::vector<unsigned char>& bytes, bool 
                           jsonEnd - jsonBegin);
     // Some writers pad the JSON chunk with NULs instead of spaces.
     while (!text.empty() && text.back() == '\0') text.remove_suffix(1);
-    if (!mentions(text, kDraco)) return fixups;
+    if (!mentions(text, kDraco) && !mentions(text, kMeshopt)) return fixups;
     Json root = Json::parse(text, nullptr, false);
     if (root.is_discarded()) return fixups;  // tinygltf reports the JSON error
     hideIndicesWithoutView(root, fixups);
-    if (fixups.indices.empty()) return fixups;
+    if (mentions(text, kMeshopt)) replaceFallbackBuffers(root, binary, fixups);
+    if (fixups.indices.empty() && fixups.placeholders.empty()) return fixups;
 
     const std::string json = root.dump();
     if (binary) {
@@ -123,6 +170,11 @@ void restoreAfterTinygltf(const TinygltfFixups& fixups, tinygltf::Model& model) 
         if (hidden.mesh >= model.meshes.size()) continue;
         auto& primitives = model.meshes[hidden.mesh].primitives;
         if (hidden.primitive < primitives.size()) primitives[hidden.primitive].indices = hidden.accessor;
+    }
+    for (const std::size_t b : fixups.placeholders) {
+        if (b >= model.buffers.size()) continue;
+        model.buffers[b].data.clear();
+        model.buffers[b].uri.clear();
     }
 }
 
@@ -158,6 +210,7 @@ std::size_t extensionCount(const std::string& path, const tinygltf::Value& objec
 
 const char* missingDecoder(std::string_view extension) {
     if (extension == kDraco && !STRATA_DRACO) return "the Draco decoder (libdraco)";
+    if (extension == kMeshopt && !STRATA_MESHOPT) return "the meshopt decoder (libmeshoptimizer)";
     return nullptr;
 }
 

@@ -55,12 +55,16 @@ struct LocalPrimitive {
 std::vector<LocalPrimitive> decodeMesh(const std::string& path, const tinygltf::Model& model,
                                        int mesh);
 
-// KHR_draco_mesh_compression (gltf_compressed.cpp, gltf_draco.cpp).
+// KHR_draco_mesh_compression and EXT_meshopt_compression (gltf_compressed.cpp,
+// gltf_draco.cpp, gltf_meshopt.cpp).
 
 // The JSON parseModel rewrites before tinygltf 2.7 parses it, and how to put
 // the model back after: tinygltf fails a file with an `indices` accessor
 // without bufferView (every Draco-compressed primitive's), so such `indices`
-// are removed. Only files that name the extension are parsed for this.
+// are removed; it refuses a buffer without uri in a .gltf (an
+// EXT_meshopt_compression fallback buffer), so fallback buffers load as a
+// one-byte placeholder whose data is then emptied. Only files that name
+// either extension are parsed for this.
 struct TinygltfFixups {
     struct HiddenIndices {
         std::size_t mesh, primitive;
@@ -68,6 +72,7 @@ struct TinygltfFixups {
     };
     std::vector<unsigned char> bytes;  // the file with its JSON rewritten; empty: unchanged
     std::vector<HiddenIndices> indices;
+    std::vector<std::size_t> placeholders;  // buffer indices, emptied after the parse
 };
 TinygltfFixups prepareForTinygltf(const std::vector<unsigned char>& bytes, bool binary);
 void restoreAfterTinygltf(const TinygltfFixups& fixups, tinygltf::Model& model);
@@ -84,7 +89,8 @@ std::size_t extensionCount(const std::string& path, const tinygltf::Value& objec
                            std::optional<std::size_t> fallback);
 
 // "the Draco decoder (libdraco)" for KHR_draco_mesh_compression in a build
-// without STRATA_DRACO; nullptr otherwise.
+// without STRATA_DRACO, likewise for EXT_meshopt_compression without
+// STRATA_MESHOPT; nullptr otherwise.
 const char* missingDecoder(std::string_view extension);
 
 // A primitive with KHR_draco_mesh_compression, decoded from its Draco stream
@@ -96,6 +102,12 @@ const char* missingDecoder(std::string_view extension);
 bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
                           const tinygltf::Primitive& prim, const std::string& label,
                           LocalPrimitive& out);
+
+// Every bufferView with EXT_meshopt_compression decoded into a buffer of its
+// own (appended to model.buffers; the view then names it at byteOffset 0).
+// Without the decoder the views keep their buffer; one that is a placeholder
+// is an error.
+void decodeMeshoptViews(const std::string& path, tinygltf::Model& model);
 
 // pbrMetallicRoughness factors, emissive factor, KHR_materials_emissive_strength,
 // KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.

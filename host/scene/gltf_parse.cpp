@@ -21,8 +21,8 @@ namespace {
 
 // Extensions strata reads; others named in extensionsUsed are ignored with a
 // warning, and in extensionsRequired are an error.
-constexpr std::array<std::string_view, 7> kSupportedExtensions = {
-    "KHR_draco_mesh_compression",
+constexpr std::array<std::string_view, 8> kSupportedExtensions = {
+    "EXT_meshopt_compression", "KHR_draco_mesh_compression",
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
     "KHR_materials_specular", "KHR_materials_transmission", "KHR_texture_transform"};
 
@@ -176,8 +176,8 @@ tinygltf::Model parseModel(const std::string& path) {
     std::string baseDir = std::filesystem::path(path).parent_path().string();
     if (baseDir.empty()) baseDir = ".";
 
-    // KHR_draco_mesh_compression files: JSON that tinygltf refuses,
-    // rewritten (gltf_compressed.cpp).
+    // KHR_draco_mesh_compression and EXT_meshopt_compression files: JSON that
+    // tinygltf refuses, rewritten (gltf_compressed.cpp).
     const TinygltfFixups fixups = prepareForTinygltf(bytes, binary);
     const std::vector<unsigned char>& input = fixups.bytes.empty() ? bytes : fixups.bytes;
 
