@@ -264,7 +264,7 @@ TEST_CASE("gltf: every broken file fails with one line naming file and problem")
          "accessor 4 (mesh 2 (\"Bad\") primitive 0 POSITION): vertex 1 has a NaN"},
         {"attribute-not-an-index.gltf", "invalid glTF: 'attributes' value is not an integer type."},
         {"unsupported-required-extension.gltf",
-         "unsupported required extension(s): KHR_draco_mesh_compression"},
+         "unsupported required extension(s): KHR_texture_basisu"},
         {"zero-area-only-emitter.gltf", "no light: "},
         {"lines-mode.gltf",
          "no triangles to render: skipped 1 primitive(s) that are not triangles: mesh 0 (\"Cube\") "

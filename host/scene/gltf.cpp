@@ -427,8 +427,9 @@ private:
 }  // namespace
 
 Scene loadGltf(const std::string& path, const LoadOptions& options) {
-    const tinygltf::Model model = gltf::parseModel(path);
+    tinygltf::Model model = gltf::parseModel(path);
     gltf::checkExtensions(path, model);
+    gltf::decodeMeshoptViews(path, model);
 
     if (model.scenes.empty()) fail(path, "no scenes: the file defines no scene to load");
     const int sceneIndex = model.defaultScene == -1 ? 0 : model.defaultScene;

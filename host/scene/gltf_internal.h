@@ -2,7 +2,9 @@
 // Every function throws strata::Error ("<path>: error: <what>", one line).
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -17,7 +19,8 @@ namespace strata::gltf {
 tinygltf::Model parseModel(const std::string& path);
 
 // Extensions outside the supported list: in extensionsRequired an error, in
-// extensionsUsed a warning.
+// extensionsUsed a warning. A supported extension whose decoder this build
+// lacks (missingDecoder): required, an error; used, a warning.
 void checkExtensions(const std::string& path, const tinygltf::Model& model);
 
 // A string as it appears in one message line: in double quotes, with
@@ -94,6 +97,60 @@ struct LocalMesh {
 // i8/i16. Indices u8/u16/u32 in range. Every accessor inside its bufferView
 // and buffer, or without a bufferView (zeros); sparse accessors anywhere.
 LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int mesh);
+
+// KHR_draco_mesh_compression and EXT_meshopt_compression (gltf_compressed.cpp,
+// gltf_draco.cpp, gltf_meshopt.cpp).
+
+// The JSON parseModel rewrites before tinygltf 2.7 parses it, and how to put
+// the model back after: tinygltf fails a file with an `indices` accessor
+// without bufferView (every Draco-compressed primitive's), so such `indices`
+// are removed; it refuses a buffer without uri in a .gltf (an
+// EXT_meshopt_compression fallback buffer), so fallback buffers load as a
+// one-byte placeholder whose data is then emptied. Only files that name
+// either extension are parsed for this.
+struct TinygltfFixups {
+    struct HiddenIndices {
+        std::size_t mesh, primitive;
+        int accessor;
+    };
+    std::vector<unsigned char> bytes;  // the file with its JSON rewritten; empty: unchanged
+    std::vector<HiddenIndices> indices;
+    std::vector<std::size_t> placeholders;  // buffer indices, emptied after the parse
+};
+TinygltfFixups prepareForTinygltf(const std::vector<unsigned char>& bytes, bool binary);
+void restoreAfterTinygltf(const TinygltfFixups& fixups, tinygltf::Model& model);
+
+// Bytes [offset, offset + length) of buffer `buffer`, checked to lie inside
+// its data; `label` names the range in messages.
+const unsigned char* bufferRange(const std::string& path, const tinygltf::Model& model, int buffer,
+                                 std::size_t offset, std::size_t length, const std::string& label);
+
+// Integer `key` (>= 0) of extension object `object`; `fallback` when absent,
+// an error when absent without one. tinygltf keeps extension integers as int.
+std::size_t extensionCount(const std::string& path, const tinygltf::Value& object,
+                           const std::string& key, const std::string& label,
+                           std::optional<std::size_t> fallback);
+
+// "the Draco decoder (libdraco)" for KHR_draco_mesh_compression in a build
+// without STRATA_DRACO, likewise for EXT_meshopt_compression without
+// STRATA_MESHOPT; nullptr otherwise.
+const char* missingDecoder(std::string_view extension);
+
+// A primitive with KHR_draco_mesh_compression, decoded from its Draco stream
+// into `out` (positions, normals, TEXCOORD_0/1, tangents, triangle indices),
+// every accessor's count and type checked against the decoded data; returns
+// true. False when the primitive has no such extension, or strata was built
+// without the decoder (its accessors are then the data, and one without any
+// is an error). `label` names the primitive in messages.
+bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
+                          const tinygltf::Primitive& prim, const std::string& label,
+                          LocalPrimitive& out);
+
+// Every bufferView with EXT_meshopt_compression decoded into a buffer of its
+// own (appended to model.buffers; the view then names it at byteOffset 0).
+// Without the decoder the views keep their buffer; one that is a placeholder
+// is an error.
+void decodeMeshoptViews(const std::string& path, tinygltf::Model& model);
 
 // pbrMetallicRoughness factors, emissive factor, KHR_materials_emissive_strength,
 // KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.

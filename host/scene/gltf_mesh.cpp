@@ -152,6 +152,11 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
         LocalPrimitive local;
         local.material = prim.material;
         local.index = p;
+        // KHR_draco_mesh_compression: the Draco stream instead of the accessors.
+        if (decodeDracoPrimitive(path, model, prim, label, local)) {
+            out.primitives.push_back(std::move(local));
+            continue;
+        }
 
         const auto position = prim.attributes.find("POSITION");
         if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");

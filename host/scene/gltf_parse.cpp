@@ -22,6 +22,7 @@ namespace {
 // Extensions strata reads; others named in extensionsUsed are ignored with a
 // warning, and in extensionsRequired are an error.
 constexpr std::string_view kSupportedExtensions[] = {
+    "EXT_meshopt_compression", "KHR_draco_mesh_compression",
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
     "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_volume", "KHR_mesh_quantization",
@@ -177,6 +178,11 @@ tinygltf::Model parseModel(const std::string& path) {
     std::string baseDir = std::filesystem::path(path).parent_path().string();
     if (baseDir.empty()) baseDir = ".";
 
+    // KHR_draco_mesh_compression and EXT_meshopt_compression files: JSON that
+    // tinygltf refuses, rewritten (gltf_compressed.cpp).
+    const TinygltfFixups fixups = prepareForTinygltf(bytes, binary);
+    const std::vector<unsigned char>& input = fixups.bytes.empty() ? bytes : fixups.bytes;
+
     FsContext fsContext;
     fsContext.prefix = baseDir.back() == '/' ? baseDir : baseDir + "/";
     tinygltf::TinyGLTF context;
@@ -189,12 +195,12 @@ tinygltf::Model parseModel(const std::string& path) {
     std::string warnings;
     bool ok = false;
     try {
-        const auto size = static_cast<unsigned int>(bytes.size());
+        const auto size = static_cast<unsigned int>(input.size());
         if (binary) {
-            ok = context.LoadBinaryFromMemory(&model, &err, &warnings, bytes.data(), size, baseDir);
+            ok = context.LoadBinaryFromMemory(&model, &err, &warnings, input.data(), size, baseDir);
         } else {
             ok = context.LoadASCIIFromString(&model, &err, &warnings,
-                                             reinterpret_cast<const char*>(bytes.data()), size,
+                                             reinterpret_cast<const char*>(input.data()), size,
                                              baseDir);
         }
     } catch (const std::exception& e) {
@@ -216,6 +222,7 @@ tinygltf::Model parseModel(const std::string& path) {
     if (!ok || !why.empty()) fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
     const std::string notes = gltf::oneLine(warnings);
     if (!notes.empty()) warn(path, notes);
+    restoreAfterTinygltf(fixups, model);
     return model;
 }
 
@@ -228,11 +235,25 @@ void checkExtensions(const std::string& path, const tinygltf::Model& model) {
         fail(path, "unsupported required extension(s): " + gltf::oneLine(required) +
                        " (supported: " + supportedList() + ")");
     }
+    for (const auto& e : model.extensionsRequired) {
+        if (const char* decoder = missingDecoder(e)) {
+            fail(path, "required extension " + e + " cannot be read: strata was built without " +
+                           decoder);
+        }
+    }
     std::string used;
     for (const auto& e : model.extensionsUsed) {
         if (!isSupported(e)) used += (used.empty() ? "" : ", ") + e;
     }
     if (!used.empty()) warn(path, "unsupported extension(s) used, ignored: " + gltf::oneLine(used));
+    for (const auto& e : model.extensionsUsed) {
+        const bool required = std::find(model.extensionsRequired.begin(),
+                                        model.extensionsRequired.end(), e) != model.extensionsRequired.end();
+        if (const char* decoder = missingDecoder(e); decoder && !required) {
+            warn(path, "extension " + e + " is used but strata was built without " + decoder +
+                           "; reading the uncompressed fallback data");
+        }
+    }
 }
 
 }  // namespace strata::gltf

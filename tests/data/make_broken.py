@@ -101,7 +101,7 @@ def main():
     write("attribute-not-an-index.gltf", w, roots)
 
     w, roots = scene()
-    w.use_extensions(["KHR_draco_mesh_compression"], required=["KHR_draco_mesh_compression"])
+    w.use_extensions(["KHR_texture_basisu"], required=["KHR_texture_basisu"])
     write("unsupported-required-extension.gltf", w, roots)
 
     # A zero-area emissive triangle next to a valid emitter: loads, warns,
