@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "image/image_io.h"
+#include "scene/scene.h"
 
 namespace fs = std::filesystem;
 using namespace strata::test;
@@ -248,7 +249,7 @@ TEST_CASE("bench relMSE: zero against a reference of the same seed, positive aga
     }
 }
 
-TEST_CASE("bench takes render's environment flags: its image is the reference's, and black without them" * doctest::test_suite("slow")) {
+TEST_CASE("bench takes render's environment flags: its image is the reference's, and the default white environment without them" * doctest::test_suite("slow")) {
     TempDir d;
     const std::string board = std::string(STRATA_SOURCE_DIR) + "/scenes/materials-board-env.gltf";
     const std::string sky = std::string(STRATA_SOURCE_DIR) + "/scenes/env/sky.hdr";
@@ -269,14 +270,15 @@ TEST_CASE("bench takes render's environment flags: its image is the reference's,
     CHECK(std::find(features.begin(), features.end(), "environment-map") != features.end());
     CHECK(j["path_tracing"]["relmse"].get<double>() == 0.0);  // the same render, bit for bit
     CHECK(j["path_tracing"]["shadow_rays"].get<double>() > 0.0);
-    // Without the flags nothing lights the board: no shadow rays, a black image.
+    // Without the flags nothing in the file emits: bench, as render, lights
+    // the board with the default white environment, not the sky.
     r = run("bench " + board + size + " --quick --reps 1 --reference " + (d / "ref.exr") + " --json " +
             (d / "b.json"));
     CAPTURE(r.output);
     REQUIRE(r.status == 0);
     j = readJson(d / "b.json");
-    CHECK_FALSE(j.contains("environment"));
-    CHECK(j["path_tracing"]["shadow_rays"].get<double>() == 0.0);
+    CHECK(j["environment"] == strata::kDefaultEnvironment);
+    CHECK(j["path_tracing"]["shadow_rays"].get<double>() > 0.0);
     CHECK(j["path_tracing"]["relmse"].get<double>() > 0.1);
 }
 

@@ -149,7 +149,10 @@ TinygltfFixups prepareForTinygltf(const std::vector<unsigned char>& bytes, bool 
                           jsonEnd - jsonBegin);
     // Some writers pad the JSON chunk with NULs instead of spaces.
     while (!text.empty() && text.back() == '\0') text.remove_suffix(1);
-    if (!mentions(text, kDraco) && !mentions(text, kMeshopt)) return fixups;
+    // Only files that can hold an indices accessor without bufferView (a Draco
+    // primitive, or zeros with a sparse substitution) or a meshopt fallback
+    // buffer are parsed twice.
+    if (!mentions(text, kDraco) && !mentions(text, kMeshopt) && !mentions(text, "\"sparse\"")) return fixups;
     Json root = Json::parse(text, nullptr, false);
     if (root.is_discarded()) return fixups;  // tinygltf reports the JSON error
     hideIndicesWithoutView(root, fixups);

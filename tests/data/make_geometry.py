@@ -166,6 +166,8 @@ def sparse():
     #   -> (1, 0, 0), (0, 1, 0); non-indexed; node moved by (5, 0, 0).
     # "Indices": QUAD moved by (10, 0, 0); u16 indices 0 1 2 0 1 2 with sparse
     #   u8 indices [4, 5] -> u16 2, 3: the triangles 0 1 2 and 0 2 3.
+    # "IndexZeros": QUAD moved by (15, 0, 0); u16 indices without bufferView,
+    #   count 3, sparse [1, 2] -> 1, 2: the triangle 0 1 2.
     f = File()
     w = f.w
     pos = w.add_accessor(w.add_view(pack_vec3(QUAD)), FLOAT, 4, "VEC3", 0, [0, 0, 0], [2, 3, 0],
@@ -182,6 +184,9 @@ def sparse():
                          sparse=w.sparse([4, 5], struct.pack("<2H", 2, 3)))
     f.mesh("Indices", [w.primitive(w.add_vec3(moved(QUAD, (10, 0, 0))), indices=idx,
                                    material=f.glow)])
+    zero_idx = w.add_accessor(None, UNSIGNED_SHORT, 3, "SCALAR", sparse=w.sparse([1, 2], struct.pack("<2H", 1, 2)))
+    f.mesh("IndexZeros", [w.primitive(w.add_vec3(moved(QUAD, (15, 0, 0))), indices=zero_idx,
+                                      material=f.glow)])
     f.write("sparse.gltf")
 
 
@@ -285,11 +290,6 @@ def broken():
         s["indices"]["byteOffset"] = -4
     bad("sparse-negative-offset.gltf", position=sparse_position([0, 1], edit=negative_offset))
 
-    # Valid glTF, refused by tinygltf 2.7 before strata reads it: an indices
-    # accessor without bufferView (zeros with a sparse substitution).
-    bad("indices-without-bufferview.gltf", indices=lambda f: f.w.add_accessor(
-        None, UNSIGNED_SHORT, 3, "SCALAR", sparse=f.w.sparse([1, 2], struct.pack("<2H", 1, 2)))
-    )
     bad("no-bufferview-count.gltf",
         position=lambda f: f.w.add_accessor(None, FLOAT, 1 << 32, "VEC3"))
 
