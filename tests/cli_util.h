@@ -62,16 +62,20 @@ struct TempDir {
 
 // `strata render FILE` (8 x 8, 1 spp, an EXR and a PNG asked for) fails as
 // bad input: exit status 2, one line starting "FILE: error: ", no file written.
-inline void checkRenderRefuses(const std::string& file) {
-    CAPTURE(file);
+// Runs `args` (a render-like command) with an EXR and a PNG output in a
+// fresh directory and checks the error contract: exit 2, one line starting
+// with `prefix`, nothing written.
+inline void expectError(const std::string& args, const std::string& prefix) {
     TempDir out;
-    const Run r = run("render " + file + " -o " + out / "a.exr" + " -o " + out / "a.png" +
-                      " --spp 1 --width 8 --height 8 --quiet");
+    const Run r = run(args + " -o " + out / "a.exr" + " -o " + out / "a.png" + " --spp 1 --width 8 --height 8 --quiet");
+    CAPTURE(args);
     CAPTURE(r.output);
     CHECK(r.status == 2);
     CHECK(lines(r.output) == 1);
-    CHECK(r.output.rfind(file + ": error: ", 0) == 0);
+    CHECK(r.output.rfind(prefix, 0) == 0);
     CHECK(out.empty());
 }
+
+inline void checkRenderRefuses(const std::string& file) { expectError("render " + file, file + ": error: "); }
 
 }  // namespace strata::test

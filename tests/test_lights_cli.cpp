@@ -23,19 +23,6 @@ const std::string kSmall = " --spp 1 --width 8 --height 8 --quiet";
 
 std::string lights(const std::string& name) { return std::string(STRATA_SOURCE_DIR) + "/tests/data/lights/" + name; }
 
-// Runs `args` with an EXR and a PNG output in a fresh directory and checks the
-// error contract: exit 2, one line starting with `prefix`, nothing written.
-void expectError(const std::string& args, const std::string& prefix) {
-    TempDir out;
-    const Run r = run(args + " -o " + out / "a.exr" + " -o " + out / "a.png" + kSmall);
-    CAPTURE(args);
-    CAPTURE(r.output);
-    CHECK(r.status == 2);
-    CHECK(lines(r.output) == 1);
-    CHECK(r.output.rfind(prefix, 0) == 0);
-    CHECK(out.empty());
-}
-
 }  // namespace
 
 TEST_CASE("lights cli: every broken light file gives one error line naming it, exit 2 and no output" * doctest::test_suite("unit")) {
