@@ -135,6 +135,15 @@ TEST_CASE("gltf geometry: sparse positions, normals and indices, with and withou
     checkTriangle(scene.triangles[5], {15, 0, 0}, {16, 0, 0}, {16, 1, 0});
 }
 
+TEST_CASE("gltf geometry: an accessor without a bufferView may have max(2^20, buffer bytes) elements") {
+    // zeros-limit.gltf: 2^20 zero positions (its buffers hold 38 bytes), two
+    // of them replaced; one indexed triangle. One more element is
+    // broken/sparse-zeros-count.gltf's error.
+    const Scene scene = loadGeometry("zeros-limit.gltf");
+    REQUIRE(scene.triangles.size() == 1);
+    checkTriangle(scene.triangles[0], {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+}
+
 TEST_CASE("gltf geometry: quantized POSITION by the spec's formulas, the node dequantizes") {
     const Scene scene = loadGeometry("quantized-positions.gltf");
     REQUIRE(scene.triangles.size() == 9);
@@ -241,7 +250,11 @@ TEST_CASE("gltf geometry: every broken file fails with one line naming file and 
          sparse + ".values refers to bufferView 99, which does not exist (3 bufferViews)"},
         {"sparse-negative-offset.gltf", sparse + ".indices byteOffset -4 is negative"},
         {"no-bufferview-count.gltf",
-         position + " has no bufferView and count 4294967296; at most 4294967295 elements"},
+         position + " has no bufferView and count 4294967296, more than the file can justify: at "
+                    "most max(1048576, the 0 bytes of its buffers) = 1048576 elements"},
+        {"sparse-zeros-count.gltf",
+         position + " has no bufferView and count 1048577, more than the file can justify: at "
+                    "most max(1048576, the 32 bytes of its buffers) = 1048576 elements"},
         {"quantized-undeclared.gltf", position + " is SHORT VEC3; expected FLOAT VEC3" + undeclared},
         {"quantized-position-vec2.gltf",
          position + " is SHORT VEC2; expected FLOAT/BYTE/UNSIGNED_BYTE/SHORT/UNSIGNED_SHORT VEC3"},
@@ -279,7 +292,7 @@ TEST_CASE("gltf geometry: strata render on each broken file exits 2, one line, n
         checkRenderRefuses(entry.path().string());
         ++checked;
     }
-    CHECK(checked >= 17);
+    CHECK(checked >= 18);
 }
 
 TEST_CASE("gltf geometry: lines next to triangles render, with the one warning" *

@@ -346,6 +346,22 @@ void viewSparse(const std::string& path, const tinygltf::Model& model,
     out.sparseValues = valueView.data + valueOffset;
 }
 
+// The bytes of all the model's buffers (decoded EXT_meshopt_compression
+// buffers included).
+std::size_t bufferBytes(const tinygltf::Model& model) {
+    std::size_t total = 0;
+    for (const tinygltf::Buffer& b : model.buffers) total += b.data.size();
+    return total;
+}
+
+// The most elements an accessor without a bufferView may have: one per byte
+// of the file's buffers (a stored element takes at least one byte, so a
+// count the data can use is below it), and kZeroAccessorFloor for any file.
+// Its decoded floats then take at most 16 bytes per buffer byte, or 16 MiB.
+std::size_t zeroAccessorLimit(const tinygltf::Model& model) {
+    return std::max(kZeroAccessorFloor, bufferBytes(model));
+}
+
 AccessorView viewAccessor(const std::string& path, const tinygltf::Model& model, int index,
                           const std::string& use, const AccessorFormat& format,
                           const AccessorFormat* undeclared) {
@@ -374,13 +390,14 @@ AccessorView viewAccessor(const std::string& path, const tinygltf::Model& model,
     out.elementSize = componentSize(acc.componentType) * componentCount(acc.type);
     if (acc.bufferView < 0) {
         // Zeros (the schema's accessor.bufferView; then the sparse
-        // substitution, glTF 2.0 3.6.2.3). The count is bounded here, as a
-        // bufferView's length bounds it otherwise.
-        if (acc.count > std::numeric_limits<std::uint32_t>::max()) {
+        // substitution, glTF 2.0 3.6.2.3). A bufferView's length bounds the
+        // count of the other accessors; this one is bounded by zeroAccessorLimit.
+        const std::size_t limit = zeroAccessorLimit(model);
+        if (acc.count > limit) {
             fail(path, label + " has no bufferView and count " + std::to_string(acc.count) +
-                           "; at most " +
-                           std::to_string(std::numeric_limits<std::uint32_t>::max()) +
-                           " elements");
+                           ", more than the file can justify: at most max(" +
+                           std::to_string(kZeroAccessorFloor) + ", the " + std::to_string(bufferBytes(model)) +
+                           " bytes of its buffers) = " + std::to_string(limit) + " elements");
         }
     } else {
         const ViewBytes view = viewBytes(path, model, acc.bufferView, label);

@@ -43,9 +43,17 @@ struct AccessorFormat {
     bool normalizedIntegers = false;
 };
 
+// The memory rule for accessors: one with a bufferView is bounded by it; one
+// without (zeros, then any sparse substitution) may have at most
+// max(kZeroAccessorFloor, the bytes of the file's buffers) elements, else
+// an error, so no accessor makes the loader allocate more than 16 bytes of
+// floats per byte the file stores (or 16 MiB).
+inline constexpr std::size_t kZeroAccessorFloor = std::size_t(1) << 20;
+
 // The elements of accessor `index` (of `format`'s type, N components) as
 // floats: from its bufferView, or zeros without one (accessor.bufferView in
-// the glTF 2.0 schema), then the sparse substitution (3.6.2.3). Normalized integers become floats by the glTF
+// the glTF 2.0 schema; bounded as above), then the sparse substitution
+// (3.6.2.3). Normalized integers become floats by the glTF
 // formulas (max(c / 127, -1), c / 255, max(c / 32767, -1), c / 65535),
 // others their integer value. `use` names what the accessor is read for, e.g.
 // `mesh 0 ("Quad") primitive 0 POSITION`. `undeclared`, when not null, is the

@@ -39,6 +39,9 @@ FAN = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (-1, 1, 0)]
 UP3 = (0, 3, 0)  # the indexed copy of a strip or fan is moved by this
 TRIANGLE = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
 QUAD = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+# The most elements an accessor without bufferView may have in a file whose
+# buffers hold fewer bytes (gltf_internal.h, kZeroAccessorFloor).
+ZERO_LIMIT = 1 << 20
 
 # POSITION values per component type (each triangle counter-clockwise in xy).
 QUANTIZED_POSITIONS = {
@@ -189,6 +192,16 @@ def sparse():
                                       material=f.glow)])
     f.write("sparse.gltf")
 
+    # zeros-limit.gltf: POSITION without bufferView of count ZERO_LIMIT (the
+    # most a file with under ZERO_LIMIT buffer bytes may have), sparse u32
+    # [1, 2] -> (1, 0, 0), (0, 1, 0); indices 0 1 2: one triangle.
+    f = File()
+    w = f.w
+    zeros = w.add_accessor(None, FLOAT, ZERO_LIMIT, "VEC3", 0, [0, 0, 0], [1, 1, 0],
+                           sparse=w.sparse([1, 2], pack_vec3([(1, 0, 0), (0, 1, 0)]), UNSIGNED_INT))
+    f.mesh("Zeros", [w.primitive(zeros, indices=w.add_indices([0, 1, 2]), material=f.glow)])
+    f.write("zeros-limit.gltf")
+
 
 def quantized():
     # quantized-positions.gltf: one triangle per mesh with QUANTIZED_POSITIONS,
@@ -292,6 +305,10 @@ def broken():
 
     bad("no-bufferview-count.gltf",
         position=lambda f: f.w.add_accessor(None, FLOAT, 1 << 32, "VEC3"))
+    bad("sparse-zeros-count.gltf",
+        position=lambda f: f.w.add_accessor(
+            None, FLOAT, ZERO_LIMIT + 1, "VEC3",
+            sparse=f.w.sparse([1, 2], pack_vec3([(1, 0, 0), (0, 1, 0)]), UNSIGNED_INT)))
 
     short_triangle = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
     bad("quantized-undeclared.gltf",
