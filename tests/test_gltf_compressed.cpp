@@ -242,6 +242,27 @@ TEST_CASE("compressed gltf: Draco, the compressed stream is read, not the access
 #endif
 }
 
+#if STRATA_DRACO
+TEST_CASE("compressed gltf: Draco, attributes outside the stream are read from their accessors") {
+    // POSITION and NORMAL in the stream; TEXCOORD_0/1 and TANGENT plain.
+    checkSameScene("cornell-draco-mixed.glb", "cornell.glb");
+}
+
+TEST_CASE("compressed gltf: Draco with TRIANGLE_STRIP, the decoded index sequence is converted as a strip") {
+    // Mesh 0 the plain strip of vertices (0,1) (0,0) (1,1) (1,0) (2,1) (2,0),
+    // indices 0-5; mesh 1 the same in a Draco stream of triangles (0,1,2)
+    // (3,4,5): both give the strip's triangles (glTF 2.0 3.7.2.1).
+    const Scene s = load("draco-strip.glb");
+    REQUIRE(s.triangles.size() == 8);
+    const glm::vec3 v[6] = {{0, 1, 0}, {0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {2, 1, 0}, {2, 0, 0}};
+    const int expected[4][3] = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {3, 5, 4}};
+    for (std::size_t t = 0; t < 8; ++t) {
+        CAPTURE(t);
+        for (int k = 0; k < 3; ++k) CHECK(s.triangles[t].v[k] == v[expected[t % 4][k]]);
+    }
+}
+#endif
+
 TEST_CASE("compressed gltf: meshopt, ATTRIBUTES, TRIANGLES and INDICES views without a filter decode to the uncompressed scene exactly") {
 #if STRATA_MESHOPT
     checkSameScene("cornell-meshopt.gltf", "cornell.glb");  // a tagged fallback buffer without uri

@@ -2,7 +2,8 @@
 // the extension names) decoded by libdraco into the LocalPrimitive that
 // decodeMesh makes from accessors. The extension's `attributes` map glTF
 // semantics to Draco attribute unique ids; the primitive's accessors give
-// the count and type the decoded data must have (the spec, "accessors").
+// the count and type the decoded data must have (the spec, "accessors");
+// attributes outside the stream are read from their accessors by decodeMesh.
 #include <cmath>
 #include <limits>
 #include <exception>
@@ -238,7 +239,7 @@ std::unique_ptr<draco::Mesh> decodeStream(const std::string& path, const unsigne
 
 bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
                           const tinygltf::Primitive& prim, const std::string& label,
-                          LocalPrimitive& out) {
+                          LocalPrimitive& out, std::vector<std::string>& decoded) {
     const auto it = prim.extensions.find(kExtension);
     if (it == prim.extensions.end()) return false;
     const std::string extLabel = label + " " + kExtension;
@@ -261,22 +262,17 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
     }
     requireData(prim.indices, "indices");
     (void)out;
+    (void)decoded;
     return false;
 #else
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
+    // The extension's "Restrictions on geometry type".
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP) {
         fail(path, extLabel + ": mode " + std::to_string(prim.mode) +
-                       " is not supported with Draco; only TRIANGLES (4)");
+                       " is not allowed with Draco; only TRIANGLES (4) and TRIANGLE_STRIP (5)");
     }
-    for (const Semantic& s : kSemantics) {
-        const bool inPrimitive = prim.attributes.count(s.name) != 0;
-        const bool inStream = findId(ids, s.name) != nullptr;
-        if (inPrimitive && !inStream) {
-            fail(path, extLabel + ": " + s.name +
-                           " is not in the extension's attributes; a primitive with both "
-                           "compressed and uncompressed attributes is not supported");
-        }
-        if (inStream && !inPrimitive) {
-            fail(path, extLabel + ": attributes names " + s.name +
+    for (const auto& [semantic, id] : ids) {
+        if (prim.attributes.count(semantic) == 0) {
+            fail(path, extLabel + ": attributes names " + semantic +
                            ", which the primitive's attributes lack");
         }
     }
@@ -295,9 +291,12 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
 
     LocalPrimitive local;
     local.material = prim.material;
+    local.index = out.index;
+    decoded.clear();
     for (const Semantic& s : kSemantics) {
         const std::uint32_t* id = findId(ids, s.name);
         if (!id) continue;
+        decoded.push_back(s.name);
         const std::vector<float> v = readAttribute(path, model, *mesh, prim, s, *id, label);
         const std::size_t n = v.size() / static_cast<std::size_t>(s.components);
         const std::string name = s.name;

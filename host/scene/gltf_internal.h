@@ -145,14 +145,18 @@ std::size_t extensionCount(const std::string& path, const tinygltf::Value& objec
 const char* missingDecoder(std::string_view extension);
 
 // A primitive with KHR_draco_mesh_compression, decoded from its Draco stream
-// into `out` (positions, normals, TEXCOORD_0/1, tangents, triangle indices),
-// every accessor's count and type checked against the decoded data; returns
-// true. False when the primitive has no such extension, or strata was built
-// without the decoder (its accessors are then the data, and one without any
-// is an error). `label` names the primitive in messages.
+// into `out`: the attributes the extension names (`decoded` lists them;
+// the others are the caller's to read from their accessors, as the
+// extension's conformance says) and `indices`, 3 per Draco triangle in
+// order: the triangles of a TRIANGLES primitive, the index sequence of a
+// TRIANGLE_STRIP one (the mode converts it, as for an indices accessor).
+// Every accessor's count and type is checked against the decoded data;
+// returns true. False when the primitive has no such extension, or strata
+// was built without the decoder (its accessors are then the data, and one
+// without any is an error). `label` names the primitive in messages.
 bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
                           const tinygltf::Primitive& prim, const std::string& label,
-                          LocalPrimitive& out);
+                          LocalPrimitive& out, std::vector<std::string>& decoded);
 
 // Every bufferView with EXT_meshopt_compression decoded into a buffer of its
 // own (appended to model.buffers; the view then names it at byteOffset 0).

@@ -152,16 +152,22 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
         LocalPrimitive local;
         local.material = prim.material;
         local.index = p;
-        // KHR_draco_mesh_compression: the Draco stream instead of the accessors.
-        if (decodeDracoPrimitive(path, model, prim, label, local)) {
-            out.primitives.push_back(std::move(local));
-            continue;
-        }
+        // KHR_draco_mesh_compression: the attributes in the Draco stream and
+        // the index sequence from it; any other attribute from its accessor.
+        std::vector<std::string> inStream;
+        const bool draco = decodeDracoPrimitive(path, model, prim, label, local, inStream);
+        auto fromAccessor = [&](const std::string& semantic) {
+            const auto it = prim.attributes.find(semantic);
+            if (it == prim.attributes.end()) return -1;
+            return std::find(inStream.begin(), inStream.end(), semantic) == inStream.end() ? it->second : -1;
+        };
 
-        const auto position = prim.attributes.find("POSITION");
-        if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");
-        local.positions =
-            readPositions(path, model, position->second, label + " POSITION", quantization);
+        if (!draco) {
+            const auto position = prim.attributes.find("POSITION");
+            if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");
+            local.positions =
+                readPositions(path, model, position->second, label + " POSITION", quantization);
+        }
         const std::size_t vertexCount = local.positions.size();
         if (vertexCount > std::numeric_limits<std::uint32_t>::max()) {
             fail(path, label + ": " + std::to_string(vertexCount) + " vertices is too many");
@@ -173,30 +179,28 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
                                " elements but POSITION has " + std::to_string(vertexCount));
             }
         };
-        const auto normal = prim.attributes.find("NORMAL");
-        if (normal != prim.attributes.end()) {
-            local.normals = readAttribute<3>(path, model, normal->second, label + " NORMAL", kNormal,
+        if (const int normal = fromAccessor("NORMAL"); normal >= 0) {
+            local.normals = readAttribute<3>(path, model, normal, label + " NORMAL", kNormal,
                                              quantization);
             sameCount(local.normals.size(), "NORMAL");
         }
         for (int set = 0; set < 2; ++set) {
             const std::string name = "TEXCOORD_" + std::to_string(set);
-            const auto uv = prim.attributes.find(name);
-            if (uv == prim.attributes.end()) continue;
-            local.texcoords[set] =
-                readTexcoords(path, model, uv->second, label + " " + name, quantization);
+            const int uv = fromAccessor(name);
+            if (uv < 0) continue;
+            local.texcoords[set] = readTexcoords(path, model, uv, label + " " + name, quantization);
             sameCount(local.texcoords[set].size(), name);
         }
-        const auto tangent = prim.attributes.find("TANGENT");
-        if (tangent != prim.attributes.end()) {
-            local.tangents =
-                readTangents(path, model, tangent->second, label + " TANGENT", quantization);
+        if (const int tangent = fromAccessor("TANGENT"); tangent >= 0) {
+            local.tangents = readTangents(path, model, tangent, label + " TANGENT", quantization);
             sameCount(local.tangents.size(), "TANGENT");
         }
 
         const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES;
         std::vector<std::uint32_t> sequence;
-        if (prim.indices >= 0) {
+        if (draco) {
+            sequence = std::move(local.indices);  // in range: checked against the decoded points
+        } else if (prim.indices >= 0) {
             sequence = readIndices(path, model, prim.indices, label + " indices");
             if (triangles && sequence.size() % 3 != 0) {
                 fail(path, label + ": index count " + std::to_string(sequence.size()) +
@@ -225,7 +229,7 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
             local.indices = std::move(sequence);
         } else {
             if (sequence.size() < 3) {
-                fail(path, label + ": " + (prim.indices >= 0 ? "index count " : "vertex count ") +
+                fail(path, label + ": " + (prim.indices >= 0 || draco ? "index count " : "vertex count ") +
                                std::to_string(sequence.size()) + " of a " + modeName(prim.mode) +
                                " primitive is less than 3");
             }

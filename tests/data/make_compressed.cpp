@@ -222,6 +222,10 @@ Json plainPrimitive(Doc& doc, const Prim& p, int b) {
     return prim;
 }
 
+bool DracoOptions::inStream(const std::string& semantic) const {
+    return compressed.empty() || std::find(compressed.begin(), compressed.end(), semantic) != compressed.end();
+}
+
 DracoStream encodeDraco(const Prim& p, const DracoOptions& o) {
     draco::Mesh mesh;
     const auto n = static_cast<std::uint32_t>(p.vertices());
@@ -229,6 +233,7 @@ DracoStream encodeDraco(const Prim& p, const DracoOptions& o) {
     DracoStream out;
     for (const Attribute& a : attributesOf(p)) {
         const std::string s = a.semantic;
+        if (!o.inStream(s)) continue;
         const auto type = s == "POSITION" ? draco::GeometryAttribute::POSITION
                           : s == "NORMAL" ? draco::GeometryAttribute::NORMAL
                           : s == "TANGENT" ? draco::GeometryAttribute::GENERIC
@@ -272,12 +277,13 @@ Json dracoPrimitive(Doc& doc, const Prim& p, const DracoOptions& o, const Prim* 
     const auto other = fallback ? attributesOf(*fallback) : own;
     for (std::size_t k = 0; k < own.size(); ++k) {
         Json acc = accessorFor(own[k], s.points);
-        if (fallback) {
-            const Bytes bytes = attributeBytes(other[k]);
+        const bool compressed = o.inStream(own[k].semantic);
+        if (fallback || !compressed) {
+            const Bytes bytes = attributeBytes(compressed ? other[k] : own[k]);
             acc["bufferView"] = doc.addPlainView(0, bytes.data(), bytes.size());
         }
         prim["attributes"][own[k].semantic] = doc.addAccessor(acc);
-        ids[own[k].semantic] = s.ids.at(own[k].semantic);
+        if (compressed) ids[own[k].semantic] = s.ids.at(own[k].semantic);
     }
     Json indices = {{"componentType", kU16}, {"count", 3 * s.faces}, {"type", "SCALAR"}};
     if (fallback) {
@@ -421,6 +427,28 @@ void writeValidFiles(const fs::path& dir) {
     writeGlb(dir / "cornell-draco-edgebreaker.glb", draco({false, 0}, false));
     writeGlb(dir / "cornell-draco-quantized.glb", draco({true, 14}, false));
     writeGlb(dir / "cornell-draco-fallback.glb", draco({}, true));
+    // POSITION and NORMAL in the stream; TEXCOORD_0/1 and TANGENT plain.
+    writeGlb(dir / "cornell-draco-mixed.glb", draco({true, 0, {"POSITION", "NORMAL"}}, false));
+
+    // A TRIANGLE_STRIP of 6 vertices plain (indices 0-5), then in a Draco
+    // stream whose two triangles (0,1,2) (3,4,5) hold that index sequence.
+    {
+        Prim strip;
+        strip.name = "Strip";
+        for (int i = 0; i < 6; ++i) {
+            strip.positions.insert(strip.positions.end(), {float(i / 2), float(1 - i % 2), 0.0f});
+            strip.normals.insert(strip.normals.end(), {0.0f, 0.0f, 1.0f});
+            strip.uv0.insert(strip.uv0.end(), {float(i / 2) / 2, float(i % 2)});
+            strip.indices.push_back(static_cast<std::uint32_t>(i));
+        }
+        Doc doc = scene({strip, strip}, [](Doc& d, const Prim& p, std::size_t m) {
+            Json prim = m == 0 ? plainPrimitive(d, p, 0) : dracoPrimitive(d, p, {}, nullptr);
+            prim["mode"] = 5;
+            return prim;
+        });
+        addExtension(doc.json, "KHR_draco_mesh_compression", true);
+        writeGlb(dir / "draco-strip.glb", doc);
+    }
 
     // meshopt: compressed data in buffer 0, the views' own buffer 1.
     auto meshopt = [&](const std::function<MeshoptOptions(std::size_t)>& options, bool withFallback) {

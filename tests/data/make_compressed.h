@@ -78,6 +78,10 @@ Json plainPrimitive(Doc& doc, const Prim& p, int b);
 struct DracoOptions {
     bool sequential = true;  // MESH_SEQUENTIAL_ENCODING keeps vertex and triangle order
     int positionBits = 0;    // 0: no quantization (lossless)
+    // The semantics put in the stream (empty: all); the others stay plain
+    // accessors of the primitive.
+    std::vector<std::string> compressed = {};
+    bool inStream(const std::string& semantic) const;
 };
 struct DracoStream {
     Bytes bytes;

@@ -154,6 +154,20 @@ void writeBrokenDraco(Broken& out) {
     }
     {
         Doc doc = make();
+        doc.json["meshes"][1]["primitives"][0]["mode"] = 6;
+        out.write("draco-fan.glb", doc, "mode 6 is not allowed with Draco; only TRIANGLES (4) and TRIANGLE_STRIP (5)");
+    }
+    {
+        // TEXCOORD_0 outside the stream, one element short.
+        Doc doc = scene(prims, [](Doc& d, const Prim& p, std::size_t) {
+            return dracoPrimitive(d, p, {true, 0, {"POSITION", "NORMAL"}}, nullptr);
+        });
+        addExtension(doc.json, "KHR_draco_mesh_compression", true);
+        accessorOf(doc, 1, "TEXCOORD_0")["count"] = 23;
+        out.write("draco-mixed-count.glb", doc, "TEXCOORD_0 has 23 elements but POSITION has 24");
+    }
+    {
+        Doc doc = make();
         doc.json["meshes"][1]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["bufferView"] = 999;
         out.write("draco-view-missing.glb", doc, "bufferView 999 does not exist");
     }
