@@ -75,12 +75,12 @@ void checkSameScene(const std::string& nameA, const std::string& nameB) {
             const gltf::LocalPrimitive &x = pa[m][p], &y = pb[m][p];
             CHECK(sameBits(x.positions, y.positions));
             CHECK(sameBits(x.normals, y.normals));
-            CHECK(sameBits(x.texcoords[0], y.texcoords[0]));
-            CHECK(sameBits(x.texcoords[1], y.texcoords[1]));
+            CHECK(sameBits(x.texcoord(0), y.texcoord(0)));
+            CHECK(sameBits(x.texcoord(1), y.texcoord(1)));
             CHECK(sameBits(x.tangents, y.tangents));
             CHECK(x.indices == y.indices);
             CHECK(x.material == y.material);
-            withTangents += !x.tangents.empty() && !x.texcoords[1].empty();
+            withTangents += !x.tangents.empty() && !x.texcoord(1).empty();
         }
     }
     CHECK(withTangents == 2);  // the boxes

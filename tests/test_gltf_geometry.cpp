@@ -13,6 +13,8 @@
 
 #include "cli_util.h"
 #include "gltf_util.h"
+#include "pack/textures.h"
+#include "test_util.h"
 #include "scene/scene.h"
 #include "util/error.h"
 
@@ -223,6 +225,39 @@ TEST_CASE("gltf geometry: quantized NORMAL and TANGENT, normalized BYTE and SHOR
     }
 }
 
+TEST_CASE("gltf geometry: TEXCOORD_n for any n, the two sets a material reads in the uv slots") {
+    const Scene scene = loadGeometry("texcoord-sets.gltf");
+    REQUIRE(scene.triangles.size() == 3);
+    REQUIRE(scene.texcoords.size() == 3);
+    // Materials: 0 "Glow", 1 "Sets23" (baseColor reads 3, emissive 2), 2
+    // "Set3" (both 3), 3 "Sets01" (baseColor 1, emissive 0).
+    using Sets = std::array<int, 2>;
+    const Sets sets[3] = {{2, 3}, {3, 3}, {0, 1}};
+    for (std::size_t t = 0; t < 3; ++t) {
+        CAPTURE(t);
+        const strata::MaterialDesc& m = scene.materials[t + 1];
+        CHECK(m.uvSets == sets[t]);
+        // Set n of vertex k is (n + k / 4, 10 n + k / 8) (make_geometry.py).
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec4 uv = scene.texcoords[t][static_cast<std::size_t>(k)];
+            const auto a = static_cast<float>(sets[t][0]), b = static_cast<float>(sets[t][1]);
+            const glm::vec4 expected(a + k / 4.0f, 10 * a + k / 8.0f, b + k / 4.0f, 10 * b + k / 8.0f);
+            CHECK_MESSAGE(uv == expected, k);
+        }
+    }
+    // Packed, each slot reads uv.xy or uv.zw (kTexCoord1) by its set's place.
+    const std::vector<bool> used = {false, true, true, true, false};
+    std::vector<strata::gpu::Material> materials(scene.materials.size());
+    const strata::PackedTextures packed = strata::packTextures(scene, used, materials);
+    auto second = [&](std::uint32_t ref) { return (packed.refs[ref].flags & strata::gpu::kTexCoord1) != 0; };
+    CHECK(second(materials[1].baseColorTex));
+    CHECK_FALSE(second(materials[1].emissiveTex));
+    CHECK_FALSE(second(materials[2].baseColorTex));
+    CHECK_FALSE(second(materials[2].emissiveTex));
+    CHECK(second(materials[3].baseColorTex));
+    CHECK_FALSE(second(materials[3].emissiveTex));
+}
+
 TEST_CASE("gltf geometry: every broken file fails with one line naming file and problem") {
     const std::string position = "accessor 0 (mesh 0 (\"Bad\") primitive 0 POSITION)";
     const std::string sparse = position + ": sparse";
@@ -270,6 +305,13 @@ TEST_CASE("gltf geometry: every broken file fails with one line naming file and 
         {"fan-index-out-of-range.gltf",
          bad + "index 9 (indices[3], accessor 1) is out of range: POSITION has 3 vertices"},
         {"unknown-mode.gltf", bad + "mode 7 is not a glTF primitive mode (0 to 6)"},
+        {"texcoord-three-sets.gltf",
+         "material 1 (\"Textured\"): its textures read 3 texture coordinate sets (TEXCOORD_0, TEXCOORD_2, "
+         "TEXCOORD_3); strata interpolates at most two per material"},
+        {"texcoord-negative.gltf",
+         "material 1 (\"Textured\") emissiveTexture: texCoord -1 is not a TEXCOORD set (>= 0)"},
+        {"texcoord-missing-set.gltf",
+         bad + "material 1 emissiveTexture reads TEXCOORD_2, which the primitive does not have"},
     };
     std::size_t files = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dataPath("geometry/broken"))) {
@@ -292,7 +334,20 @@ TEST_CASE("gltf geometry: strata render on each broken file exits 2, one line, n
         checkRenderRefuses(entry.path().string());
         ++checked;
     }
-    CHECK(checked >= 18);
+    CHECK(checked >= 21);
+}
+
+TEST_CASE("gltf geometry: a texture read through TEXCOORD_2 renders as its TEXCOORD_0 twin, bit for bit" *
+          doctest::test_suite("render")) {
+    strata::RenderSettings s;
+    s.width = 16;
+    s.height = 16;
+    s.spp = 2;
+    const strata::Scene twin = loadGeometry("texcoord-0.gltf");
+    const strata::RenderResult reference = renderScene(twin, s);
+    CHECK(imageMean(reference.film).mean > 0.0);
+    CHECK(sameImage(renderScene(loadGeometry("texcoord-2.gltf"), s).film, reference.film));
+    CHECK(strata::vk::validationMessageCount() == 0);
 }
 
 TEST_CASE("gltf geometry: lines next to triangles render, with the one warning" *

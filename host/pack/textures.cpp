@@ -79,7 +79,7 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
                             std::vector<gpu::Material>& materials) {
     PackedTextures out;
     std::vector<std::int64_t> imageOffset(scene.images.size(), -1);
-    auto addRef = [&](const TextureSlot& slot, bool srgb) -> std::uint32_t {
+    auto addRef = [&](const MaterialDesc& m, const TextureSlot& slot, bool srgb) -> std::uint32_t {
         if (!slot.used()) return gpu::kNoTexture;
         const Texture& texture = scene.textures[static_cast<std::size_t>(slot.texture)];
         const TextureImage& image = scene.images[static_cast<std::size_t>(texture.image)];
@@ -94,7 +94,7 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
         ref.height = static_cast<std::uint32_t>(image.height);
         ref.flags = wrapBits(texture.wrapS) | wrapBits(texture.wrapT) << 2;
         if (texture.nearest) ref.flags |= gpu::kTexNearest;
-        if (slot.texCoord == 1) ref.flags |= gpu::kTexCoord1;
+        if (m.uvSlot(slot.texCoord) == 1) ref.flags |= gpu::kTexCoord1;
         if (image.bits == 16) ref.flags |= gpu::kTex16Bit;
         if (srgb) ref.flags |= gpu::kTexSrgb;
         transformRows(slot.transform, ref.row0, ref.row1);
@@ -105,11 +105,11 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
         if (!used[i]) continue;
         const MaterialDesc& m = scene.materials[i];
         gpu::Material& g = materials[i];
-        g.baseColorTex = addRef(m.baseColorTexture, true);
-        g.metallicRoughnessTex = addRef(m.metallicRoughnessTexture, false);
-        g.normalTex = addRef(m.normalTexture, false);
-        g.emissiveTex = addRef(m.emissiveTexture, true);
-        g.transmissionTex = addRef(m.transmissionTexture, false);
+        g.baseColorTex = addRef(m, m.baseColorTexture, true);
+        g.metallicRoughnessTex = addRef(m, m.metallicRoughnessTexture, false);
+        g.normalTex = addRef(m, m.normalTexture, false);
+        g.emissiveTex = addRef(m, m.emissiveTexture, true);
+        g.transmissionTex = addRef(m, m.transmissionTexture, false);
     }
     return out;
 }

@@ -214,7 +214,7 @@ private:
             {&m.emissiveTexture, "emissiveTexture"},
             {&m.transmissionTexture, "transmissionTexture"}};
         for (const auto& [slot, name] : slots) {
-            if (slot->used() && prim.texcoords[slot->texCoord].empty()) {
+            if (slot->used() && prim.texcoord(slot->texCoord).empty()) {
                 fail(path_, gltf::meshLabel(model_, mesh) + " primitive " + std::to_string(prim.index) +
                                 ": material " + std::to_string(prim.material) + " " + name +
                                 " reads TEXCOORD_" + std::to_string(slot->texCoord) +
@@ -225,16 +225,19 @@ private:
             prim.tangents.clear();
         } else if (prim.tangents.empty()) {
             prim.tangents = generateTangents(prim.positions, prim.normals,
-                                             prim.texcoords[m.normalTexture.texCoord], prim.indices);
+                                             prim.texcoord(m.normalTexture.texCoord), prim.indices);
         }
     }
 
-    static TriangleUv uvsOf(const LocalPrimitive& prim, const std::array<std::uint32_t, 3>& idx) {
+    // The material's two TEXCOORD sets (MaterialDesc::uvSets) of each vertex.
+    static TriangleUv uvsOf(const LocalPrimitive& prim, const std::array<int, 2>& sets,
+                            const std::array<std::uint32_t, 3>& idx) {
         TriangleUv uv{};
         for (int k = 0; k < 3; ++k) {
             for (int set = 0; set < 2; ++set) {
-                if (prim.texcoords[set].empty()) continue;
-                const glm::vec2 t = prim.texcoords[set][idx[static_cast<std::size_t>(k)]];
+                const std::vector<glm::vec2>& values = prim.texcoord(sets[static_cast<std::size_t>(set)]);
+                if (values.empty()) continue;
+                const glm::vec2 t = values[idx[static_cast<std::size_t>(k)]];
                 uv[static_cast<std::size_t>(k)][2 * set] = t.x;
                 uv[static_cast<std::size_t>(k)][2 * set + 1] = t.y;
             }
@@ -365,8 +368,11 @@ private:
                 material = static_cast<std::uint32_t>(model_.materials.size());
                 usesDefault_ = true;
             }
-            const bool storeUv = !scene_.texcoords.empty() || !prim.texcoords[0].empty() ||
-                                 !prim.texcoords[1].empty();
+            const std::array<int, 2> uvSets = scene_.materials.size() > material
+                                                  ? scene_.materials[material].uvSets
+                                                  : std::array<int, 2>{0, 1};
+            const bool storeUv = !scene_.texcoords.empty() || !prim.texcoord(uvSets[0]).empty() ||
+                                 !prim.texcoord(uvSets[1]).empty();
             const bool storeTangents = !scene_.tangents.empty() || !prim.tangents.empty();
             if (storeUv) scene_.texcoords.resize(scene_.triangles.size(), TriangleUv{});
             if (storeTangents) scene_.tangents.resize(scene_.triangles.size(), kNoTangents);
@@ -404,7 +410,7 @@ private:
                     tri.n[k] = glm::vec3(n);
                 }
                 scene_.triangles.push_back(tri);
-                if (storeUv) scene_.texcoords.push_back(uvsOf(prim, idx));
+                if (storeUv) scene_.texcoords.push_back(uvsOf(prim, uvSets, idx));
                 if (storeTangents) {
                     scene_.tangents.push_back(prim.tangents.empty()
                                                   ? kNoTangents

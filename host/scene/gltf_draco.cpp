@@ -25,19 +25,25 @@ constexpr const char* kExtension = "KHR_draco_mesh_compression";
 // The attributes strata reads, with the accessor type each must have and
 // whether its values must be finite (as decodeMesh requires).
 struct Semantic {
-    const char* name;
     int type;
     const char* typeName;
     int components;
     bool finite;
 };
-constexpr Semantic kSemantics[] = {
-    {"POSITION", TINYGLTF_TYPE_VEC3, "VEC3", 3, true},
-    {"NORMAL", TINYGLTF_TYPE_VEC3, "VEC3", 3, false},
-    {"TEXCOORD_0", TINYGLTF_TYPE_VEC2, "VEC2", 2, true},
-    {"TEXCOORD_1", TINYGLTF_TYPE_VEC2, "VEC2", 2, true},
-    {"TANGENT", TINYGLTF_TYPE_VEC4, "VEC4", 4, false},
-};
+constexpr Semantic kPosition{TINYGLTF_TYPE_VEC3, "VEC3", 3, true};
+constexpr Semantic kNormal{TINYGLTF_TYPE_VEC3, "VEC3", 3, false};
+constexpr Semantic kTexcoord{TINYGLTF_TYPE_VEC2, "VEC2", 2, true};
+constexpr Semantic kTangent{TINYGLTF_TYPE_VEC4, "VEC4", 4, false};
+
+// The Semantic of a glTF attribute name strata reads from a Draco stream;
+// nullptr for the others (read from their accessors, or ignored).
+const Semantic* semanticOf(const std::string& name) {
+    if (name == "POSITION") return &kPosition;
+    if (name == "NORMAL") return &kNormal;
+    if (name == "TANGENT") return &kTangent;
+    if (texcoordSet(name) >= 0) return &kTexcoord;
+    return nullptr;
+}
 
 // The extension's `attributes`: semantic -> Draco unique id.
 std::vector<std::pair<std::string, std::uint32_t>> dracoAttributes(const std::string& path,
@@ -96,10 +102,10 @@ draco::DataType expectedType(int componentType) {
 // reads them).
 std::vector<float> readAttribute(const std::string& path, const tinygltf::Model& model,
                                  const draco::Mesh& mesh, const tinygltf::Primitive& prim,
-                                 const Semantic& semantic, std::uint32_t id,
+                                 const std::string& name, const Semantic& semantic, std::uint32_t id,
                                  const std::string& label) {
-    const std::string use = label + " " + semantic.name;
-    const int accessorIndex = prim.attributes.at(semantic.name);
+    const std::string use = label + " " + name;
+    const int accessorIndex = prim.attributes.at(name);
     if (accessorIndex < 0 || static_cast<std::size_t>(accessorIndex) >= model.accessors.size()) {
         fail(path, use + ": accessor " + std::to_string(accessorIndex) + " does not exist (" +
                        std::to_string(model.accessors.size()) + " accessors)");
@@ -293,13 +299,12 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
     local.material = prim.material;
     local.index = out.index;
     decoded.clear();
-    for (const Semantic& s : kSemantics) {
-        const std::uint32_t* id = findId(ids, s.name);
-        if (!id) continue;
-        decoded.push_back(s.name);
-        const std::vector<float> v = readAttribute(path, model, *mesh, prim, s, *id, label);
-        const std::size_t n = v.size() / static_cast<std::size_t>(s.components);
-        const std::string name = s.name;
+    for (const auto& [name, id] : ids) {
+        const Semantic* s = semanticOf(name);
+        if (!s) continue;
+        decoded.push_back(name);
+        const std::vector<float> v = readAttribute(path, model, *mesh, prim, name, *s, id, label);
+        const std::size_t n = v.size() / static_cast<std::size_t>(s->components);
         if (name == "POSITION" || name == "NORMAL") {
             auto& dst = name == "POSITION" ? local.positions : local.normals;
             dst.resize(n);
@@ -311,7 +316,7 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
                                               v[4 * i + 3] < 0.0f ? -1.0f : 1.0f);
             }
         } else {
-            auto& dst = local.texcoords[name == "TEXCOORD_0" ? 0 : 1];
+            auto& dst = local.texcoords[texcoordSet(name)];
             dst.resize(n);
             for (std::size_t i = 0; i < n; ++i) dst[i] = glm::vec2(v[2 * i], v[2 * i + 1]);
         }

@@ -2,6 +2,7 @@
 // Every function throws strata::Error ("<path>: error: <what>", one line).
 #pragma once
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -72,18 +73,28 @@ std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygl
 std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::Model& model,
                                        int index, const std::string& use);
 
+// n of an attribute name TEXCOORD_n (n decimal, at most 9 digits, no
+// leading zero), else -1.
+int texcoordSet(const std::string& semantic);
+
 // One primitive of a mesh decoded in the mesh's local space. `indices` always
 // holds 3 entries per triangle (0,1,2,... for a non-indexed primitive), each
-// < positions.size(). `normals`, `texcoords[k]` (TEXCOORD_k) and `tangents`
-// (TANGENT, w = +-1) are each empty or the same size as `positions`.
+// < positions.size(). `normals`, each of `texcoords` (TEXCOORD_n by n) and
+// `tangents` (TANGENT, w = +-1) are each empty or the same size as `positions`.
 struct LocalPrimitive {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> texcoords[2];
+    std::map<int, std::vector<glm::vec2>> texcoords;
     std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> indices;
     int material = -1;      // glTF material index, -1 for none
     std::size_t index = 0;  // in the mesh's primitives (for messages)
+    // TEXCOORD_set, empty when the primitive lacks it.
+    const std::vector<glm::vec2>& texcoord(int set) const {
+        static const std::vector<glm::vec2> kNone;
+        const auto it = texcoords.find(set);
+        return it == texcoords.end() ? kNone : it->second;
+    }
 };
 
 // The triangle primitives of a mesh, and the others it skips.
@@ -175,7 +186,7 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
 void convertTextures(const std::string& path, const tinygltf::Model& model, Scene& scene);
 
 // The TextureSlot of a textureInfo: `index` (checked against model.textures),
-// `texCoord` (0 or 1) and the KHR_texture_transform object `transform`
+// `texCoord` (a TEXCOORD set, >= 0) and the KHR_texture_transform object `transform`
 // (nullptr when absent). `label` names the textureInfo in messages.
 TextureSlot convertTextureSlot(const std::string& path, const tinygltf::Model& model,
                                const std::string& label, int index, int texCoord,

@@ -2,7 +2,9 @@
 // KHR_materials_emissive_strength, _ior, _transmission and _specular, and the
 // texture slots (occlusionTexture is not read: a path tracer computes
 // occlusion).
+#include <array>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "scene/gltf_internal.h"
@@ -81,6 +83,24 @@ TextureSlot transmissionSlot(const std::string& path, const tinygltf::Model& mod
     }
     return convertTextureSlot(path, model, where, info.Get("index").GetNumberAsInt(), texCoord,
                               transform);
+}
+
+// MaterialDesc::uvSets of `m`: {0, 1}, or the distinct TEXCOORD sets its
+// texture slots read when one is above 1; more than two is an error.
+std::array<int, 2> uvSets(const std::string& path, const std::string& label, const MaterialDesc& m) {
+    std::set<int> sets;
+    for (const TextureSlot* slot : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                    &m.emissiveTexture, &m.transmissionTexture}) {
+        if (slot->used()) sets.insert(slot->texCoord);
+    }
+    if (sets.empty() || *sets.rbegin() <= 1) return {0, 1};
+    if (sets.size() > 2) {
+        std::string names;
+        for (const int s : sets) names += (names.empty() ? "" : ", ") + std::string("TEXCOORD_") + std::to_string(s);
+        fail(path, label + ": its textures read " + std::to_string(sets.size()) + " texture coordinate sets (" +
+                       names + "); strata interpolates at most two per material");
+    }
+    return {*sets.begin(), *sets.rbegin()};
 }
 
 std::string formatNumber(double v) {
@@ -176,6 +196,7 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.normalScale = static_cast<float>(src.normalTexture.scale);
     m.emissiveTexture = slotOf(path, model, label, "emissiveTexture", src.emissiveTexture);
     m.transmissionTexture = transmissionSlot(path, model, label, src);
+    m.uvSets = uvSets(path, label, m);
     return m;
 }
 

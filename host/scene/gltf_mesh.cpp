@@ -122,6 +122,17 @@ std::vector<glm::vec4> readTangents(const std::string& path, const tinygltf::Mod
 
 }  // namespace
 
+int texcoordSet(const std::string& semantic) {
+    static constexpr std::string_view kPrefix = "TEXCOORD_";
+    if (semantic.size() <= kPrefix.size() || semantic.size() > kPrefix.size() + 9 ||
+        semantic.compare(0, kPrefix.size(), kPrefix) != 0)
+        return -1;
+    const std::string digits = semantic.substr(kPrefix.size());
+    if (digits.find_first_not_of("0123456789") != std::string::npos || (digits.size() > 1 && digits[0] == '0'))
+        return -1;
+    return std::stoi(digits);
+}
+
 LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int mesh) {
     const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(mesh)];
     const bool quantization = declares(model, "KHR_mesh_quantization");
@@ -184,11 +195,10 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
                                              quantization);
             sameCount(local.normals.size(), "NORMAL");
         }
-        for (int set = 0; set < 2; ++set) {
-            const std::string name = "TEXCOORD_" + std::to_string(set);
-            const int uv = fromAccessor(name);
-            if (uv < 0) continue;
-            local.texcoords[set] = readTexcoords(path, model, uv, label + " " + name, quantization);
+        for (const auto& [name, accessor] : prim.attributes) {
+            const int set = texcoordSet(name);
+            if (set < 0 || fromAccessor(name) < 0) continue;
+            local.texcoords[set] = readTexcoords(path, model, accessor, label + " " + name, quantization);
             sameCount(local.texcoords[set].size(), name);
         }
         if (const int tangent = fromAccessor("TANGENT"); tangent >= 0) {

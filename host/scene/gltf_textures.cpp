@@ -134,9 +134,8 @@ TextureSlot convertTextureSlot(const std::string& path, const tinygltf::Model& m
         slot.transform.scale = vec2Or(path, where, *transform, "scale", glm::vec2(1.0f));
         slot.texCoord = static_cast<int>(numberOr(path, where, *transform, "texCoord", texCoord));
     }
-    if (slot.texCoord != 0 && slot.texCoord != 1) {
-        fail(path, label + ": texCoord " + std::to_string(slot.texCoord) +
-                       " is not supported; only TEXCOORD_0 and TEXCOORD_1");
+    if (slot.texCoord < 0) {
+        fail(path, label + ": texCoord " + std::to_string(slot.texCoord) + " is not a TEXCOORD set (>= 0)");
     }
     return slot;
 }

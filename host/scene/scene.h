@@ -30,7 +30,8 @@ struct TextureTransform {
 };
 
 // A material's reference to Scene::textures; texture < 0 when the slot is empty.
-// texCoord is the set read (0 or 1), after the KHR_texture_transform override.
+// texCoord is the TEXCOORD set read (any n >= 0), after the
+// KHR_texture_transform override.
 struct TextureSlot {
     int texture = -1;
     int texCoord = 0;
@@ -68,6 +69,13 @@ struct MaterialDesc {
     float thickness = 0.0f;
     float attenuationDistance = std::numeric_limits<float>::infinity();
     glm::vec3 attenuationColor{1.0f};
+    // The TEXCOORD sets in the two texture coordinate slots of TriangleUv
+    // (xy, zw): {0, 1} when every texture slot reads set 0 or 1; else the
+    // distinct sets the slots read in increasing order ({s, s} for one). A
+    // material may read at most two sets (the loader's error otherwise).
+    std::array<int, 2> uvSets{0, 1};
+    // The TriangleUv slot (0: xy, 1: zw) holding TEXCOORD_set.
+    int uvSlot(int set) const { return set == uvSets[0] ? 0 : 1; }
     glm::vec3 emission() const { return unlit ? glm::vec3(0.0f) : emissiveFactor * emissiveStrength; }
 };
 
@@ -93,8 +101,9 @@ struct Texture {
     bool nearest = false;  // magFilter NEAREST; LINEAR (bilinear) otherwise
 };
 
-// Per-vertex texture coordinates of one triangle: (TEXCOORD_0, TEXCOORD_1)
-// of vertex K in uv[K], zero where the primitive lacks a set.
+// Per-vertex texture coordinates of one triangle: (TEXCOORD_a, TEXCOORD_b)
+// of vertex K in uv[K], {a, b} its material's uvSets ({0, 1} unless it reads
+// a higher set), zero where the primitive lacks a set.
 using TriangleUv = std::array<glm::vec4, 3>;
 // Per-vertex world-space unit tangents, w = +-1 handedness (glTF TANGENT).
 using TriangleTangents = std::array<glm::vec4, 3>;

@@ -147,9 +147,10 @@ struct Material {
     float thickness;        // thicknessFactor (the shader takes lengths from the geometry)
 };
 
-// Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_0.xy,
-// TEXCOORD_1.xy) of vertex K (0 where the primitive lacks the set). Uploaded
-// only when a scene uses textures.
+// Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_a.xy,
+// TEXCOORD_b.xy) of vertex K, {a, b} the material's two sets ({0, 1} unless
+// it reads a higher one; scene.h, MaterialDesc::uvSets), 0 where the
+// primitive lacks a set. Uploaded only when a scene uses textures.
 struct TriTexcoords {
     vec4 uv0;
     vec4 uv1;
@@ -170,7 +171,7 @@ STRATA_CONST(uint, kWrapRepeat, 0u);
 STRATA_CONST(uint, kWrapClamp, 1u);
 STRATA_CONST(uint, kWrapMirror, 2u);
 STRATA_CONST(uint, kTexNearest, 16u);    // magFilter NEAREST (else bilinear)
-STRATA_CONST(uint, kTexCoord1, 32u);     // reads TEXCOORD_1 (else TEXCOORD_0)
+STRATA_CONST(uint, kTexCoord1, 32u);     // reads the second set (uv.zw) of TriTexcoords (else uv.xy)
 STRATA_CONST(uint, kTex16Bit, 64u);      // 2 texel-buffer words per texel (else 1)
 STRATA_CONST(uint, kTexSrgb, 128u);      // rgb is sRGB-encoded (baseColor, emissive)
 

@@ -253,6 +253,66 @@ def quantized():
     f.write("quantized-normals.gltf", extensions=[QUANTIZATION])
 
 
+# TEXCOORD_0-3 of the triangles of texcoord-sets.gltf: set n of vertex k is
+# (n + k / 4, 10 * n + k / 8), exact in float.
+def set_uvs(n):
+    return [(n + k / 4, 10 * n + k / 8) for k in range(3)]
+
+
+def texture_material(w, name, slots, texture):
+    """A material with an emissive factor of 1 and `slots`: {slot name:
+    texCoord} (baseColorTexture, emissiveTexture) reading `texture`."""
+    mat = {"name": name, "emissiveFactor": [1, 1, 1], "pbrMetallicRoughness": {}}
+    for slot, tex_coord in slots.items():
+        info = {"index": texture, "texCoord": tex_coord}
+        if slot == "baseColorTexture":
+            mat["pbrMetallicRoughness"][slot] = info
+        else:
+            mat[slot] = info
+    return w._add("materials", mat)
+
+
+def checker_texture(w):
+    """A 2 x 2 RGB checker, NEAREST; returns the texture index."""
+    image = w._add("images", {"uri": data_uri(png([[(255, 32, 0), (0, 128, 255)],
+                                                    [(16, 255, 64), (255, 255, 255)]]))})
+    sampler = w._add("samplers", {"magFilter": 9728, "minFilter": 9728})
+    return w._add("textures", {"source": image, "sampler": sampler})
+
+
+def texcoord_sets():
+    # texcoord-sets.gltf: one TRIANGLE with TEXCOORD_0..3 (set_uvs) per
+    # material: "Sets23" (baseColor reads 3, emissive 2), "Set3" (both 3),
+    # "Sets01" (baseColor 1, emissive 0).
+    f = File()
+    w = f.w
+    texture = checker_texture(w)
+    pos = w.add_vec3(TRIANGLE)
+    uvs = {f"TEXCOORD_{n}": f.values(set_uvs(n), FLOAT, "VEC2") for n in range(4)}
+    for name, slots in (("Sets23", {"baseColorTexture": 3, "emissiveTexture": 2}),
+                        ("Set3", {"baseColorTexture": 3, "emissiveTexture": 3}),
+                        ("Sets01", {"baseColorTexture": 1, "emissiveTexture": 0})):
+        material = texture_material(w, name, slots, texture)
+        f.mesh(name, [w.primitive(pos, material=material, attributes=uvs)])
+    f.write("texcoord-sets.gltf")
+
+    # texcoord-2.gltf and its twin texcoord-0.gltf: a quad filling the view
+    # with the checker as emissive texture, read through TEXCOORD_2 (TEXCOORD_0
+    # holding other values) and through TEXCOORD_0: the same image.
+    quad = [(-3, -2, 0), (4, -2, 0), (4, 4, 0), (-3, 4, 0)]
+    uv = [(0, 1), (1, 1), (1, 0), (0, 0)]
+    for name, set_ in (("texcoord-2.gltf", 2), ("texcoord-0.gltf", 0)):
+        f = File()
+        w = f.w
+        material = texture_material(w, "Checker", {"emissiveTexture": set_}, checker_texture(w))
+        attributes = {f"TEXCOORD_{set_}": f.values(uv, FLOAT, "VEC2")}
+        if set_ != 0:
+            attributes["TEXCOORD_0"] = f.values([(0.5, 0.5)] * 4, FLOAT, "VEC2")
+        f.mesh("Quad", [w.primitive(w.add_vec3(quad), indices=w.add_indices([0, 1, 2, 0, 2, 3]),
+                                    material=material, attributes=attributes)])
+        f.write(name)
+
+
 COMPONENT_NAME = {BYTE: "BYTE", UNSIGNED_BYTE: "UNSIGNED_BYTE", SHORT: "SHORT",
                   UNSIGNED_SHORT: "UNSIGNED_SHORT", FLOAT: "FLOAT"}
 
@@ -329,12 +389,28 @@ def broken():
         indices=lambda f: f.w.add_indices([0, 1, 2, 9], UNSIGNED_BYTE))
     bad("unknown-mode.gltf", mode=7)
 
+    def textured(name, slots, sets):
+        """mesh 0 "Bad": TRIANGLE with TEXCOORD_n for n in `sets`, its
+        material 1 "Textured" reading `slots`."""
+        f = File()
+        w = f.w
+        material = texture_material(w, "Textured", slots, checker_texture(w))
+        uvs = {f"TEXCOORD_{n}": f.values(set_uvs(n), FLOAT, "VEC2") for n in sets}
+        f.mesh("Bad", [w.primitive(w.add_vec3(TRIANGLE), material=material, attributes=uvs)])
+        f.write(name, BROKEN)
+
+    textured("texcoord-three-sets.gltf", {"baseColorTexture": 0, "emissiveTexture": 2,
+                                          "normalTexture": 3}, range(4))
+    textured("texcoord-negative.gltf", {"emissiveTexture": -1}, range(1))
+    textured("texcoord-missing-set.gltf", {"emissiveTexture": 2}, range(2))
+
 
 def main():
     os.makedirs(BROKEN, exist_ok=True)
     modes()
     sparse()
     quantized()
+    texcoord_sets()
     broken()
     print("wrote", OUT)
 
