@@ -305,6 +305,10 @@ TEST_CASE("gltf geometry: every broken file fails with one line naming file and 
         {"fan-index-out-of-range.gltf",
          bad + "index 9 (indices[3], accessor 1) is out of range: POSITION has 3 vertices"},
         {"unknown-mode.gltf", bad + "mode 7 is not a glTF primitive mode (0 to 6)"},
+        {"color-unnormalized.gltf",
+         "accessor 1 (mesh 0 (\"Bad\") primitive 0 COLOR_0) is UNSIGNED_BYTE but not normalized"},
+        {"color-vec2.gltf", "accessor 1 (mesh 0 (\"Bad\") primitive 0 COLOR_0) is neither VEC3 nor VEC4"},
+        {"color-count.gltf", bad + "COLOR_0 has 2 elements but POSITION has 3"},
         {"texcoord-three-sets.gltf",
          "material 1 (\"Textured\"): its textures read 3 texture coordinate sets (TEXCOORD_0, TEXCOORD_2, "
          "TEXCOORD_3); strata interpolates at most two per material"},
@@ -334,7 +338,7 @@ TEST_CASE("gltf geometry: strata render on each broken file exits 2, one line, n
         checkRenderRefuses(entry.path().string());
         ++checked;
     }
-    CHECK(checked >= 21);
+    CHECK(checked >= 24);
 }
 
 TEST_CASE("gltf geometry: a texture read through TEXCOORD_2 renders as its TEXCOORD_0 twin, bit for bit" *

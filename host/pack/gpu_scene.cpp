@@ -23,7 +23,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureTextures, "textures"},       {gpu::kFeatureNormalMap, "normal-maps"},
         {gpu::kFeatureAlphaTest, "alpha-test"},    {gpu::kFeaturePunctual, "punctual-lights"},
         {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"},
-        {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"}};
+        {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"},
+        {gpu::kFeatureVertexColor, "vertex-colors"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -156,6 +157,7 @@ glm::dvec3 emissiveMean(const Scene& scene, const MaterialDesc& m) {
 // constant that never makes a hole (no baseColor texture and factor >=
 // alphaCutoff for MASK, factor >= 1 for BLEND).
 std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used) {
+    const bool colors = !scene.colors.empty();  // COLOR_0's alpha multiplies too
     std::uint32_t bits = 0;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
@@ -165,7 +167,7 @@ std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used)
             bits |= gpu::kFeatureTextures;
         if (m.normalTexture.used()) bits |= gpu::kFeatureNormalMap;
         const float alpha = m.baseColor.a;
-        const bool textured = m.baseColorTexture.used();
+        const bool textured = m.baseColorTexture.used() || colors;
         if ((m.alphaMode == MaterialDesc::AlphaMode::Mask && (textured || alpha < m.alphaCutoff)) ||
             (m.alphaMode == MaterialDesc::AlphaMode::Blend && (textured || alpha < 1.0f)))
             bits |= gpu::kFeatureAlphaTest;
@@ -208,10 +210,11 @@ struct BvhOrderSource {
     RawArray<Triangle> tris;
     RawArray<TriangleUv> uvs;
     RawArray<TriangleTangents> tangents;
+    RawArray<TriangleColors> colors;
 
     BvhOrderSource(Scene& scene, const std::vector<std::uint32_t>& order)
         : slot(order.size()), tris(order.size()), uvs(scene.texcoords.empty() ? 0 : order.size()),
-          tangents(scene.tangents.empty() ? 0 : order.size()) {
+          tangents(scene.tangents.empty() ? 0 : order.size()), colors(scene.colors.empty() ? 0 : order.size()) {
         const std::size_t n = order.size();
         std::vector<std::uint32_t> position(n);  // source index -> BVH position
         for (std::size_t j = 0; j < n; ++j) position[order[j]] = std::uint32_t(j);
@@ -222,6 +225,7 @@ struct BvhOrderSource {
                 discardPages(scene.triangles.data() + (i - kChunk), kChunk * sizeof(Triangle));
                 if (!uvs.empty()) discardPages(scene.texcoords.data() + (i - kChunk), kChunk * sizeof(TriangleUv));
                 if (!tangents.empty()) discardPages(scene.tangents.data() + (i - kChunk), kChunk * sizeof(TriangleTangents));
+                if (!colors.empty()) discardPages(scene.colors.data() + (i - kChunk), kChunk * sizeof(TriangleColors));
             }
             const std::uint32_t d = position[i];
             const std::size_t s = fill[d / kChunk]++;
@@ -229,10 +233,12 @@ struct BvhOrderSource {
             tris.put(s, scene.triangles[i]);
             if (!uvs.empty()) uvs.put(s, scene.texcoords[i]);
             if (!tangents.empty()) tangents.put(s, scene.tangents[i]);
+            if (!colors.empty()) colors.put(s, scene.colors[i]);
         }
         std::vector<Triangle>().swap(scene.triangles);
         std::vector<TriangleUv>().swap(scene.texcoords);
         std::vector<TriangleTangents>().swap(scene.tangents);
+        std::vector<TriangleColors>().swap(scene.colors);
     }
     // Called with i = 0, 1, 2, ...: chunk i / kChunk - 1 has been read.
     void advance(std::size_t i) {
@@ -240,6 +246,7 @@ struct BvhOrderSource {
         tris.discard(i - kChunk, i);
         uvs.discard(i - kChunk, i);
         tangents.discard(i - kChunk, i);
+        colors.discard(i - kChunk, i);
     }
 };
 
@@ -295,6 +302,8 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
     g.features.bits |= textureFeatures(scene, used);
     const bool uvs = (g.features.bits & gpu::kFeatureTextures) != 0;
     const bool tangents = (g.features.bits & gpu::kFeatureNormalMap) != 0;
+    const bool colors = !scene.colors.empty();
+    if (colors) g.features.bits |= gpu::kFeatureVertexColor;
 
     std::optional<BvhOrderSource> reordered;
     if constexpr (consume) reordered.emplace(scene, bvh.triIndices);
@@ -305,6 +314,10 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
     auto uvsOf = [&](std::size_t i) {
         if constexpr (consume) return reordered->uvs.get(reordered->slot[i]);
         else return scene.texcoords[bvh.triIndices[i]];
+    };
+    auto colorsOf = [&](std::size_t i) {
+        if constexpr (consume) return reordered->colors.get(reordered->slot[i]);
+        else return scene.colors[bvh.triIndices[i]];
     };
     auto tangentsOf = [&](std::size_t i) {
         if constexpr (consume) return reordered->tangents.get(reordered->slot[i]);
@@ -318,6 +331,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
     reserveHuge(g.shading, n);
     if (uvs) reserveHuge(g.texcoords, n);
     if (tangents) reserveHuge(g.tangents, n);
+    if (colors) reserveHuge(g.colors, n);
     std::vector<double> weights;
     for (std::size_t i = 0; i < n; ++i) {
         if constexpr (consume) reordered->advance(i);
@@ -342,6 +356,10 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
                 const TriangleTangents tg = tangentsOf(i);
                 out = {tg[0], tg[1], tg[2]};
             }
+        }
+        if (colors) {
+            const TriangleColors c = colorsOf(i);
+            g.colors.push_back({c[0], c[1], c[2]});
         }
         const MaterialDesc& m = scene.materials[t.material];
         if (isEmitter(scene, t)) {

@@ -33,6 +33,7 @@ struct GpuScene {
     // textureRefs, texels) or kFeatureNormalMap (tangents); empty otherwise.
     std::vector<gpu::TriTexcoords> texcoords;  // BVH order
     std::vector<gpu::TriTangents> tangents;    // BVH order
+    std::vector<gpu::TriColors> colors;        // BVH order; only with kFeatureVertexColor
     std::vector<gpu::TextureRef> textureRefs;
     std::vector<std::uint32_t> texels;         // R32UI words (types.h, TextureRef)
     std::vector<gpu::Emitter> emitters;     // triangles, then punctual lights, then the

@@ -198,6 +198,7 @@ public:
 
 private:
     // Tangents of a primitive without normal map: unused, any unit vector.
+    static inline const TriangleColors kWhite = {glm::vec4(1.0f), glm::vec4(1.0f), glm::vec4(1.0f)};
     static inline const TriangleTangents kNoTangents = {glm::vec4(1, 0, 0, 1), glm::vec4(1, 0, 0, 1),
                                                      glm::vec4(1, 0, 0, 1)};
 
@@ -374,6 +375,8 @@ private:
             const bool storeUv = !scene_.texcoords.empty() || !prim.texcoord(uvSets[0]).empty() ||
                                  !prim.texcoord(uvSets[1]).empty();
             const bool storeTangents = !scene_.tangents.empty() || !prim.tangents.empty();
+            const bool storeColors = !scene_.colors.empty() || !prim.colors.empty();
+            if (storeColors) scene_.colors.resize(scene_.triangles.size(), kWhite);
             if (storeUv) scene_.texcoords.resize(scene_.triangles.size(), TriangleUv{});
             if (storeTangents) scene_.tangents.resize(scene_.triangles.size(), kNoTangents);
             positions.resize(prim.positions.size());
@@ -411,6 +414,10 @@ private:
                 }
                 scene_.triangles.push_back(tri);
                 if (storeUv) scene_.texcoords.push_back(uvsOf(prim, uvSets, idx));
+                if (storeColors) {
+                    scene_.colors.push_back(kWhite);
+                    for (std::size_t k = 0; k < 3 && !prim.colors.empty(); ++k) scene_.colors.back()[k] = prim.colors[idx[k]];
+                }
                 if (storeTangents) {
                     scene_.tangents.push_back(prim.tangents.empty()
                                                   ? kNoTangents

@@ -29,18 +29,23 @@ struct Semantic {
     const char* typeName;
     int components;
     bool finite;
+    bool integers;  // normalized UNSIGNED_BYTE/SHORT allowed besides FLOAT
 };
-constexpr Semantic kPosition{TINYGLTF_TYPE_VEC3, "VEC3", 3, true};
-constexpr Semantic kNormal{TINYGLTF_TYPE_VEC3, "VEC3", 3, false};
-constexpr Semantic kTexcoord{TINYGLTF_TYPE_VEC2, "VEC2", 2, true};
-constexpr Semantic kTangent{TINYGLTF_TYPE_VEC4, "VEC4", 4, false};
+constexpr Semantic kPosition{TINYGLTF_TYPE_VEC3, "VEC3", 3, true, false};
+constexpr Semantic kNormal{TINYGLTF_TYPE_VEC3, "VEC3", 3, false, false};
+constexpr Semantic kTexcoord{TINYGLTF_TYPE_VEC2, "VEC2", 2, true, true};
+constexpr Semantic kTangent{TINYGLTF_TYPE_VEC4, "VEC4", 4, false, false};
+constexpr Semantic kColor3{TINYGLTF_TYPE_VEC3, "VEC3", 3, true, true};
+constexpr Semantic kColor4{TINYGLTF_TYPE_VEC4, "VEC4", 4, true, true};
 
-// The Semantic of a glTF attribute name strata reads from a Draco stream;
-// nullptr for the others (read from their accessors, or ignored).
-const Semantic* semanticOf(const std::string& name) {
+// The Semantic of a glTF attribute name strata reads from a Draco stream
+// (COLOR_0 as its accessor's type, `accessorType`); nullptr for the others
+// (read from their accessors, or ignored).
+const Semantic* semanticOf(const std::string& name, int accessorType) {
     if (name == "POSITION") return &kPosition;
     if (name == "NORMAL") return &kNormal;
     if (name == "TANGENT") return &kTangent;
+    if (name == "COLOR_0") return accessorType == TINYGLTF_TYPE_VEC3 ? &kColor3 : &kColor4;
     if (texcoordSet(name) >= 0) return &kTexcoord;
     return nullptr;
 }
@@ -128,12 +133,12 @@ std::vector<float> readAttribute(const std::string& path, const tinygltf::Model&
                        " components; " + semantic.typeName + " needs " +
                        std::to_string(semantic.components));
     }
-    const bool texcoord = semantic.type == TINYGLTF_TYPE_VEC2;
+    const bool integers = semantic.integers;
     const draco::DataType expected = expectedType(acc.componentType);
     const bool integer = expected == draco::DT_UINT8 || expected == draco::DT_UINT16;
-    if (expected == draco::DT_INVALID || (integer && !(texcoord && acc.normalized))) {
+    if (expected == draco::DT_INVALID || (integer && !(integers && acc.normalized))) {
         fail(path, accLabel + " has component type " + std::to_string(acc.componentType) +
-                       "; expected FLOAT" + (texcoord ? " or normalized UNSIGNED_BYTE/SHORT" : ""));
+                       "; expected FLOAT" + (integers ? " or normalized UNSIGNED_BYTE/SHORT" : ""));
     }
     if (att->data_type() != expected) {
         fail(path, accLabel + " expects " + dracoTypeName(expected) + " data but " + attLabel +
@@ -300,7 +305,9 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
     local.index = out.index;
     decoded.clear();
     for (const auto& [name, id] : ids) {
-        const Semantic* s = semanticOf(name);
+        const int accessor = prim.attributes.at(name);
+        const bool valid = accessor >= 0 && static_cast<std::size_t>(accessor) < model.accessors.size();
+        const Semantic* s = semanticOf(name, valid ? model.accessors[static_cast<std::size_t>(accessor)].type : -1);
         if (!s) continue;
         decoded.push_back(name);
         const std::vector<float> v = readAttribute(path, model, *mesh, prim, name, *s, id, label);
@@ -315,6 +322,11 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
                 local.tangents[i] = glm::vec4(v[4 * i], v[4 * i + 1], v[4 * i + 2],
                                               v[4 * i + 3] < 0.0f ? -1.0f : 1.0f);
             }
+        } else if (name == "COLOR_0") {
+            local.colors.resize(n);
+            for (std::size_t i = 0; i < n; ++i)
+                local.colors[i] = s->components == 3 ? glm::vec4(v[3 * i], v[3 * i + 1], v[3 * i + 2], 1.0f)
+                                                     : glm::vec4(v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]);
         } else {
             auto& dst = local.texcoords[texcoordSet(name)];
             dst.resize(n);

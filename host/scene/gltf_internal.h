@@ -86,6 +86,7 @@ struct LocalPrimitive {
     std::vector<glm::vec3> normals;
     std::map<int, std::vector<glm::vec2>> texcoords;
     std::vector<glm::vec4> tangents;
+    std::vector<glm::vec4> colors;  // COLOR_0, linear RGBA (alpha 1 from VEC3)
     std::vector<std::uint32_t> indices;
     int material = -1;      // glTF material index, -1 for none
     std::size_t index = 0;  // in the mesh's primitives (for messages)

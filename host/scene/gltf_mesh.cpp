@@ -32,6 +32,10 @@ const AttributeFormats kNormal{{TINYGLTF_TYPE_VEC3, {kFloat}, false},
                                {TINYGLTF_TYPE_VEC3, {kFloat, kByte, kShort}, true}};
 const AttributeFormats kTangent{{TINYGLTF_TYPE_VEC4, {kFloat}, false},
                                 {TINYGLTF_TYPE_VEC4, {kFloat, kByte, kShort}, true}};
+// COLOR_0: VEC3 or VEC4 of these (glTF 2.0 3.7.2.1; KHR_mesh_quantization
+// adds none).
+const AccessorFormat kColor3{TINYGLTF_TYPE_VEC3, {kFloat, kUByte, kUShort}, true};
+const AccessorFormat kColor4{TINYGLTF_TYPE_VEC4, {kFloat, kUByte, kUShort}, true};
 const AttributeFormats kTexcoord{{TINYGLTF_TYPE_VEC2, {kFloat, kUByte, kUShort}, true},
                                  {TINYGLTF_TYPE_VEC2, {kFloat, kByte, kUByte, kShort, kUShort}, false}};
 
@@ -120,6 +124,31 @@ std::vector<glm::vec4> readTangents(const std::string& path, const tinygltf::Mod
     return out;
 }
 
+// COLOR_0 as linear RGBA: a VEC3 accessor gets alpha 1; every value finite.
+std::vector<glm::vec4> readColors(const std::string& path, const tinygltf::Model& model, int index,
+                                  const std::string& use) {
+    const bool exists = index >= 0 && static_cast<std::size_t>(index) < model.accessors.size();
+    const int type = exists ? model.accessors[static_cast<std::size_t>(index)].type : TINYGLTF_TYPE_VEC4;
+    if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4) {
+        fail(path, "accessor " + std::to_string(index) + " (" + use + ") is neither VEC3 nor VEC4");
+    }
+    const bool rgb = type == TINYGLTF_TYPE_VEC3;
+    std::vector<glm::vec4> out;
+    if (rgb) {
+        for (const glm::vec3& c : readFloats<3>(path, model, index, use, kColor3, nullptr)) out.emplace_back(c, 1.0f);
+    } else {
+        out = readFloats<4>(path, model, index, use, kColor4, nullptr);
+    }
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const glm::vec4 c = out[i];
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(c.w)) {
+            fail(path, "accessor " + std::to_string(index) + " (" + use + "): element " + std::to_string(i) +
+                           " is NaN or Inf");
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 int texcoordSet(const std::string& semantic) {
@@ -200,6 +229,10 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
             if (set < 0 || fromAccessor(name) < 0) continue;
             local.texcoords[set] = readTexcoords(path, model, accessor, label + " " + name, quantization);
             sameCount(local.texcoords[set].size(), name);
+        }
+        if (const int color = fromAccessor("COLOR_0"); color >= 0) {
+            local.colors = readColors(path, model, color, label + " COLOR_0");
+            sameCount(local.colors.size(), "COLOR_0");
         }
         if (const int tangent = fromAccessor("TANGENT"); tangent >= 0) {
             local.tangents = readTangents(path, model, tangent, label + " TANGENT", quantization);

@@ -105,6 +105,9 @@ struct Texture {
 // of vertex K in uv[K], {a, b} its material's uvSets ({0, 1} unless it reads
 // a higher set), zero where the primitive lacks a set.
 using TriangleUv = std::array<glm::vec4, 3>;
+// Per-vertex COLOR_0 of one triangle: linear RGBA of vertex K in c[K] (alpha
+// 1 from a VEC3 accessor; (1, 1, 1, 1) for a primitive without COLOR_0).
+using TriangleColors = std::array<glm::vec4, 3>;
 // Per-vertex world-space unit tangents, w = +-1 handedness (glTF TANGENT).
 using TriangleTangents = std::array<glm::vec4, 3>;
 
@@ -167,18 +170,21 @@ struct Scene {
     // otherwise), and when some material has a normalTexture (empty otherwise).
     std::vector<TriangleUv> texcoords;
     std::vector<TriangleTangents> tangents;
+    // Parallel to `triangles` when some primitive has COLOR_0, else empty.
+    std::vector<TriangleColors> colors;
     // Triangles with an emissive material but zero area. They stay in
     // `triangles` as geometry and are not emitters (see isEmitter).
     std::size_t droppedEmitters = 0;
 };
 
-// Frees what packing copies (triangles, texture coordinates, tangents,
+// Frees what packing copies (triangles, texture coordinates, tangents, colours,
 // images, environment texels) once the scene is packed (pack/gpu_scene.h);
 // materials, cameras, lights and the other small members stay.
 inline void releaseGeometry(Scene& scene) {
     std::vector<Triangle>().swap(scene.triangles);
     std::vector<TriangleUv>().swap(scene.texcoords);
     std::vector<TriangleTangents>().swap(scene.tangents);
+    std::vector<TriangleColors>().swap(scene.colors);
     std::vector<TextureImage>().swap(scene.images);
     std::vector<float>().swap(scene.environment.rgb);
 }

@@ -31,6 +31,7 @@ std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
             {"triangle shading data", s.shading.size() * sizeof(gpu::TriShading), true, kTexel},
             {"texture coordinates", s.texcoords.size() * sizeof(gpu::TriTexcoords), true, kTexel},
             {"tangents", s.tangents.size() * sizeof(gpu::TriTangents), true, kTexel},
+            {"vertex colours", s.colors.size() * sizeof(gpu::TriColors), true, kTexel},
             {"emitters", s.emitters.size() * sizeof(gpu::Emitter), true, kTexel},
             {"materials", s.materials.size() * sizeof(gpu::Material), true, kTexel},
             {"texture references", s.textureRefs.size() * sizeof(gpu::TextureRef), true, kTexel},
@@ -102,6 +103,7 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
     put(d.shading, scene.shading);
     put(d.texcoords, scene.texcoords);
     put(d.tangents, scene.tangents);
+    put(d.colors, scene.colors);
     d.emitters = uploadArray(ctx, scene.emitters, limits);
     d.materials = uploadArray(ctx, scene.materials, limits);
     d.textureRefs = uploadArray(ctx, scene.textureRefs, limits);
@@ -110,7 +112,7 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
     release(scene.texels);
     uploadEnvironment(ctx, scene, d, limits);
     release(scene.envTexels);
-    for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.emitters, &d.materials,
+    for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.colors, &d.emitters, &d.materials,
                                   &d.textureRefs, &d.envTables})
         d.deviceBytes += a->buffer.allocationSize();
     for (const vk::Buffer* b : {&d.texels, &d.envTexels})

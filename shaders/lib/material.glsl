@@ -1,4 +1,5 @@
 // Material evaluation at a surface point: glTF factors times their textures
+// (and baseColor times the COLOR_0 vertex colour)
 // (baseColor and emissive sRGB; metallicRoughness G = roughness, B =
 // metallic; transmission R), the tangent-space normal map, and the alpha
 // test the BVH traversal uses to skip holes. Code for textures, normal maps
@@ -28,6 +29,14 @@ struct SurfacePoint {
 vec4 texcoordsAt(uint triangle, vec2 bary) {
     TriTexcoords tc = sceneTexcoords(triangle);
     return (1.0 - bary.x - bary.y) * tc.uv0 + bary.x * tc.uv1 + bary.y * tc.uv2;
+}
+
+// COLOR_0 at barycentrics (u, v) of vertices 1 and 2; white without
+// kFeatureVertexColor.
+vec4 vertexColorAt(uint triangle, vec2 bary) {
+    if (!hasFeature(kFeatureVertexColor)) return vec4(1.0);
+    TriColors tc = sceneColors(triangle);
+    return (1.0 - bary.x - bary.y) * tc.c0 + bary.x * tc.c1 + bary.y * tc.c2;
 }
 
 // Texture slot `ref` (an index into textureRefs[]) at interpolated texture
@@ -81,6 +90,11 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     sp.emission = mat.emission;
     sp.ns = nsInterpolated;
     sp.flags = mat.flags;
+    if (hasFeature(kFeatureVertexColor)) {
+        vec4 c = vertexColorAt(triangle, bary);
+        sp.baseColor *= c.rgb;
+        sp.alpha *= c.a;
+    }
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
     if (mat.baseColorTex != kNoTexture) {
@@ -103,8 +117,10 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
 // KHR_materials_unlit: what an unlit surface shows, baseColorFactor times
 // the baseColor texture.
 vec3 unlitColor(Material mat, uint triangle, vec2 bary) {
-    if ((kFeatures & kFeatureTextures) == 0u || mat.baseColorTex == kNoTexture) return mat.baseColor.rgb;
-    return mat.baseColor.rgb * materialTexture(mat.baseColorTex, texcoordsAt(triangle, bary)).rgb;
+    vec3 base = mat.baseColor.rgb;
+    if (hasFeature(kFeatureVertexColor)) base *= vertexColorAt(triangle, bary).rgb;
+    if ((kFeatures & kFeatureTextures) == 0u || mat.baseColorTex == kNoTexture) return base;
+    return base * materialTexture(mat.baseColorTex, texcoordsAt(triangle, bary)).rgb;
 }
 
 // Emitted radiance of material `materialIndex` at a point of `triangle`
@@ -132,6 +148,7 @@ bool alphaHole(uint triangle, vec2 bary, uint rayHash) {
     if ((flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return false;
     Material mat = sceneMaterial(materialIndex);
     float alpha = mat.baseColor.a;
+    if (hasFeature(kFeatureVertexColor)) alpha *= vertexColorAt(triangle, bary).a;
     if ((kFeatures & kFeatureTextures) != 0u && mat.baseColorTex != kNoTexture)
         alpha *= materialTexture(mat.baseColorTex, texcoordsAt(triangle, bary)).a;
     if ((flags & kMaterialAlphaMask) != 0u) return alpha < mat.alphaCutoff;

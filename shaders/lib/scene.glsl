@@ -24,6 +24,8 @@ layout(std430, set = 0, binding = BINDING_TEXCOORDS) readonly buffer TexcoordBuf
 layout(set = 0, binding = BINDING_TEXCOORDS_TEXEL) uniform usamplerBuffer texcoordsTexel;
 layout(std430, set = 0, binding = BINDING_TANGENTS) readonly buffer TangentBuffer { TriTangents tangents[]; };
 layout(set = 0, binding = BINDING_TANGENTS_TEXEL) uniform usamplerBuffer tangentsTexel;
+layout(std430, set = 0, binding = BINDING_COLORS) readonly buffer ColorBuffer { TriColors colors[]; };
+layout(set = 0, binding = BINDING_COLORS_TEXEL) uniform usamplerBuffer colorsTexel;
 
 uvec4 bvhNodeWord(uint index) {
     return kTexelBvh ? texelFetch(nodesTexel, int(index)) : nodeWords[index];
@@ -79,6 +81,13 @@ TriTangents sceneTangents(uint triangle) {
     uvec4 t[kTriTangentsTexels] = texels3(tangentsTexel, triangle);
     return TriTangents(TEXEL_VEC4(t, kTriTangentsWordT0), TEXEL_VEC4(t, kTriTangentsWordT1),
                        TEXEL_VEC4(t, kTriTangentsWordT2));
+}
+
+TriColors sceneColors(uint triangle) {
+    if (!kTexelAll) return colors[triangle];
+    uvec4 t[kTriColorsTexels] = texels3(colorsTexel, triangle);
+    return TriColors(TEXEL_VEC4(t, kTriColorsWordC0), TEXEL_VEC4(t, kTriColorsWordC1),
+                     TEXEL_VEC4(t, kTriColorsWordC2));
 }
 
 // materials[i], through its RGBA32UI texel view with kTexelAll: on lavapipe

@@ -50,7 +50,10 @@ STRATA_BINDING(BINDING_WAVE_NEXT_LIVE, 35);    // storage uint[]: the path of ea
 STRATA_BINDING(BINDING_WAVE_SHADOW_SLOTS, 36); // storage uint[]: the path of each shadow ray
 STRATA_BINDING(BINDING_WAVE_COUNTS, 37);       // storage uint[2]: next rays, shadow rays appended
 STRATA_BINDING(BINDING_WAVE_SHADOW_HITS, 38);  // storage TraceHit[]: the shadow rays' results
-STRATA_BINDING(BINDING_COUNT, 39);
+// 39 and 40 are instancing's (another branch).
+STRATA_BINDING(BINDING_COLORS, 41);        // storage TriColors[]: COLOR_0 per triangle (BVH order)
+STRATA_BINDING(BINDING_COLORS_TEXEL, 42);  // usamplerBuffer over BINDING_COLORS (RGBA32UI)
+STRATA_BINDING(BINDING_COUNT, 43);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views

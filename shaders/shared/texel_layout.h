@@ -70,6 +70,11 @@ STRATA_CONST(uint, kTriTexcoordsWordUv0, 0u);
 STRATA_CONST(uint, kTriTexcoordsWordUv1, 4u);
 STRATA_CONST(uint, kTriTexcoordsWordUv2, 8u);
 
+STRATA_CONST(uint, kTriColorsTexels, 3u);
+STRATA_CONST(uint, kTriColorsWordC0, 0u);
+STRATA_CONST(uint, kTriColorsWordC1, 4u);
+STRATA_CONST(uint, kTriColorsWordC2, 8u);
+
 STRATA_CONST(uint, kTriTangentsTexels, 3u);
 STRATA_CONST(uint, kTriTangentsWordT0, 0u);
 STRATA_CONST(uint, kTriTangentsWordT1, 4u);
@@ -160,6 +165,11 @@ STRATA_TEXELS(TriTexcoords, kTriTexcoordsTexels);
 STRATA_TEXEL_WORD(TriTexcoords, uv0, kTriTexcoordsWordUv0);
 STRATA_TEXEL_WORD(TriTexcoords, uv1, kTriTexcoordsWordUv1);
 STRATA_TEXEL_WORD(TriTexcoords, uv2, kTriTexcoordsWordUv2);
+
+STRATA_TEXELS(TriColors, kTriColorsTexels);
+STRATA_TEXEL_WORD(TriColors, c0, kTriColorsWordC0);
+STRATA_TEXEL_WORD(TriColors, c1, kTriColorsWordC1);
+STRATA_TEXEL_WORD(TriColors, c2, kTriColorsWordC2);
 
 STRATA_TEXELS(TriTangents, kTriTangentsTexels);
 STRATA_TEXEL_WORD(TriTangents, t0, kTriTangentsWordT0);

@@ -104,6 +104,7 @@ STRATA_CONST(uint, kFeatureEnvironment, 64u);  // an environment light (constant
 STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
 STRATA_CONST(uint, kFeatureUnlit, 256u);       // KHR_materials_unlit
 STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with attenuation
+STRATA_CONST(uint, kFeatureVertexColor, 2048u);  // COLOR_0 vertex colours (TriColors)
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -164,6 +165,16 @@ struct TriTangents {
     vec4 t0;
     vec4 t1;
     vec4 t2;
+};
+
+// COLOR_0 of one triangle in BVH order: cK = linear RGBA of vertex K (alpha
+// 1 for a VEC3 accessor, (1, 1, 1, 1) where the primitive has no COLOR_0),
+// multiplying baseColor (glTF 2.0 3.7.2.1). Uploaded only with
+// kFeatureVertexColor.
+struct TriColors {
+    vec4 c0;
+    vec4 c1;
+    vec4 c2;
 };
 
 // TextureRef.flags: bits 0-1 wrapS, bits 2-3 wrapT (kWrap*), then kTex* bits.
@@ -403,6 +414,7 @@ static_assert(sizeof(Material) == 96);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
+static_assert(sizeof(TriColors) == 48);
 static_assert(sizeof(TextureRef) == 48);
 static_assert(sizeof(FrameUniforms) == 160);
 static_assert(sizeof(DispatchParams) == 32);

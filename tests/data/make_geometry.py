@@ -313,6 +313,53 @@ def texcoord_sets():
         f.write(name)
 
 
+# COLOR_0 of colors.gltf's triangles (vertex k = 0, 1, 2), one per storage.
+COLORS = [
+    ("FLOAT VEC3", FLOAT, "VEC3", [(0.25, 0.5, 1.0), (0.0, 0.125, 0.75), (1.0, 1.0, 0.5)]),
+    ("FLOAT VEC4", FLOAT, "VEC4", [(0.25, 0.5, 1.0, 0.5), (0.0, 0.125, 0.75, 0.0), (1.0, 1.0, 0.5, 1.0)]),
+    ("UNSIGNED_BYTE VEC3", UNSIGNED_BYTE, "VEC3", [(0, 128, 255), (51, 102, 204), (255, 0, 1)]),
+    ("UNSIGNED_BYTE VEC4", UNSIGNED_BYTE, "VEC4", [(0, 128, 255, 64), (51, 102, 204, 0), (255, 0, 1, 255)]),
+    ("UNSIGNED_SHORT VEC4", UNSIGNED_SHORT, "VEC4",
+     [(0, 32768, 65535, 16384), (13107, 26214, 52428, 0), (65535, 0, 1, 65535)]),
+]
+
+# The vertex colour quad of colors-unlit.gltf and colors-mask.gltf at z = 0,
+# covering the camera's view: COLOR_0 of a point (x, y) is the affine
+# QUAD_COLOR(x, y) (tests/test_vertex_colors.cpp mirrors it), so any
+# interpolation over the two triangles gives it back.
+COLOR_QUAD = [(-4, -3, 0), (5, -3, 0), (5, 5, 0), (-4, 5, 0)]
+
+
+def quad_color(x, y):
+    return (0.2 + 0.05 * (x + 4), 0.3 + 0.06 * (y + 3), 0.9 - 0.04 * (x + 4) - 0.03 * (y + 3), (x + 4) / 9)
+
+
+def vertex_colors():
+    # colors.gltf: TRIANGLE once per COLORS entry (normalized integers), then
+    # once without COLOR_0.
+    f = File()
+    w = f.w
+    pos = w.add_vec3(TRIANGLE)
+    for name, component, type_, values in COLORS:
+        color = f.values(values, component, type_, normalized=component != FLOAT)
+        f.mesh(name, [w.primitive(pos, material=f.glow, attributes={"COLOR_0": color})])
+    f.mesh("White", [w.primitive(pos, material=f.glow)])
+    f.write("colors.gltf")
+
+    # colors-unlit.gltf: the quad, unlit, baseColorFactor (0.5, 1, 0.8, 1);
+    # colors-mask.gltf: the same, alphaMode MASK with cutoff 0.5 (COLOR_0's
+    # alpha runs from 0 at x = -4 to 1 at x = 5).
+    for name, mask in (("colors-unlit.gltf", False), ("colors-mask.gltf", True)):
+        f = File()
+        w = f.w
+        material = w.add_material("Coloured", base_color=(0.5, 1, 0.8, 1), unlit=True,
+                                  alpha_mode="MASK" if mask else None, alpha_cutoff=0.5 if mask else None)
+        color = f.values([quad_color(x, y) for x, y, _ in COLOR_QUAD], FLOAT, "VEC4")
+        f.mesh("Quad", [w.primitive(w.add_vec3(COLOR_QUAD), indices=w.add_indices([0, 1, 2, 0, 2, 3]),
+                                    material=material, attributes={"COLOR_0": color})])
+        f.write(name, extensions=["KHR_materials_unlit"])
+
+
 COMPONENT_NAME = {BYTE: "BYTE", UNSIGNED_BYTE: "UNSIGNED_BYTE", SHORT: "SHORT",
                   UNSIGNED_SHORT: "UNSIGNED_SHORT", FLOAT: "FLOAT"}
 
@@ -399,6 +446,11 @@ def broken():
         f.mesh("Bad", [w.primitive(w.add_vec3(TRIANGLE), material=material, attributes=uvs)])
         f.write(name, BROKEN)
 
+    bad("color-unnormalized.gltf",
+        attributes=lambda f: {"COLOR_0": f.values([(0, 0, 255)] * 3, UNSIGNED_BYTE, "VEC3")})
+    bad("color-vec2.gltf", attributes=lambda f: {"COLOR_0": f.values([(0.5, 0.5)] * 3, FLOAT, "VEC2")})
+    bad("color-count.gltf", attributes=lambda f: {"COLOR_0": f.values([(1.0, 1.0, 1.0)] * 2, FLOAT, "VEC3")})
+
     textured("texcoord-three-sets.gltf", {"baseColorTexture": 0, "emissiveTexture": 2,
                                           "normalTexture": 3}, range(4))
     textured("texcoord-negative.gltf", {"emissiveTexture": -1}, range(1))
@@ -411,6 +463,7 @@ def main():
     sparse()
     quantized()
     texcoord_sets()
+    vertex_colors()
     broken()
     print("wrote", OUT)
 
