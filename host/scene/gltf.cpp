@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "scene/gltf_deform.h"
 #include "scene/gltf_internal.h"
 #include "scene/scene.h"
 #include "scene/tangents.h"
@@ -347,6 +348,9 @@ private:
                             " meshes)");
         }
         std::vector<LocalPrimitive>& decoded = decodedMesh(node.mesh).primitives;
+        // Morph targets and skins: the node's pose of the mesh (gltf_deform.h).
+        const gltf::NodePose pose(path_, model_, nodeIndex, decodedMesh(node.mesh));
+        LocalPrimitive posed;
 
         const glm::dmat3 linear(world);
         const double det = glm::determinant(linear);
@@ -360,11 +364,12 @@ private:
 
         std::vector<glm::dvec3> positions;
         std::vector<glm::dvec3> normals;
-        for (LocalPrimitive& prim : decoded) {
+        for (LocalPrimitive& cached : decoded) {
             std::uint32_t material = 0;
+            if (cached.material >= 0) prepareTextureInputs(node.mesh, cached);
+            const LocalPrimitive& prim = pose.apply(cached, posed);
             if (prim.material >= 0) {
                 material = static_cast<std::uint32_t>(prim.material);
-                prepareTextureInputs(node.mesh, prim);
             } else {
                 material = static_cast<std::uint32_t>(model_.materials.size());
                 usesDefault_ = true;
@@ -438,6 +443,10 @@ private:
 };
 
 }  // namespace
+
+glm::dmat4 gltf::nodeTransform(const std::string& path, const tinygltf::Model& model, int node) {
+    return localTransform(path, model, node);
+}
 
 Scene loadGltf(const std::string& path, const LoadOptions& options) {
     tinygltf::Model model = gltf::parseModel(path);

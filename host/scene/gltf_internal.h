@@ -67,6 +67,9 @@ std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygl
                                            const AccessorFormat& format,
                                            const AccessorFormat* undeclared);
 
+// The glTF transform of node `node` alone: `matrix`, or T * R * S.
+glm::dmat4 nodeTransform(const std::string& path, const tinygltf::Model& model, int node);
+
 // A SCALAR u8/u16/u32 accessor (indices), dense, zeros or sparse as above.
 // (tinygltf 2.7 itself refuses a primitive whose indices accessor has no
 // bufferView, before this is reached.)
@@ -76,6 +79,12 @@ std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::
 // n of an attribute name TEXCOORD_n (n decimal, at most 9 digits, no
 // leading zero), else -1.
 int texcoordSet(const std::string& semantic);
+
+// One morph target of a primitive (glTF 2.0 3.7.2.2): displacements of
+// POSITION, NORMAL and TANGENT xyz, each empty or one per vertex.
+struct MorphTarget {
+    std::vector<glm::vec3> positions, normals, tangents;
+};
 
 // One primitive of a mesh decoded in the mesh's local space. `indices` always
 // holds 3 entries per triangle (0,1,2,... for a non-indexed primitive), each
@@ -87,6 +96,7 @@ struct LocalPrimitive {
     std::map<int, std::vector<glm::vec2>> texcoords;
     std::vector<glm::vec4> tangents;
     std::vector<glm::vec4> colors;  // COLOR_0, linear RGBA (alpha 1 from VEC3)
+    std::vector<MorphTarget> targets;
     std::vector<std::uint32_t> indices;
     int material = -1;      // glTF material index, -1 for none
     std::size_t index = 0;  // in the mesh's primitives (for messages)

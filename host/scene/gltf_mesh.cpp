@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "scene/gltf_deform.h"
 #include "scene/gltf_internal.h"
 #include "util/error.h"
 
@@ -238,6 +239,8 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
             local.tangents = readTangents(path, model, tangent, label + " TANGENT", quantization);
             sameCount(local.tangents.size(), "TANGENT");
         }
+
+        local.targets = readMorphTargets(path, model, prim, label, vertexCount, quantization);
 
         const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES;
         std::vector<std::uint32_t> sequence;

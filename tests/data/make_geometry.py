@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""Writes tests/data/geometry/: primitive modes, sparse accessors and
-KHR_mesh_quantization for the loader (tests/test_gltf_geometry.cpp).
+"""Writes tests/data/geometry/: primitive modes, sparse accessors,
+KHR_mesh_quantization, TEXCOORD_n and COLOR_0 for the loader
+(tests/test_gltf_geometry.cpp, test_vertex_colors.cpp), and
+tests/data/deform/: morph targets and skins (tests/test_gltf_deform.cpp).
 
 The valid files each have a camera and an emissive material, so `strata
 render` draws them; geometry/broken/ holds one defect per file. The numbers
@@ -18,12 +20,15 @@ sys.dont_write_bytecode = True  # keep the tree free of __pycache__
 SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(HERE)), "scripts")
 sys.path.insert(0, SCRIPTS)
 
-from gltf_writer import (BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT,  # noqa: E402
+from gltf_writer import (BYTE, FLOAT, SHORT, UNSIGNED_BYTE, UNSIGNED_INT, f32,  # noqa: E402
                          UNSIGNED_SHORT, GltfWriter, pack_vec3)
 from make_texture_scenes import data_uri, png  # noqa: E402
 
 OUT = os.path.join(HERE, "geometry")
 BROKEN = os.path.join(OUT, "broken")
+# Morph targets and skins (tests/test_gltf_deform.cpp).
+DEFORM = os.path.join(HERE, "deform")
+DEFORM_BROKEN = os.path.join(DEFORM, "broken")
 
 POINTS, LINES, LINE_LOOP, LINE_STRIP, TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN = range(7)
 QUANTIZATION = "KHR_mesh_quantization"
@@ -360,6 +365,70 @@ def vertex_colors():
         f.write(name, extensions=["KHR_materials_unlit"])
 
 
+# morph.gltf: a quad with NORMAL, TANGENT and TEXCOORD_0 (for its normal
+# map) and two targets; MORPH_WEIGHTS: the mesh's, then a node's own.
+MORPH_NORMALS = [(0, 0, 1), (0.6, 0, 0.8), (0, 0.6, 0.8), (0, 0, 1)]
+MORPH_TANGENTS = [(1, 0, 0, 1), (0.8, 0, -0.6, 1), (1, 0, 0, -1), (1, 0, 0, 1)]
+MORPH_TARGETS = [
+    {"POSITION": [(0, 0, 0.5), (0.25, 0, 0), (0, -0.5, 1), (0.125, 0.125, 0)],
+     "NORMAL": [(0.5, 0, 0), (0, 0, 0), (0, 0.25, 0), (-0.5, 0, 0)],
+     "TANGENT": [(0, 0.5, 0), (0, 0, 0), (0.25, 0, 0), (0, 0, 0.5)]},
+    # POSITION only, sparse over zeros: vertex 2 moves by (1, 1, -1).
+    {"POSITION": [(0, 0, 0), (0, 0, 0), (1, 1, -1), (0, 0, 0)]},
+]
+MORPH_WEIGHTS = [(0.5, 0.25), (1.0, -0.5)]
+
+
+def morphed(base, weights, key):
+    """base (3 or 4 numbers per vertex) plus sum_i weights[i] *
+    MORPH_TARGETS[i]'s `key` displacement (xyz), in double, as the loader
+    adds them."""
+    out = []
+    for v, b in enumerate(base):
+        x = [f32(c) for c in b]
+        for w, t in zip(weights, MORPH_TARGETS):
+            if key in t:
+                for c in range(3):
+                    x[c] += w * f32(t[key][v][c])
+        out.append(tuple(x))
+    return out
+
+
+def morph():
+    # Mesh "Morphed" (weights MORPH_WEIGHTS[0]) on node "Mesh weights" and, at
+    # x + 3, on node "Own weights" (MORPH_WEIGHTS[1]); mesh "Posed0" and
+    # "Posed1": the same quad authored already posed by each, at x + 10 and
+    # x + 13. Target 1's POSITION is a sparse accessor without bufferView.
+    f = File()
+    w = f.w
+    image = w._add("images", {"uri": data_uri(png([[(128, 128, 255)]]))})
+    mapped = w._add("materials", {"name": "Mapped", "emissiveFactor": [1, 1, 1],
+                                  "normalTexture": {"index": w._add("textures", {"source": image})}})
+    uv = f.values([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)], FLOAT, "VEC2")
+    indices = w.add_indices([0, 1, 2, 0, 2, 3])
+
+    def quad(positions, normals, tangents, targets=None):
+        prim = w.primitive(w.add_vec3(positions), w.add_vec3(normals, with_bounds=False), indices, mapped,
+                           attributes={"TEXCOORD_0": uv, "TANGENT": f.values(tangents, FLOAT, "VEC4")})
+        if targets:
+            prim["targets"] = targets
+        return prim
+
+    t0 = MORPH_TARGETS[0]
+    targets = [{key: w.add_vec3(t0[key], with_bounds=key == "POSITION") for key in t0},
+               {"POSITION": w.add_accessor(None, FLOAT, 4, "VEC3", 0, [0, 0, 0], [1, 1, 0],
+                                           sparse=w.sparse([2], pack_vec3([(1, 1, -1)])))}]
+    mesh = w._add("meshes", {"name": "Morphed", "weights": list(MORPH_WEIGHTS[0]),
+                             "primitives": [quad(QUAD, MORPH_NORMALS, MORPH_TANGENTS, targets)]})
+    f.roots.append(w.add_node("Mesh weights", mesh=mesh))
+    f.roots.append(w.add_node("Own weights", mesh=mesh, weights=list(MORPH_WEIGHTS[1]), translation=[3, 0, 0]))
+    for i, weights in enumerate(MORPH_WEIGHTS):
+        posed = quad(morphed(QUAD, weights, "POSITION"), morphed(MORPH_NORMALS, weights, "NORMAL"),
+                     morphed(MORPH_TANGENTS, weights, "TANGENT"))
+        f.mesh(f"Posed{i}", [posed], translation=[10 + 3 * i, 0, 0])
+    f.write("morph.gltf", DEFORM)
+
+
 COMPONENT_NAME = {BYTE: "BYTE", UNSIGNED_BYTE: "UNSIGNED_BYTE", SHORT: "SHORT",
                   UNSIGNED_SHORT: "UNSIGNED_SHORT", FLOAT: "FLOAT"}
 
@@ -451,6 +520,30 @@ def broken():
     bad("color-vec2.gltf", attributes=lambda f: {"COLOR_0": f.values([(0.5, 0.5)] * 3, FLOAT, "VEC2")})
     bad("color-count.gltf", attributes=lambda f: {"COLOR_0": f.values([(1.0, 1.0, 1.0)] * 2, FLOAT, "VEC3")})
 
+    def morph_bad(name, targets, weights=None, second=None):
+        """mesh 0 "Bad": TRIANGLE with `targets` (lists of POSITION
+        displacements, one per target), `weights`, and a `second` primitive
+        with that many targets."""
+        f = File()
+        w = f.w
+        pos = w.add_vec3(TRIANGLE)
+
+        def prim(ts):
+            p = w.primitive(pos, material=f.glow)
+            p["targets"] = [{"POSITION": w.add_vec3(t, with_bounds=False)} for t in ts]
+            return p
+        mesh = {"name": "Bad", "primitives": [prim(targets)]}
+        if second is not None:
+            mesh["primitives"].append(prim([[(0, 0, 1)] * 3] * second))
+        if weights is not None:
+            mesh["weights"] = weights
+        f.roots.append(w.add_node("Bad", mesh=w._add("meshes", mesh)))
+        f.write(name, DEFORM_BROKEN)
+
+    morph_bad("morph-weights-count.gltf", [[(0, 0, 1)] * 3] * 2, weights=[0.5, 0.5, 0.5])
+    morph_bad("morph-target-count.gltf", [[(0, 0, 1)] * 2], weights=[1])
+    morph_bad("morph-primitives-differ.gltf", [[(0, 0, 1)] * 3], weights=[1], second=2)
+
     textured("texcoord-three-sets.gltf", {"baseColorTexture": 0, "emissiveTexture": 2,
                                           "normalTexture": 3}, range(4))
     textured("texcoord-negative.gltf", {"emissiveTexture": -1}, range(1))
@@ -459,11 +552,13 @@ def broken():
 
 def main():
     os.makedirs(BROKEN, exist_ok=True)
+    os.makedirs(DEFORM_BROKEN, exist_ok=True)
     modes()
     sparse()
     quantized()
     texcoord_sets()
     vertex_colors()
+    morph()
     broken()
     print("wrote", OUT)
 
