@@ -4,6 +4,7 @@
 // tests/data/make_geometry.py (morph, skin).
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -55,13 +56,42 @@ TEST_CASE("morph targets: POSITION, NORMAL and TANGENT targets with the mesh's o
     CHECK_VEC(scene.triangles[2].v[2], glm::vec3(3.5f, 0.0f, 1.5f));
 }
 
+TEST_CASE("skins: sum_i w_i (jointWorld_i inverseBind_i) v for positions, normals and tangents, the node's transform ignored") {
+    // The bar on three joints (two JOINTS/WEIGHTS sets, float and normalized
+    // u16 weights; its node under a parent, both with transforms that must
+    // be ignored), then its twin authored posed at x + 10. Its last row's
+    // weights sum to 0.98: renormalized, with one warning.
+    CerrCapture capture;
+    const Scene scene = loadDeform("skin.gltf");
+    REQUIRE(scene.triangles.size() == 12);
+    REQUIRE(scene.tangents.size() == 12);
+    checkSamePose(scene, 0, 6, 6, {10, 0, 0});
+    CHECK(capture.text().find("node 5 (\"Skinned\") with skin 0 (\"Legs\"), primitive 0: 2 vertices have joint "
+                              "weights whose sum is off 1 by more than 2e-7 per weight; renormalized") !=
+          std::string::npos);
+    // The hip turns by 20 degrees about the rig's origin (0.5, 0, 0): the bar's
+    // foot vertex (-0.25, 0) of joint 0 alone goes to 0.5 + R(20) (-0.75, 0).
+    const double c = std::cos(20.0 * 3.14159265358979 / 180.0), s = std::sin(20.0 * 3.14159265358979 / 180.0);
+    CHECK_VEC(scene.triangles[0].v[0], glm::vec3(float(0.5 - 0.75 * c), float(-0.75 * s), 0.0f));
+}
+
 TEST_CASE("morph targets and skins: every broken file fails with one line naming the problem") {
     const std::string bad = "mesh 0 (\"Bad\")";
+    const std::string bar = "mesh 0 (\"Bar\") primitive 0";
+    const std::string skinned = "node 5 (\"Skinned\") with skin 0 (\"Legs\"), primitive 0: ";
     const std::pair<const char*, std::string> cases[] = {
         {"morph-weights-count.gltf", bad + " weights has 3 number(s) but the mesh has 2 morph target(s)"},
         {"morph-target-count.gltf", bad + " primitive 0 target 0 POSITION has 2 elements but POSITION has 3"},
         {"morph-primitives-differ.gltf",
          bad + ": primitive 1 has 2 morph target(s) but primitive 0 has 1; the primitives of a mesh have the same number"},
+        {"skin-joint-range.gltf", skinned + "vertex 0 has joint index 5 (JOINTS_0), out of range: the skin has 3 joints"},
+        {"skin-weights-type.gltf",
+         "(" + bar + " WEIGHTS_0) is SHORT VEC4; expected FLOAT/UNSIGNED_BYTE/UNSIGNED_SHORT VEC4, integers normalized"},
+        {"skin-negative-weight.gltf", bar + " WEIGHTS_0: vertex 0 has weight -0.5; weights are finite and not negative"},
+        {"skin-missing-weights.gltf", skinned + "has no JOINTS_0 and WEIGHTS_0"},
+        {"skin-joints-alone.gltf", bar + ": has JOINTS_1 without WEIGHTS_1"},
+        {"skin-ibm-singular.gltf", "skin 0 (\"Legs\"): inverseBindMatrices[1] is not invertible (determinant 0)"},
+        {"skin-ibm-count.gltf", "skin 0 (\"Legs\"): inverseBindMatrices has 2 matrices for 3 joints"},
     };
     std::size_t files = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dataPath("deform/broken"))) {
@@ -74,7 +104,8 @@ TEST_CASE("morph targets and skins: every broken file fails with one line naming
         CAPTURE(path);
         const std::string message = loadError(path);
         CHECK(isOneLine(message));
-        CHECK(message == path + ": error: " + expected);
+        CHECK(message.rfind(path + ": error: ", 0) == 0);
+        CHECK(message.find(expected) != std::string::npos);
     }
 }
 

@@ -351,8 +351,9 @@ private:
         // Morph targets and skins: the node's pose of the mesh (gltf_deform.h).
         const gltf::NodePose pose(path_, model_, nodeIndex, decodedMesh(node.mesh));
         LocalPrimitive posed;
+        const glm::dmat4 placed = pose.skinned() ? glm::dmat4(1.0) : world;  // skinned: in world space
 
-        const glm::dmat3 linear(world);
+        const glm::dmat3 linear(placed);
         const double det = glm::determinant(linear);
         // Cofactor matrix = det * inverse transpose; signed so it points the
         // same way as the inverse transpose, and defined for det == 0.
@@ -386,7 +387,7 @@ private:
             if (storeTangents) scene_.tangents.resize(scene_.triangles.size(), kNoTangents);
             positions.resize(prim.positions.size());
             for (std::size_t i = 0; i < prim.positions.size(); ++i) {
-                positions[i] = glm::dvec3(world * glm::dvec4(glm::dvec3(prim.positions[i]), 1.0));
+                positions[i] = glm::dvec3(placed * glm::dvec4(glm::dvec3(prim.positions[i]), 1.0));
                 if (!isFinite(positions[i])) {
                     fail(path_, gltf::meshLabel(model_, node.mesh) + " on " +
                                     nodeLabel(model_, nodeIndex) + ": vertex " + std::to_string(i) +

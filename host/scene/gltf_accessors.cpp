@@ -455,6 +455,16 @@ template std::vector<glm::vec4> readFloats<4>(const std::string&, const tinygltf
                                               const std::string&, const AccessorFormat&,
                                               const AccessorFormat*);
 
+std::vector<glm::mat4> readMatrices(const std::string& path, const tinygltf::Model& model, int index,
+                                    const std::string& use) {
+    static const AccessorFormat kMat4{TINYGLTF_TYPE_MAT4, {TINYGLTF_COMPONENT_TYPE_FLOAT}, false};
+    const AccessorView view = viewAccessor(path, model, index, use, kMat4, nullptr);
+    std::vector<glm::mat4> out(view.count, glm::mat4(0.0f));
+    static_assert(sizeof(glm::mat4) == 64);
+    forEachElement(view, [&](std::size_t i, const unsigned char* p) { std::memcpy(&out[i], p, sizeof(glm::mat4)); });
+    return out;
+}
+
 std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::Model& model,
                                        int index, const std::string& use) {
     const AccessorView view = viewAccessor(path, model, index, use, kIndexFormat, nullptr);

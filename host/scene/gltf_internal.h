@@ -67,6 +67,11 @@ std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygl
                                            const AccessorFormat& format,
                                            const AccessorFormat* undeclared);
 
+// The MAT4 FLOAT accessor `index` (column-major, as glTF stores it), dense,
+// zeros or sparse; `use` names what it is read for.
+std::vector<glm::mat4> readMatrices(const std::string& path, const tinygltf::Model& model, int index,
+                                    const std::string& use);
+
 // The glTF transform of node `node` alone: `matrix`, or T * R * S.
 glm::dmat4 nodeTransform(const std::string& path, const tinygltf::Model& model, int node);
 
@@ -86,6 +91,12 @@ struct MorphTarget {
     std::vector<glm::vec3> positions, normals, tangents;
 };
 
+// One JOINTS_n / WEIGHTS_n set of a primitive, one entry per vertex.
+struct SkinInfluences {
+    std::vector<glm::uvec4> joints;
+    std::vector<glm::vec4> weights;
+};
+
 // One primitive of a mesh decoded in the mesh's local space. `indices` always
 // holds 3 entries per triangle (0,1,2,... for a non-indexed primitive), each
 // < positions.size(). `normals`, each of `texcoords` (TEXCOORD_n by n) and
@@ -97,6 +108,7 @@ struct LocalPrimitive {
     std::vector<glm::vec4> tangents;
     std::vector<glm::vec4> colors;  // COLOR_0, linear RGBA (alpha 1 from VEC3)
     std::vector<MorphTarget> targets;
+    std::vector<SkinInfluences> skin;  // JOINTS_n / WEIGHTS_n by n
     std::vector<std::uint32_t> indices;
     int material = -1;      // glTF material index, -1 for none
     std::size_t index = 0;  // in the mesh's primitives (for messages)

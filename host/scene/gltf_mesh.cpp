@@ -241,6 +241,7 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
         }
 
         local.targets = readMorphTargets(path, model, prim, label, vertexCount, quantization);
+        local.skin = readSkinInfluences(path, model, prim, label, vertexCount);
 
         const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES;
         std::vector<std::uint32_t> sequence;

@@ -119,16 +119,4 @@ std::string nodeName(const tinygltf::Model& model, int node) {
     return label;
 }
 
-NodePose::NodePose(const std::string& path, const tinygltf::Model& model, int node, const LocalMesh& mesh)
-    : weights_(morphWeights(path, model, node, nodeName(model, node), mesh)) {}
-
-const LocalPrimitive& NodePose::apply(const LocalPrimitive& prim, LocalPrimitive& scratch) const {
-    bool morph = false;
-    for (const double w : weights_) morph = morph || w != 0.0;
-    if (!morph) return prim;
-    scratch = prim;
-    applyMorph(weights_, scratch);
-    return scratch;
-}
-
 }  // namespace strata::gltf
