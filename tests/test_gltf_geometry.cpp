@@ -309,6 +309,10 @@ TEST_CASE("gltf geometry: every broken file fails with one line naming file and 
          "accessor 1 (mesh 0 (\"Bad\") primitive 0 COLOR_0) is UNSIGNED_BYTE but not normalized"},
         {"color-vec2.gltf", "accessor 1 (mesh 0 (\"Bad\") primitive 0 COLOR_0) is neither VEC3 nor VEC4"},
         {"color-count.gltf", bad + "COLOR_0 has 2 elements but POSITION has 3"},
+        {"variants-bad-material.gltf",
+         "mesh 0 (\"A\") primitive 0 KHR_materials_variants mapping 0: material 9 does not exist (4 materials)"},
+        {"variants-bad-index.gltf",
+         "mesh 0 (\"A\") primitive 0 KHR_materials_variants mapping 0: variant 5 does not exist (3 variants)"},
         {"texcoord-three-sets.gltf",
          "material 1 (\"Textured\"): its textures read 3 texture coordinate sets (TEXCOORD_0, TEXCOORD_2, "
          "TEXCOORD_3); strata interpolates at most two per material"},
@@ -338,7 +342,7 @@ TEST_CASE("gltf geometry: strata render on each broken file exits 2, one line, n
         checkRenderRefuses(entry.path().string());
         ++checked;
     }
-    CHECK(checked >= 24);
+    CHECK(checked >= 26);
 }
 
 TEST_CASE("gltf geometry: a texture read through TEXCOORD_2 renders as its TEXCOORD_0 twin, bit for bit" *

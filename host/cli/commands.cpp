@@ -144,6 +144,14 @@ void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
             badFlag(a + " needs --env or --env-color");
 }
 
+// --variant (the scene's materials).
+template <class T>
+std::vector<Flag<T>> sceneFlags() {
+    return {text<T>("--variant", "NAME",
+                    "give each primitive its material for this KHR_materials_variants variant; --stats lists them",
+                    STRATA_FIELD(variant))};
+}
+
 // --device, --validation.
 template <class T>
 std::vector<Flag<T>> deviceFlags() {
@@ -211,6 +219,7 @@ std::vector<Flag<RenderCommand>> renderFlags() {
         pathFlags<C>(settings),
         traceFlags<C>(settings),
         envFlags<C>(),
+            sceneFlags<C>(),
         deviceFlags<C>(),
     });
 }
@@ -327,6 +336,7 @@ const CommandSpec<ConvergeCommand>& convergeSpec() {
             },
             pathFlags<C>([](auto& c) -> auto& { return c.settings; }),
             envFlags<C>(),
+            sceneFlags<C>(),
             deviceFlags<C>(),
         }),
         convergeInit());
@@ -396,6 +406,7 @@ const CommandSpec<BenchCommand>& benchSpec() {
             pathFlags<C>(settings),
             traceFlags<C>(settings),
             envFlags<C>(),
+            sceneFlags<C>(),
             deviceFlags<C>(),
         }));
     return spec;

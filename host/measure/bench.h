@@ -40,6 +40,7 @@ struct BenchCommand {
                                                 // stack, integrator (the flags render has)
     int reps = 5;                     // timed passes per ray set (median)
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
+    std::string variant;                // --variant (KHR_materials_variants)
     int device = -1;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
     EnvironmentOptions env;           // --env / --env-color, --env-intensity, --env-rotate (as render)

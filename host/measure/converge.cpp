@@ -91,7 +91,9 @@ nlohmann::json ConvergeReport::toJson() const {
 ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
     const RgbImage ref = readReference(cmd.reference);
-    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
+    LoadOptions load;
+    load.variant = cmd.variant;
+    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
     const Camera camera = chooseCamera(scene, cmd.view, ref.width, ref.height);
     const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
     vk::Context ctx({cmd.device, cmd.validation});

@@ -27,6 +27,7 @@ struct ConvergeCommand {
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     bool allSamplers = false;           // --sampler all: every sampler that suits the spp list
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
+    std::string variant;                // --variant (KHR_materials_variants)
     int device = -1;
     bool validation = false;
     bool quiet = false;

@@ -42,7 +42,9 @@ int runRender(const RenderCommand& cmd) {
                          cmd.settings.height);
 
     auto t0 = std::chrono::steady_clock::now();
-    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env);
+    LoadOptions load;
+    load.variant = cmd.variant;
+    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
     const double loadMs = msSince(t0);
     const Camera camera = chooseCamera(scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
 

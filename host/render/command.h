@@ -19,6 +19,7 @@ struct RenderCommand {
     RenderTuning tuning;                // tests lower tuning.limits; the command line never sets it
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
+    std::string variant;                // --variant (KHR_materials_variants)
     int device = -1;
     bool quiet = false;
     bool stats = false;

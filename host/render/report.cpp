@@ -24,7 +24,9 @@ nlohmann::json statsJson(const StatsInput& in) {
                   {"punctual_lights", in.scene->lights.size()},
                   {"environment", in.scene->environment.enabled ? in.scene->environment.source : ""},
                   {"cameras", in.scene->cameras.size()},
-                  {"features", in.gpu->features.names()}};
+                  {"features", in.gpu->features.names()},
+                  {"variants", in.scene->variants},
+                  {"variant", in.scene->variant}};
     const BvhStats& b = in.gpu->bvh;
     j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
                 {"sah_cost", b.sahCost}, {"build_ms", b.buildMs}, {"bytes", b.bytes}};
@@ -73,6 +75,12 @@ std::string statsText(const nlohmann::json& j) {
       << (s["environment"].get<std::string>().empty() ? "" : ", environment " + s["environment"].get<std::string>())
       << "\n";
     o << "features   " << (features.empty() ? "none" : features) << "\n";
+    if (!s["variants"].empty()) {
+        std::string variants;
+        for (const auto& v : s["variants"]) variants += (variants.empty() ? "" : ", ") + v.get<std::string>();
+        const std::string chosen = s["variant"].get<std::string>();
+        o << "variants   " << variants << " (" << (chosen.empty() ? "none chosen" : "rendering " + chosen) << ")\n";
+    }
     const auto& b = j["bvh"];
     char line[256];
     std::snprintf(line, sizeof line,

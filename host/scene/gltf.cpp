@@ -464,6 +464,9 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     Scene scene;
     scene.path = path;
     scene.extensionsUsed = model.extensionsUsed;
+    scene.variants = gltf::readVariants(path, model);
+    gltf::applyVariant(path, model, scene.variants, options.variant);
+    scene.variant = options.variant;
     gltf::convertTextures(path, model, scene);
     for (std::size_t i = 0; i < model.materials.size(); ++i) {
         scene.materials.push_back(gltf::convertMaterial(path, model, static_cast<int>(i)));

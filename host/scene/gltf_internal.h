@@ -198,6 +198,17 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
 // is an error.
 void decodeMeshoptViews(const std::string& path, tinygltf::Model& model);
 
+// KHR_materials_variants (gltf_variants.cpp): the names of the file's
+// variants, in order (empty without the extension).
+std::vector<std::string> readVariants(const std::string& path, const tinygltf::Model& model);
+
+// Checks every primitive's variant mappings (material and variant indices in
+// range) and, for the variant called `name` (none when empty), sets each
+// mapped primitive's material to the mapping's. A name that is not one of
+// `variants` is an error listing them.
+void applyVariant(const std::string& path, tinygltf::Model& model, const std::vector<std::string>& variants,
+                  const std::string& name);
+
 // pbrMetallicRoughness factors, emissive factor, KHR_materials_emissive_strength,
 // KHR_materials_ior, doubleSided, alphaMode/alphaCutoff of material `index`.
 // Also the texture slots (textureInfo + KHR_texture_transform), checked

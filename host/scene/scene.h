@@ -164,6 +164,10 @@ struct Scene {
     std::vector<PunctualLight> lights;  // KHR_lights_punctual, in node order; zero-power lights dropped
     Environment environment;          // set by the caller (command line), not by the loader
     std::vector<std::string> extensionsUsed;
+    // KHR_materials_variants: the file's variants, and the one the materials
+    // were chosen for (LoadOptions::variant; empty: the primitives' own).
+    std::vector<std::string> variants;
+    std::string variant;
     std::vector<TextureImage> images;
     std::vector<Texture> textures;
     // Parallel to `triangles` when some primitive has TEXCOORD_0/1 (empty
@@ -220,6 +224,9 @@ struct LoadOptions {
     // or have no area is an error).
     bool requireEmitter = true;
     bool externalLight = false;   // an environment light comes from the command line
+    // KHR_materials_variants: the variant whose materials the primitives get
+    // (--variant); empty for their own. A name the file lacks is an error.
+    std::string variant;
 };
 
 // Loads .gltf or .glb (binary when the file starts with the 'glTF' magic).

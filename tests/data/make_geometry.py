@@ -551,6 +551,32 @@ def skin():
     f.write("skin.gltf", DEFORM)
 
 
+VARIANTS = ["Christmas", "Ocean", "Plain"]
+
+
+def variants_file(name, folder, edit=None):
+    """KHR_materials_variants: unlit materials 1 "Red", 2 "Green", 3 "Blue";
+    mesh "A" (Red) maps Christmas -> Green, Ocean -> Blue; mesh "B" (Green)
+    maps Christmas and Ocean -> Red; Plain maps nothing."""
+    f = File()
+    w = f.w
+    red, green, blue = (w.add_material(n, base_color=c, unlit=True)
+                        for n, c in (("Red", (1, 0, 0, 1)), ("Green", (0, 1, 0, 1)), ("Blue", (0, 0, 1, 1))))
+    pos = w.add_vec3(TRIANGLE)
+    for mesh, material, mappings, x in (("A", red, [(green, [0]), (blue, [1])], 0),
+                                        ("B", green, [(red, [0, 1])], 2)):
+        prim = w.primitive(pos, material=material)
+        prim["extensions"] = {"KHR_materials_variants": {
+            "mappings": [{"material": m, "variants": v} for m, v in mappings]}}
+        f.mesh(mesh, [prim], translation=[x, 0, 0])
+    w.doc["extensions"] = {"KHR_materials_variants": {"variants": [{"name": n} for n in VARIANTS]}}
+    if edit:
+        edit(w.doc)
+    w.use_extensions(["KHR_materials_unlit", "KHR_materials_variants"])
+    w.set_scene(f.roots)
+    w.write_gltf(os.path.join(folder, name))
+
+
 COMPONENT_NAME = {BYTE: "BYTE", UNSIGNED_BYTE: "UNSIGNED_BYTE", SHORT: "SHORT",
                   UNSIGNED_SHORT: "UNSIGNED_SHORT", FLOAT: "FLOAT"}
 
@@ -687,6 +713,13 @@ def broken():
     skin_bad("skin-ibm-singular.gltf", ibm([identity, [0] * 16, identity]))
     skin_bad("skin-ibm-count.gltf", ibm([identity, identity]))
 
+    def mapping(key, value):
+        def edit(doc):
+            doc["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][0][key] = value
+        return edit
+    variants_file("variants-bad-material.gltf", BROKEN, mapping("material", 9))
+    variants_file("variants-bad-index.gltf", BROKEN, mapping("variants", [0, 5]))
+
     textured("texcoord-three-sets.gltf", {"baseColorTexture": 0, "emissiveTexture": 2,
                                           "normalTexture": 3}, range(4))
     textured("texcoord-negative.gltf", {"emissiveTexture": -1}, range(1))
@@ -703,6 +736,7 @@ def main():
     vertex_colors()
     morph()
     skin()
+    variants_file("variants.gltf", OUT)
     broken()
     print("wrote", OUT)
 
