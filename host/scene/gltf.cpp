@@ -471,6 +471,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     for (std::size_t i = 0; i < model.materials.size(); ++i) {
         scene.materials.push_back(gltf::convertMaterial(path, model, static_cast<int>(i)));
     }
+    gltf::warnTextureFallbacks(path, model, scene.materials);
     SceneBuilder builder(path, model, scene);
     builder.walk(sceneIndex);
     const std::string skipped = builder.skippedPrimitives();

@@ -214,6 +214,8 @@ std::size_t extensionCount(const std::string& path, const tinygltf::Value& objec
 const char* missingDecoder(std::string_view extension) {
     if (extension == kDraco && !STRATA_DRACO) return "the Draco decoder (libdraco)";
     if (extension == kMeshopt && !STRATA_MESHOPT) return "the meshopt decoder (libmeshoptimizer)";
+    if (extension == "EXT_texture_webp" && !STRATA_WEBP) return "the WebP decoder (libwebp)";
+    if (extension == "KHR_texture_basisu") return "a Basis Universal decoder (Debian has none)";
     return nullptr;
 }
 

@@ -175,7 +175,8 @@ std::size_t extensionCount(const std::string& path, const tinygltf::Value& objec
 
 // "the Draco decoder (libdraco)" for KHR_draco_mesh_compression in a build
 // without STRATA_DRACO, likewise for EXT_meshopt_compression without
-// STRATA_MESHOPT; nullptr otherwise.
+// STRATA_MESHOPT and EXT_texture_webp without STRATA_WEBP; always for
+// KHR_texture_basisu; nullptr otherwise.
 const char* missingDecoder(std::string_view extension);
 
 // A primitive with KHR_draco_mesh_compression, decoded from its Draco stream
@@ -218,6 +219,18 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
 // The images (decoded by tinygltf; an image without pixels is an error) and
 // textures (source + sampler) of the model, in file order.
 void convertTextures(const std::string& path, const tinygltf::Model& model, Scene& scene);
+
+// The image texture `index` shows (its index in model.images), or -1 with
+// the reason in `why`: EXT_texture_webp's source in a build with libwebp,
+// else the texture's `source` (the fallback); KHR_texture_basisu's source is
+// never decoded (Debian has no Basis Universal decoder), so its `source`
+// fallback. The image must have decoded pixels.
+int textureImage(const tinygltf::Model& model, int index, std::string& why);
+
+// One warning when textures that materials read are KHR_texture_basisu (no
+// decoder) and show their fallback source instead.
+void warnTextureFallbacks(const std::string& path, const tinygltf::Model& model,
+                          const std::vector<MaterialDesc>& materials);
 
 // The TextureSlot of a textureInfo: `index` (checked against model.textures),
 // `texCoord` (a TEXCOORD set, >= 0) and the KHR_texture_transform object `transform`

@@ -10,6 +10,10 @@
 #include <filesystem>
 #include <string_view>
 
+#if STRATA_WEBP
+#include <webp/decode.h>
+#endif
+
 #include "scene/gltf_internal.h"
 #include "util/error.h"
 #include "util/files.h"
@@ -26,7 +30,7 @@ constexpr std::string_view kSupportedExtensions[] = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
     "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit", "KHR_materials_variants",
     "KHR_materials_volume", "KHR_mesh_quantization",
-    "KHR_texture_transform"};
+    "KHR_texture_transform", "EXT_texture_webp", "KHR_texture_basisu"};
 
 std::string supportedList() {
     std::string out;
@@ -106,11 +110,52 @@ struct ImageContext {
     std::string failure;
 };
 
+// A WebP file (RIFF container, WEBP form) and a KTX2 file (its 12-byte
+// identifier), told apart by their first bytes.
+bool isWebp(const unsigned char* bytes, int size) {
+    return size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0;
+}
+bool isKtx2(const unsigned char* bytes, int size) {
+    static constexpr unsigned char kId[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+    return size >= 12 && std::memcmp(bytes, kId, sizeof kId) == 0;
+}
+
+#if STRATA_WEBP
+// EXT_texture_webp through libwebp: RGBA, 8 bits.
+bool decodeWebp(tinygltf::Image* image, const unsigned char* bytes, int size) {
+    int width = 0, height = 0;
+    std::unique_ptr<std::uint8_t, void (*)(void*)> rgba(WebPDecodeRGBA(bytes, static_cast<std::size_t>(size), &width, &height),
+                                                       &WebPFree);
+    if (!rgba || width < 1 || height < 1) return false;
+    image->width = width;
+    image->height = height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image.assign(rgba.get(), rgba.get() + static_cast<std::size_t>(width) * height * 4);
+    return true;
+}
+#endif
+
 bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
                  int width, int height, const unsigned char* bytes, int size, void* user) {
-    std::string ignored;
-    if (tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
-        return true;
+    // KHR_texture_basisu's KTX2 images have no decoder (none in Debian), nor
+    // have WebP images without libwebp: left without pixels, so a texture
+    // needing one is an error only where a material uses it (textureImage).
+    if (isKtx2(bytes, size) || (isWebp(bytes, size) && !STRATA_WEBP)) return true;
+    bool decoded = false;
+    const char* what = "corrupt, too large, or not a PNG/JPEG that stb_image reads";
+#if STRATA_WEBP
+    if (isWebp(bytes, size)) {
+        decoded = decodeWebp(image, bytes, size);
+        what = "a corrupt WebP image (libwebp)";
+    } else
+#endif
+    {
+        std::string ignored;
+        decoded = tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr);
+    }
+    if (decoded) return true;
     auto* context = static_cast<ImageContext*>(user);
     std::string label = "image " + std::to_string(index);
     if (!image->uri.empty()) {
@@ -118,8 +163,7 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     } else if (!image->name.empty()) {
         label += " (" + gltf::quoted(image->name) + ")";
     }
-    context->failure = label + ": cannot decode " + std::to_string(size) +
-                       " bytes: corrupt, too large, or not a PNG/JPEG that stb_image reads";
+    context->failure = label + ": cannot decode " + std::to_string(size) + " bytes: " + what;
     if (err) *err += context->failure + "\n";
     return false;
 }
@@ -249,9 +293,10 @@ void checkExtensions(const std::string& path, const tinygltf::Model& model) {
     for (const auto& e : model.extensionsUsed) {
         const bool required = std::find(model.extensionsRequired.begin(),
                                         model.extensionsRequired.end(), e) != model.extensionsRequired.end();
-        if (const char* decoder = missingDecoder(e); decoder && !required) {
-            warn(path, "extension " + e + " is used but strata was built without " + decoder +
-                           "; reading the uncompressed fallback data");
+        // KHR_texture_basisu: warnTextureFallbacks, where a material reads one.
+        if (const char* decoder = missingDecoder(e); decoder && !required && e != "KHR_texture_basisu") {
+            warn(path, "extension " + e + " is used but strata was built without " + decoder + "; reading " +
+                           (e == "EXT_texture_webp" ? "the textures' fallback images" : "the uncompressed fallback data"));
         }
     }
 }

@@ -1,7 +1,10 @@
 // glTF images, samplers, textures and texture references (textureInfo with
 // KHR_texture_transform) -> Scene::images / Scene::textures / TextureSlot.
 // Pixels are decoded by tinygltf's stb_image loader (Debian links the shared
-// libstb): PNG 8/16-bit and JPEG (8-bit), always expanded to RGBA.
+// libstb): PNG 8/16-bit and JPEG (8-bit), always expanded to RGBA; WebP
+// (EXT_texture_webp) by libwebp where strata has it (gltf_parse.cpp).
+// KHR_texture_basisu images are never decoded: their texture's fallback
+// `source` is used.
 #include <cmath>
 #include <sstream>
 
@@ -67,15 +70,73 @@ glm::vec2 vec2Or(const std::string& path, const std::string& label, const tinygl
     return out;
 }
 
+// The `source` of extension `name` of texture `texture`, or -1 without one.
+int extensionSource(const tinygltf::Texture& texture, const char* name) {
+    const auto it = texture.extensions.find(name);
+    if (it == texture.extensions.end() || !it->second.IsObject() || !it->second.Has("source") ||
+        !it->second.Get("source").IsInt())
+        return -1;
+    return it->second.Get("source").GetNumberAsInt();
+}
+
 }  // namespace
+
+int textureImage(const tinygltf::Model& model, int index, std::string& why) {
+    const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(index)];
+    const auto valid = [&](int image) { return image >= 0 && static_cast<std::size_t>(image) < model.images.size(); };
+    const bool webp = texture.extensions.count("EXT_texture_webp") != 0;
+    const bool basisu = texture.extensions.count("KHR_texture_basisu") != 0;
+    int image = texture.source;
+    if (webp && STRATA_WEBP && valid(extensionSource(texture, "EXT_texture_webp"))) {
+        image = extensionSource(texture, "EXT_texture_webp");
+    } else if (!valid(texture.source) && (webp || basisu)) {
+        why = webp ? "its image is EXT_texture_webp, strata was built without the WebP decoder (libwebp), and it "
+                     "has no fallback source"
+                   : "its image is KHR_texture_basisu, which strata cannot decode (Debian has no Basis Universal "
+                     "decoder), and it has no fallback source";
+        return -1;
+    }
+    if (!valid(image)) {
+        why = "source image " + std::to_string(image) + " does not exist (" + std::to_string(model.images.size()) +
+              " images)";
+        return -1;
+    }
+    if (model.images[static_cast<std::size_t>(image)].image.empty()) {
+        why = "image " + std::to_string(image) + " has no decoded pixels (a WebP image needs libwebp; KTX2 is "
+              "not decoded)";
+        return -1;
+    }
+    return image;
+}
+
+void warnTextureFallbacks(const std::string& path, const tinygltf::Model& model,
+                          const std::vector<MaterialDesc>& materials) {
+    std::vector<char> read(model.textures.size(), 0);
+    for (const MaterialDesc& m : materials) {
+        for (const TextureSlot* slot : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                        &m.emissiveTexture, &m.transmissionTexture}) {
+            if (slot->used()) read[static_cast<std::size_t>(slot->texture)] = 1;
+        }
+    }
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < model.textures.size(); ++i)
+        count += read[i] && model.textures[i].extensions.count("KHR_texture_basisu") != 0;
+    if (count > 0) {
+        warn(path, std::to_string(count) + " texture(s) that materials read are KHR_texture_basisu, which strata "
+                                           "cannot decode (Debian has no Basis Universal decoder): showing their "
+                                           "fallback images");
+    }
+}
 
 void convertTextures(const std::string& path, const tinygltf::Model& model, Scene& scene) {
     for (std::size_t i = 0; i < model.images.size(); ++i) {
         const tinygltf::Image& src = model.images[i];
         const std::size_t bytesPerTexel = src.bits == 16 ? 8 : 4;
-        if (src.image.empty() || src.width < 1 || src.height < 1 || src.component != 4 ||
-            (src.bits != 8 && src.bits != 16) ||
-            src.image.size() != static_cast<std::size_t>(src.width) * src.height * bytesPerTexel) {
+        // Images left undecoded (KTX2, WebP without libwebp) stay empty; a
+        // texture that needs one is refused where a material uses it.
+        if (!src.image.empty() && (src.width < 1 || src.height < 1 || src.component != 4 ||
+                                   (src.bits != 8 && src.bits != 16) ||
+                                   src.image.size() != static_cast<std::size_t>(src.width) * src.height * bytesPerTexel)) {
             fail(path, imageLabel(model, i) + ": no decoded pixels (the file could not be read or decoded)");
         }
         TextureImage image;
@@ -89,13 +150,9 @@ void convertTextures(const std::string& path, const tinygltf::Model& model, Scen
     for (std::size_t i = 0; i < model.textures.size(); ++i) {
         const tinygltf::Texture& src = model.textures[i];
         const std::string label = "texture " + std::to_string(i);
-        if (src.source < 0 || static_cast<std::size_t>(src.source) >= model.images.size()) {
-            fail(path, label + ": source image " + std::to_string(src.source) + " does not exist (" +
-                           std::to_string(model.images.size()) +
-                           " images; image extensions such as KHR_texture_basisu are not supported)");
-        }
         Texture texture;
-        texture.image = src.source;
+        std::string why;
+        texture.image = textureImage(model, static_cast<int>(i), why);  // -1: refused where a material uses it
         if (src.sampler >= 0) {
             if (static_cast<std::size_t>(src.sampler) >= model.samplers.size()) {
                 fail(path, label + ": sampler " + std::to_string(src.sampler) + " does not exist (" +
@@ -124,6 +181,8 @@ TextureSlot convertTextureSlot(const std::string& path, const tinygltf::Model& m
         fail(path, label + ": texture " + std::to_string(index) + " does not exist (" +
                        std::to_string(model.textures.size()) + " textures)");
     }
+    std::string why;
+    if (textureImage(model, index, why) < 0) fail(path, label + ": texture " + std::to_string(index) + ": " + why);
     slot.texture = index;
     slot.texCoord = texCoord;
     if (transform && transform->IsObject()) {

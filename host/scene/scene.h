@@ -95,7 +95,7 @@ struct TextureImage {
 // strata has no mipmaps).
 enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
 struct Texture {
-    int image = 0;     // index into Scene::images
+    int image = 0;     // index into Scene::images; -1 for a texture no material may use (no decodable image)
     Wrap wrapS = Wrap::Repeat;
     Wrap wrapT = Wrap::Repeat;
     bool nearest = false;  // magFilter NEAREST; LINEAR (bilinear) otherwise

@@ -101,7 +101,7 @@ def main():
     write("attribute-not-an-index.gltf", w, roots)
 
     w, roots = scene()
-    w.use_extensions(["KHR_texture_basisu"], required=["KHR_texture_basisu"])
+    w.use_extensions(["EXT_lights_image_based"], required=["EXT_lights_image_based"])
     write("unsupported-required-extension.gltf", w, roots)
 
     # A zero-area emissive triangle next to a valid emitter: loads, warns,

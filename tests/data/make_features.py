@@ -145,7 +145,7 @@ def unknown_extension():
     mesh = w.add_triangles("Tri", TRI, material=light)
     cam = w.add_perspective("Camera", 0.8)
     w.use_extensions(["EXT_strata_test_unknown", "KHR_materials_emissive_strength",
-                      "EXT_texture_webp"])
+                      "EXT_lights_image_based"])
     w.set_scene([w.add_node("Tri", mesh=mesh),
                  w.add_node("Camera", camera=cam, translation=[0, 0, 3])])
     w.write_gltf(os.path.join(OUT, "unknown-extension.gltf"))

@@ -11,6 +11,7 @@ anywhere:
     python3 tests/data/make_geometry.py
 """
 
+import base64
 import math
 import os
 import struct
@@ -551,6 +552,30 @@ def skin():
     f.write("skin.gltf", DEFORM)
 
 
+# A KTX2 file's 12-byte identifier and zeros: never decoded (strata has no
+# Basis Universal decoder), so its contents do not matter.
+KTX2 = bytes([0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A]) + bytes(68)
+
+
+def basisu_file(name, folder, fallback, used, required=False):
+    """A triangle with TEXCOORD_0 and a texture whose KHR_texture_basisu
+    source is KTX2 (image 0), with the checker PNG as its `source`
+    (image 1) when `fallback`; material 1 "Textured" reads it as
+    emissiveTexture when `used`."""
+    f = File()
+    w = f.w
+    ktx2 = w._add("images", {"uri": "data:application/octet-stream;base64," + base64.b64encode(KTX2).decode()})
+    texture = {"extensions": {"KHR_texture_basisu": {"source": ktx2}}}
+    if fallback:
+        texture["source"] = w._add("images", {"uri": data_uri(png([[(255, 32, 0), (0, 128, 255)]]))})
+    index = w._add("textures", texture)
+    material = texture_material(w, "Textured", {"emissiveTexture": 0} if used else {}, index)
+    f.mesh("Tri", [w.primitive(w.add_vec3(TRIANGLE), material=material,
+                               attributes={"TEXCOORD_0": f.values(set_uvs(0), FLOAT, "VEC2")})])
+    w.use_extensions(["KHR_texture_basisu"], required=["KHR_texture_basisu"] if required else ())
+    f.write(name, folder)
+
+
 VARIANTS = ["Christmas", "Ocean", "Plain"]
 
 
@@ -720,6 +745,9 @@ def broken():
     variants_file("variants-bad-material.gltf", BROKEN, mapping("material", 9))
     variants_file("variants-bad-index.gltf", BROKEN, mapping("variants", [0, 5]))
 
+    basisu_file("basisu-no-fallback.gltf", BROKEN, fallback=False, used=True)
+    basisu_file("basisu-required.gltf", BROKEN, fallback=True, used=True, required=True)
+
     textured("texcoord-three-sets.gltf", {"baseColorTexture": 0, "emissiveTexture": 2,
                                           "normalTexture": 3}, range(4))
     textured("texcoord-negative.gltf", {"emissiveTexture": -1}, range(1))
@@ -737,6 +765,8 @@ def main():
     morph()
     skin()
     variants_file("variants.gltf", OUT)
+    basisu_file("basisu-fallback.gltf", OUT, fallback=True, used=True)
+    basisu_file("basisu-unused.gltf", OUT, fallback=False, used=False)
     broken()
     print("wrote", OUT)
 

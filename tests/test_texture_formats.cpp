@@ -1,0 +1,99 @@
+// Image formats beyond PNG and JPEG: EXT_texture_webp through libwebp on
+// files tests/data/make_webp.cpp encodes at build time (a lossless WebP
+// decodes to its source pixels exactly; without libwebp the fallback image
+// and the required-extension error), and KHR_texture_basisu, which strata
+// cannot decode: the texture's fallback source, or an error only where a
+// material uses the texture.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "cli_util.h"
+#include "gltf_util.h"
+#include "scene/scene.h"
+
+TEST_SUITE_BEGIN("unit");
+
+namespace {
+
+using namespace strata;
+using namespace strata::test;
+
+constexpr LoadOptions kNoRequirements{false, false};
+
+}  // namespace
+
+TEST_CASE("KHR_texture_basisu: the texture shows its fallback source, one without is refused only where used") {
+    const std::string path = dataPath("geometry/basisu-fallback.gltf");
+    CerrCapture capture;
+    const Scene scene = loadGltf(path, kNoRequirements);
+    CHECK(capture.text() == path + ": warning: 1 texture(s) that materials read are KHR_texture_basisu, which "
+                                   "strata cannot decode (Debian has no Basis Universal decoder): showing their "
+                                   "fallback images\n");
+    REQUIRE(scene.textures.size() == 1);
+    CHECK(scene.textures[0].image == 1);  // the PNG, not the KTX2 image 0
+    REQUIRE(scene.materials.at(1).emissiveTexture.texture == 0);
+    const TextureImage& png = scene.images.at(1);
+    CHECK(png.width == 2);
+    CHECK(png.data == std::vector<std::uint8_t>{255, 32, 0, 255, 0, 128, 255, 255});
+    // No fallback, no material reading it: loads, the texture unusable.
+    const Scene unused = loadGltf(dataPath("geometry/basisu-unused.gltf"), kNoRequirements);
+    CHECK(unused.textures.at(0).image == -1);
+}
+
+#ifdef STRATA_WEBP_DIR
+
+namespace {
+
+std::string webpPath(const std::string& name) { return std::string(STRATA_WEBP_DIR) + "/" + name; }
+
+// make_webp.cpp's checker: 4 x 4 RGBA rows top to bottom.
+std::vector<std::uint8_t> checker() {
+    std::vector<std::uint8_t> out;
+    for (int y = 0; y < 4; ++y) {
+        for (int x = 0; x < 4; ++x) {
+            const bool odd = (x + y) % 2 != 0;
+            out.insert(out.end(), {static_cast<std::uint8_t>(odd ? 255 : 16 * x), static_cast<std::uint8_t>(64 * y),
+                                   static_cast<std::uint8_t>(odd ? 32 : 200), 255});
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("EXT_texture_webp: the WebP source through libwebp, else the fallback image") {
+    const std::string path = webpPath("webp.gltf");
+    CerrCapture capture;
+    const Scene scene = loadGltf(path, kNoRequirements);
+    REQUIRE(scene.textures.size() == 1);
+#if STRATA_WEBP
+    CHECK(capture.text().empty());
+    REQUIRE(scene.textures[0].image == 1);
+    const TextureImage& image = scene.images[1];
+    CHECK(image.width == 4);
+    CHECK(image.height == 4);
+    CHECK(image.bits == 8);
+    CHECK(image.data == checker());  // lossless: the source pixels exactly
+    // Required and without a fallback: the WebP image.
+    const Scene required = loadGltf(webpPath("webp-required.gltf"), kNoRequirements);
+    REQUIRE(required.textures.at(0).image == 0);
+    CHECK(required.images[0].data == checker());
+    const std::string corrupt = webpPath("webp-corrupt.gltf");
+    CHECK(loadError(corrupt) == corrupt + ": error: image 1 (\"corrupt.webp\"): cannot decode 40 bytes: a corrupt "
+                                          "WebP image (libwebp)");
+    checkRenderRefuses(corrupt);
+#else
+    CHECK(capture.text() == path + ": warning: extension EXT_texture_webp is used but strata was built without the "
+                                   "WebP decoder (libwebp); reading the textures' fallback images\n");
+    CHECK(scene.textures[0].image == 0);  // the 1 x 1 black PNG
+    const std::string required = webpPath("webp-required.gltf");
+    CHECK(loadError(required) == required + ": error: required extension EXT_texture_webp cannot be read: strata "
+                                             "was built without the WebP decoder (libwebp)");
+    checkRenderRefuses(required);
+#endif
+}
+
+#endif  // STRATA_WEBP_DIR
+
+TEST_SUITE_END();
