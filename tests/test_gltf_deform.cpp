@@ -1,7 +1,7 @@
 // Morph targets and skins at load (glTF 2.0 3.7.2.2, 3.7.3): each posed mesh
 // against the same mesh authored already posed, vertex for vertex, and the
 // broken files of tests/data/deform/broken for their errors. Data:
-// tests/data/make_geometry.py (morph, skin).
+// tests/data/make_deform.py (morph, skin).
 #include <doctest/doctest.h>
 
 #include <cmath>
