@@ -198,8 +198,9 @@ public:
     }
 
 private:
-    // Tangents of a primitive without normal map: unused, any unit vector.
+    // COLOR_0 of a primitive without it, in a scene where another has it.
     static inline const TriangleColors kWhite = {glm::vec4(1.0f), glm::vec4(1.0f), glm::vec4(1.0f)};
+    // Tangents of a primitive without normal map: unused, any unit vector.
     static inline const TriangleTangents kNoTangents = {glm::vec4(1, 0, 0, 1), glm::vec4(1, 0, 0, 1),
                                                      glm::vec4(1, 0, 0, 1)};
 

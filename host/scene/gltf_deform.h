@@ -60,7 +60,10 @@ public:
     // weights divided by their sum (a sum off 1 by more than the
     // glTF-Validator's 2e-7 per weight is one warning), normals by the
     // inverse transposes of the M_i, tangents by the M_i; into `scratch`.
-    // `prim` itself when the node has no skin and every weight is 0. A joint
+    // `prim` itself when the node has no skin and every weight is 0.
+    // Tangents the loader generates (no TANGENT) are made from the unposed
+    // mesh, then posed like given ones; a skin that mirrors (det < 0) does not
+    // reverse the winding as a mirroring node transform does. A joint
     // index out of the skin's range, or a vertex without a weight above 0,
     // is an error.
     const LocalPrimitive& apply(const LocalPrimitive& prim, LocalPrimitive& scratch) const;
