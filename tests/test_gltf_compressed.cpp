@@ -261,6 +261,18 @@ TEST_CASE("compressed gltf: Draco with TRIANGLE_STRIP, the decoded index sequenc
         for (int k = 0; k < 3; ++k) CHECK(s.triangles[t].v[k] == v[expected[t % 4][k]]);
     }
 }
+
+TEST_CASE("compressed gltf: Draco, COLOR_0 in the stream decodes to the plain twin's colours") {
+    // draco-strip.glb's two strips with a float COLOR_0 (0.125 i, 1 - 0.125 i, 0.5, 0.25) of vertex i.
+    const Scene s = load("draco-colors.glb");
+    REQUIRE(s.triangles.size() == 8);
+    REQUIRE(s.colors.size() == 8);
+    for (std::size_t t = 0; t < 4; ++t) {
+        CAPTURE(t);
+        CHECK(s.colors[t] == s.colors[t + 4]);
+    }
+    CHECK(s.colors[0][0] == glm::vec4(0.0f, 1.0f, 0.5f, 0.25f));  // vertex 0 of triangle (0, 1, 2)
+}
 #endif
 
 TEST_CASE("compressed gltf: meshopt, ATTRIBUTES, TRIANGLES and INDICES views without a filter decode to the uncompressed scene exactly") {

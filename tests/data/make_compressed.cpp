@@ -112,6 +112,7 @@ std::vector<Attribute> attributesOf(const Prim& p) {
                                   {"TEXCOORD_0", 2, &p.uv0}};
     if (!p.uv1.empty()) out.push_back({"TEXCOORD_1", 2, &p.uv1, true});
     if (!p.tangents.empty()) out.push_back({"TANGENT", 4, &p.tangents});
+    if (!p.colors.empty()) out.push_back({"COLOR_0", 4, &p.colors});
     return out;
 }
 
@@ -237,6 +238,7 @@ DracoStream encodeDraco(const Prim& p, const DracoOptions& o) {
         const auto type = s == "POSITION" ? draco::GeometryAttribute::POSITION
                           : s == "NORMAL" ? draco::GeometryAttribute::NORMAL
                           : s == "TANGENT" ? draco::GeometryAttribute::GENERIC
+                          : s == "COLOR_0" ? draco::GeometryAttribute::COLOR
                                            : draco::GeometryAttribute::TEX_COORD;
         const Bytes bytes = attributeBytes(a);
         const std::size_t size = bytes.size() / n;  // bytes per vertex
@@ -441,13 +443,20 @@ void writeValidFiles(const fs::path& dir) {
             strip.uv0.insert(strip.uv0.end(), {float(i / 2) / 2, float(i % 2)});
             strip.indices.push_back(static_cast<std::uint32_t>(i));
         }
-        Doc doc = scene({strip, strip}, [](Doc& d, const Prim& p, std::size_t m) {
-            Json prim = m == 0 ? plainPrimitive(d, p, 0) : dracoPrimitive(d, p, {}, nullptr);
-            prim["mode"] = 5;
-            return prim;
-        });
-        addExtension(doc.json, "KHR_draco_mesh_compression", true);
-        writeGlb(dir / "draco-strip.glb", doc);
+        // The strip plain (mesh 0), then in a Draco stream (mesh 1), both TRIANGLE_STRIP.
+        const auto twins = [&](const fs::path& file) {
+            Doc doc = scene({strip, strip}, [](Doc& d, const Prim& p, std::size_t m) {
+                Json prim = m == 0 ? plainPrimitive(d, p, 0) : dracoPrimitive(d, p, {}, nullptr);
+                prim["mode"] = 5;
+                return prim;
+            });
+            addExtension(doc.json, "KHR_draco_mesh_compression", true);
+            writeGlb(file, doc);
+        };
+        twins(dir / "draco-strip.glb");
+        // The same strip with a float COLOR_0 per vertex.
+        for (int i = 0; i < 6; ++i) strip.colors.insert(strip.colors.end(), {0.125f * i, 1.0f - 0.125f * i, 0.5f, 0.25f});
+        twins(dir / "draco-colors.glb");
     }
 
     // meshopt: compressed data in buffer 0, the views' own buffer 1.

@@ -27,6 +27,7 @@ constexpr int kFloat = 5126, kU16 = 5123, kU32 = 5125;
 struct Prim {
     std::string name;
     std::vector<float> positions, normals, uv0, uv1, tangents;  // 3, 3, 2, 2, 4 per vertex
+    std::vector<float> colors;                                  // COLOR_0, 4 per vertex (or empty)
     std::vector<std::uint32_t> indices;
     int material = 0;
     std::size_t vertices() const { return positions.size() / 3; }
