@@ -262,6 +262,21 @@ TEST_CASE("compressed gltf: Draco with TRIANGLE_STRIP, the decoded index sequenc
     }
 }
 
+TEST_CASE("compressed gltf: Draco, JOINTS_0 and WEIGHTS_0 in the stream skin as the plain twin's") {
+    // draco-skin.glb: a box (12 triangles) skinned by two joints, weights
+    // by height; mesh 0 plain, mesh 1 with its skin attributes in the stream.
+    const Scene s = load("draco-skin.glb");
+    REQUIRE(s.triangles.size() == 24);
+    std::size_t moved = 0;
+    for (std::size_t t = 0; t < 12; ++t) {
+        CAPTURE(t);
+        CHECK(std::memcmp(s.triangles[t].v, s.triangles[t + 12].v, sizeof s.triangles[t].v) == 0);
+        CHECK(std::memcmp(s.triangles[t].n, s.triangles[t + 12].n, sizeof s.triangles[t].n) == 0);
+        for (const glm::vec3& v : s.triangles[t].v) moved += std::abs(v.x) > 0.2f + 1e-6f;
+    }
+    CHECK(moved > 0);  // the turned joint moved vertices outside the bind box's |x| <= 0.2
+}
+
 TEST_CASE("compressed gltf: Draco, COLOR_0 in the stream decodes to the plain twin's colours") {
     // draco-strip.glb's two strips with a float COLOR_0 (0.125 i, 1 - 0.125 i, 0.5, 0.25) of vertex i.
     const Scene s = load("draco-colors.glb");

@@ -33,10 +33,13 @@ void applyMorph(const std::vector<double>& weights, LocalPrimitive& prim);
 // JOINTS_n and WEIGHTS_n of `prim`, n = 0, 1, ... while either is present:
 // JOINTS UNSIGNED_BYTE/UNSIGNED_SHORT VEC4 (not normalized), WEIGHTS FLOAT
 // or normalized UNSIGNED_BYTE/UNSIGNED_SHORT VEC4, finite and >= 0, one per
-// vertex. A JOINTS_n without its WEIGHTS_n (or the reverse) is an error.
+// vertex. A JOINTS_n without its WEIGHTS_n (or the reverse) is an error. An
+// attribute named in `inStream` comes from `decoded` (a Draco stream's, by
+// set), the others from their accessors.
 std::vector<SkinInfluences> readSkinInfluences(const std::string& path, const tinygltf::Model& model,
                                                const tinygltf::Primitive& prim, const std::string& label,
-                                               std::size_t vertexCount);
+                                               std::size_t vertexCount, const std::vector<std::string>& inStream,
+                                               const std::vector<SkinInfluences>& decoded);
 
 // The world transform of any node from the node hierarchy (its parents'
 // transforms times its own), as the scene walk computes it.
@@ -46,7 +49,7 @@ glm::dmat4 nodeWorld(const std::string& path, const tinygltf::Model& model, int 
 // else mesh.weights, else zeros; as many as the primitives' targets) and,
 // with node.skin, the skin's joint matrices jointWorld_i * inverseBind_i
 // (inverseBindMatrices MAT4 FLOAT, at least one per joint, each invertible;
-// identity without them).
+// identity without them, though tinygltf 2.7 refuses a skin without them).
 class NodePose {
 public:
     NodePose(const std::string& path, const tinygltf::Model& model, int node, const LocalMesh& mesh);

@@ -30,6 +30,7 @@ struct Semantic {
     int components;
     bool finite;
     bool integers;  // normalized UNSIGNED_BYTE/SHORT allowed besides FLOAT
+    bool indices = false;  // UNSIGNED_BYTE/SHORT not normalized, and only those (JOINTS_n)
 };
 constexpr Semantic kPosition{TINYGLTF_TYPE_VEC3, "VEC3", 3, true, false};
 constexpr Semantic kNormal{TINYGLTF_TYPE_VEC3, "VEC3", 3, false, false};
@@ -37,6 +38,8 @@ constexpr Semantic kTexcoord{TINYGLTF_TYPE_VEC2, "VEC2", 2, true, true};
 constexpr Semantic kTangent{TINYGLTF_TYPE_VEC4, "VEC4", 4, false, false};
 constexpr Semantic kColor3{TINYGLTF_TYPE_VEC3, "VEC3", 3, true, true};
 constexpr Semantic kColor4{TINYGLTF_TYPE_VEC4, "VEC4", 4, true, true};
+constexpr Semantic kWeights{TINYGLTF_TYPE_VEC4, "VEC4", 4, true, true};
+constexpr Semantic kJoints{TINYGLTF_TYPE_VEC4, "VEC4", 4, true, false, true};
 
 // The Semantic of a glTF attribute name strata reads from a Draco stream
 // (COLOR_0 as its accessor's type, `accessorType`); nullptr for the others
@@ -47,6 +50,8 @@ const Semantic* semanticOf(const std::string& name, int accessorType) {
     if (name == "TANGENT") return &kTangent;
     if (name == "COLOR_0") return accessorType == TINYGLTF_TYPE_VEC3 ? &kColor3 : &kColor4;
     if (texcoordSet(name) >= 0) return &kTexcoord;
+    if (attributeSet(name, "JOINTS_") >= 0) return &kJoints;
+    if (attributeSet(name, "WEIGHTS_") >= 0) return &kWeights;
     return nullptr;
 }
 
@@ -136,9 +141,13 @@ std::vector<float> readAttribute(const std::string& path, const tinygltf::Model&
     const bool integers = semantic.integers;
     const draco::DataType expected = expectedType(acc.componentType);
     const bool integer = expected == draco::DT_UINT8 || expected == draco::DT_UINT16;
-    if (expected == draco::DT_INVALID || (integer && !(integers && acc.normalized))) {
+    if (semantic.indices ? !integer || acc.normalized
+                         : expected == draco::DT_INVALID || (integer && !(integers && acc.normalized))) {
         fail(path, accLabel + " has component type " + std::to_string(acc.componentType) +
-                       "; expected FLOAT" + (integers ? " or normalized UNSIGNED_BYTE/SHORT" : ""));
+                       (semantic.indices ? std::string(" (normalized: ") + (acc.normalized ? "yes" : "no") +
+                                               "); expected UNSIGNED_BYTE/SHORT, not normalized"
+                                         : std::string("; expected FLOAT") +
+                                               (integers ? " or normalized UNSIGNED_BYTE/SHORT" : "")));
     }
     if (att->data_type() != expected) {
         fail(path, accLabel + " expects " + dracoTypeName(expected) + " data but " + attLabel +
@@ -150,7 +159,7 @@ std::vector<float> readAttribute(const std::string& path, const tinygltf::Model&
                        " but the Draco stream decodes " + std::to_string(points) + " points");
     }
     const std::size_t n = static_cast<std::size_t>(semantic.components);
-    const float divisor = expected == draco::DT_UINT8 ? 255.0f : 65535.0f;
+    const float divisor = semantic.indices ? 1.0f : expected == draco::DT_UINT8 ? 255.0f : 65535.0f;
     std::vector<float> out(points * n);
     std::uint32_t raw[4];
     for (std::size_t i = 0; i < points; ++i) {
@@ -327,6 +336,15 @@ bool decodeDracoPrimitive(const std::string& path, const tinygltf::Model& model,
             for (std::size_t i = 0; i < n; ++i)
                 local.colors[i] = s->components == 3 ? glm::vec4(v[3 * i], v[3 * i + 1], v[3 * i + 2], 1.0f)
                                                      : glm::vec4(v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]);
+        } else if (s == &kJoints || s == &kWeights) {
+            const int set = attributeSet(name, s == &kJoints ? "JOINTS_" : "WEIGHTS_");
+            if (local.skin.size() <= static_cast<std::size_t>(set)) local.skin.resize(static_cast<std::size_t>(set) + 1);
+            SkinInfluences& dst = local.skin[static_cast<std::size_t>(set)];
+            for (std::size_t i = 0; i < n; ++i) {
+                const glm::vec4 x(v[4 * i], v[4 * i + 1], v[4 * i + 2], v[4 * i + 3]);
+                if (s == &kJoints) dst.joints.push_back(glm::uvec4(x));
+                else dst.weights.push_back(x);
+            }
         } else {
             auto& dst = local.texcoords[texcoordSet(name)];
             dst.resize(n);

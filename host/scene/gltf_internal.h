@@ -81,9 +81,10 @@ glm::dmat4 nodeTransform(const std::string& path, const tinygltf::Model& model, 
 std::vector<std::uint32_t> readIndices(const std::string& path, const tinygltf::Model& model,
                                        int index, const std::string& use);
 
-// n of an attribute name TEXCOORD_n (n decimal, at most 9 digits, no
-// leading zero), else -1.
-int texcoordSet(const std::string& semantic);
+// n of an attribute name `prefix`n (n decimal, at most 9 digits, no
+// leading zero; prefix "TEXCOORD_", "JOINTS_", ...), else -1.
+int attributeSet(const std::string& semantic, std::string_view prefix);
+inline int texcoordSet(const std::string& semantic) { return attributeSet(semantic, "TEXCOORD_"); }
 
 // One morph target of a primitive (glTF 2.0 3.7.2.2): displacements of
 // POSITION, NORMAL and TANGENT xyz, each empty or one per vertex.

@@ -152,12 +152,11 @@ std::vector<glm::vec4> readColors(const std::string& path, const tinygltf::Model
 
 }  // namespace
 
-int texcoordSet(const std::string& semantic) {
-    static constexpr std::string_view kPrefix = "TEXCOORD_";
-    if (semantic.size() <= kPrefix.size() || semantic.size() > kPrefix.size() + 9 ||
-        semantic.compare(0, kPrefix.size(), kPrefix) != 0)
+int attributeSet(const std::string& semantic, std::string_view prefix) {
+    if (semantic.size() <= prefix.size() || semantic.size() > prefix.size() + 9 ||
+        semantic.compare(0, prefix.size(), prefix) != 0)
         return -1;
-    const std::string digits = semantic.substr(kPrefix.size());
+    const std::string digits = semantic.substr(prefix.size());
     if (digits.find_first_not_of("0123456789") != std::string::npos || (digits.size() > 1 && digits[0] == '0'))
         return -1;
     return std::stoi(digits);
@@ -241,7 +240,8 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
         }
 
         local.targets = readMorphTargets(path, model, prim, label, vertexCount, quantization);
-        local.skin = readSkinInfluences(path, model, prim, label, vertexCount);
+        std::vector<SkinInfluences> streamSkin = std::move(local.skin);
+        local.skin = readSkinInfluences(path, model, prim, label, vertexCount, inStream, streamSkin);
 
         const bool triangles = prim.mode == TINYGLTF_MODE_TRIANGLES;
         std::vector<std::uint32_t> sequence;

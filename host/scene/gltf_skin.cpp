@@ -3,6 +3,7 @@
 // inverse transposes of those matrices, tangents by the matrices; the
 // skinned node's own transform is ignored. With morph targets (applied
 // first), the node's static pose at load.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -47,7 +48,11 @@ glm::dmat3 normalMatrix(const glm::dmat4& m) {
 
 std::vector<SkinInfluences> readSkinInfluences(const std::string& path, const tinygltf::Model& model,
                                                const tinygltf::Primitive& prim, const std::string& label,
-                                               std::size_t vertexCount) {
+                                               std::size_t vertexCount, const std::vector<std::string>& inStream,
+                                               const std::vector<SkinInfluences>& decoded) {
+    const auto streamed = [&](const std::string& name) {
+        return std::find(inStream.begin(), inStream.end(), name) != inStream.end();
+    };
     std::vector<SkinInfluences> out;
     for (int set = 0;; ++set) {
         const std::string joints = "JOINTS_" + std::to_string(set), weights = "WEIGHTS_" + std::to_string(set);
@@ -58,26 +63,29 @@ std::vector<SkinInfluences> readSkinInfluences(const std::string& path, const ti
                            (j == prim.attributes.end() ? joints : weights));
         }
         const std::string jointsUse = label + " " + joints, weightsUse = label + " " + weights;
-        if (j->second >= 0 && static_cast<std::size_t>(j->second) < model.accessors.size() &&
-            model.accessors[static_cast<std::size_t>(j->second)].normalized) {
-            fail(path, "accessor " + std::to_string(j->second) + " (" + jointsUse +
-                           ") is normalized; joint indices are integers");
+        SkinInfluences s;
+        if (streamed(joints)) {
+            s.joints = decoded.at(static_cast<std::size_t>(set)).joints;
+        } else {
+            if (j->second >= 0 && static_cast<std::size_t>(j->second) < model.accessors.size() &&
+                model.accessors[static_cast<std::size_t>(j->second)].normalized) {
+                fail(path, "accessor " + std::to_string(j->second) + " (" + jointsUse +
+                               ") is normalized; joint indices are integers");
+            }
+            for (const glm::vec4& x : readFloats<4>(path, model, j->second, jointsUse, kJoints, nullptr))
+                s.joints.push_back(glm::uvec4(x));
         }
-        const std::vector<glm::vec4> indices = readFloats<4>(path, model, j->second, jointsUse, kJoints, nullptr);
-        const std::vector<glm::vec4> values = readFloats<4>(path, model, w->second, weightsUse, kWeights, nullptr);
-        for (const auto& [n, name] : {std::pair{indices.size(), joints}, std::pair{values.size(), weights}}) {
+        s.weights = streamed(weights) ? decoded.at(static_cast<std::size_t>(set)).weights
+                                      : readFloats<4>(path, model, w->second, weightsUse, kWeights, nullptr);
+        for (const auto& [n, name] : {std::pair{s.joints.size(), joints}, std::pair{s.weights.size(), weights}}) {
             if (n != vertexCount) {
                 fail(path, label + ": " + name + " has " + std::to_string(n) + " elements but POSITION has " +
                                std::to_string(vertexCount));
             }
         }
-        SkinInfluences s;
-        s.joints.resize(vertexCount);
-        s.weights = values;
         for (std::size_t v = 0; v < vertexCount; ++v) {
-            s.joints[v] = glm::uvec4(indices[v]);
             for (int k = 0; k < 4; ++k) {
-                const float x = values[v][k];
+                const float x = s.weights[v][k];
                 if (!(x >= 0.0f) || !std::isfinite(x)) {
                     std::ostringstream msg;
                     msg << weightsUse << ": vertex " << v << " has weight " << x

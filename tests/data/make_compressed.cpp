@@ -113,13 +113,15 @@ std::vector<Attribute> attributesOf(const Prim& p) {
     if (!p.uv1.empty()) out.push_back({"TEXCOORD_1", 2, &p.uv1, true});
     if (!p.tangents.empty()) out.push_back({"TANGENT", 4, &p.tangents});
     if (!p.colors.empty()) out.push_back({"COLOR_0", 4, &p.colors});
+    if (!p.joints.empty()) out.push_back({"JOINTS_0", 4, &p.joints, true, true});
+    if (!p.weights.empty()) out.push_back({"WEIGHTS_0", 4, &p.weights});
     return out;
 }
 
 Bytes attributeBytes(const Attribute& a) {
     if (!a.u16) return bytesOf(*a.values);
     std::vector<std::uint16_t> q;
-    for (const float v : *a.values) q.push_back(static_cast<std::uint16_t>(std::lround(v * 65535.0f)));
+    for (const float v : *a.values) q.push_back(static_cast<std::uint16_t>(std::lround(a.integer ? v : v * 65535.0f)));
     return bytesOf(q);
 }
 
@@ -195,7 +197,7 @@ void addExtension(Json& j, const char* name, bool required) {
 
 Json accessorFor(const Attribute& a, std::size_t count) {
     Json acc = {{"componentType", a.u16 ? kU16 : kFloat}, {"count", count}, {"type", typeOf(a.components)}};
-    if (a.u16) acc["normalized"] = true;
+    if (a.u16 && !a.integer) acc["normalized"] = true;
     if (std::string(a.semantic) == "POSITION") {
         std::vector<float> lo(3, 1e30f), hi(3, -1e30f);
         for (std::size_t i = 0; i < a.values->size(); ++i) {
@@ -239,12 +241,13 @@ DracoStream encodeDraco(const Prim& p, const DracoOptions& o) {
                           : s == "NORMAL" ? draco::GeometryAttribute::NORMAL
                           : s == "TANGENT" ? draco::GeometryAttribute::GENERIC
                           : s == "COLOR_0" ? draco::GeometryAttribute::COLOR
+                          : s == "JOINTS_0" || s == "WEIGHTS_0" ? draco::GeometryAttribute::GENERIC
                                            : draco::GeometryAttribute::TEX_COORD;
         const Bytes bytes = attributeBytes(a);
         const std::size_t size = bytes.size() / n;  // bytes per vertex
         draco::GeometryAttribute ga;
         ga.Init(type, nullptr, static_cast<std::uint8_t>(a.components), a.u16 ? draco::DT_UINT16 : draco::DT_FLOAT32,
-                a.u16, static_cast<std::int64_t>(size), 0);
+                a.u16 && !a.integer, static_cast<std::int64_t>(size), 0);
         const int id = mesh.AddAttribute(ga, true, n);
         for (std::uint32_t i = 0; i < n; ++i) {
             mesh.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), bytes.data() + i * size);
@@ -457,6 +460,36 @@ void writeValidFiles(const fs::path& dir) {
         // The same strip with a float COLOR_0 per vertex.
         for (int i = 0; i < 6; ++i) strip.colors.insert(strip.colors.end(), {0.125f * i, 1.0f - 0.125f * i, 0.5f, 0.25f});
         twins(dir / "draco-colors.glb");
+    }
+
+    // Two twins of a box skinned by two joints (joint 1 turned about z):
+    // mesh 0 plain, mesh 1 with JOINTS_0 and WEIGHTS_0 in its Draco stream.
+    {
+        Prim bar = box("Bar", {0.0f, 0.5f, 0.0f}, {0.2f, 0.5f, 0.2f}, 0);
+        for (std::size_t i = 0; i < bar.vertices(); ++i) {
+            const float w = std::clamp(bar.positions[3 * i + 1], 0.0f, 1.0f);  // y, 0 to 1
+            bar.joints.insert(bar.joints.end(), {0, 1, 0, 0});
+            bar.weights.insert(bar.weights.end(), {1.0f - w, w, 0.0f, 0.0f});
+        }
+        Doc doc = scene({bar, bar}, [](Doc& d, const Prim& p, std::size_t m) {
+            return m == 0 ? plainPrimitive(d, p, 0) : dracoPrimitive(d, p, {}, nullptr);
+        });
+        Json& nodes = doc.json["nodes"];
+        nodes.push_back({{"name", "Joint0"}});
+        nodes.push_back({{"name", "Joint1"}, {"translation", {0.0, 0.5, 0.0}}, {"rotation", {0.0, 0.0, 0.3826834, 0.9238795}}});
+        const std::size_t joint0 = nodes.size() - 2, joint1 = nodes.size() - 1;
+        doc.json["scenes"][0]["nodes"].push_back(joint0);
+        doc.json["scenes"][0]["nodes"].push_back(joint1);
+        // tinygltf 2.7 requires inverseBindMatrices: two identities.
+        std::vector<float> identities(32, 0.0f);
+        for (int k = 0; k < 4; ++k) identities[static_cast<std::size_t>(5 * k)] = identities[static_cast<std::size_t>(16 + 5 * k)] = 1.0f;
+        const int bindView = doc.addPlainView(0, identities.data(), identities.size() * sizeof(float));
+        const int bind = doc.addAccessor({{"bufferView", bindView}, {"componentType", kFloat}, {"count", 2}, {"type", "MAT4"}});
+        doc.json["skins"] = {{{"joints", {joint0, joint1}}, {"inverseBindMatrices", bind}}};
+        nodes[0]["skin"] = 0;
+        nodes[1]["skin"] = 0;
+        addExtension(doc.json, "KHR_draco_mesh_compression", true);
+        writeGlb(dir / "draco-skin.glb", doc);
     }
 
     // meshopt: compressed data in buffer 0, the views' own buffer 1.

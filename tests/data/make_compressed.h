@@ -28,6 +28,7 @@ struct Prim {
     std::string name;
     std::vector<float> positions, normals, uv0, uv1, tangents;  // 3, 3, 2, 2, 4 per vertex
     std::vector<float> colors;                                  // COLOR_0, 4 per vertex (or empty)
+    std::vector<float> joints, weights;                         // JOINTS_0 (u16), WEIGHTS_0, 4 per vertex
     std::vector<std::uint32_t> indices;
     int material = 0;
     std::size_t vertices() const { return positions.size() / 3; }
@@ -49,6 +50,7 @@ struct Attribute {
     int components;
     const std::vector<float>* values;
     bool u16 = false;
+    bool integer = false;  // with u16: the values themselves (JOINTS_n), not normalized
 };
 std::vector<Attribute> attributesOf(const Prim& p);
 // The attribute's bytes as stored: floats, or round(v * 65535) as u16.
