@@ -8,6 +8,15 @@ LAMP_LE), seen by a camera that looks at the emitter's mirror image. With
 maxDepth 1 a pixel whose every reflected ray meets the emitter shows
 LAMP_LE times the floor's specular reflectance at that angle, and one whose
 reflected rays all miss shows 0.
+
+coat-*.gltf (KHR_materials_clearcoat), seen in a white furnace: a 40 x 40
+plate z = 0 facing +Z under a smooth coat, seen by a camera 5 units away
+(tests/test_material_layers.cpp). Every camera ray reflects off the coat
+(and a smooth base) into the environment, so each pixel is the layers'
+reflectance at its rays' incidence.
+
+layers.gltf holds the layer extensions' values and textures for the loader
+tests; broken/ one bad value each.
 """
 import math
 import os
@@ -18,6 +27,9 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "data"))
 from make_lights import add_sphere  # noqa: E402
 from make_scenes import Quads, camera, mesh, rotation_x, writer  # noqa: E402
+from make_texture_scenes import LINEAR, Scene as TexturedScene, data_uri, png  # noqa: E402
+
+GENERATOR = "strata scripts/make_material_tests.py"
 
 LAMP_HALF = 0.5
 LAMP_HEIGHT = 1.0
@@ -61,20 +73,133 @@ def glass_sphere():
     return w.gltf_text()
 
 
-def plate(roughness, view_degrees):
-    """A 40 x 40 white GGX metal plate z = 0 facing +Z, seen at `view_degrees`
-    from its normal by a camera 5 units away with a 2-degree field of view:
-    under a uniform environment each pixel is the directional albedo E(mu)."""
+def plate_scene(material, view_degrees, fov_degrees=2.0, extensions=()):
+    """A 40 x 40 plate z = 0 facing +Z of material(w), seen at `view_degrees`
+    from its normal (the camera turned about +X) by a camera 5 units away
+    with a `fov_degrees` field of view."""
     w = writer()
-    metal = w.add_material("Metal", base_color=(1, 1, 1, 1), metallic=1.0, roughness=roughness)
+    plate_material = material(w)
     quad = Quads().add((-20, -20, 0), (40, 0, 0), (0, 40, 0), (0, 0, 1))
     t = math.radians(view_degrees)
-    roots = [w.add_node("Plate", mesh=mesh(w, "Plate", quad, metal)),
-             w.add_node("Camera", camera=camera(w, "Camera", 2.0),
+    roots = [w.add_node("Plate", mesh=mesh(w, "Plate", quad, plate_material)),
+             w.add_node("Camera", camera=camera(w, "Camera", fov_degrees),
                         translation=[0.0, -5.0 * math.sin(t), 5.0 * math.cos(t)],
                         rotation=rotation_x(t))]
     w.set_scene(roots, name="Scene")
+    if extensions:
+        w.use_extensions(list(extensions))
     return w.gltf_text()
+
+
+def plate(roughness, view_degrees):
+    """A white GGX metal plate seen with a 2-degree field of view: under a
+    uniform environment each pixel is the directional albedo E(mu)."""
+    return plate_scene(lambda w: w.add_material("Metal", base_color=(1, 1, 1, 1), metallic=1.0,
+                                                roughness=roughness), view_degrees)
+
+
+def coat(factor=1.0, roughness=0.0, **textures):
+    return {"KHR_materials_clearcoat": dict({"clearcoatFactor": factor, "clearcoatRoughnessFactor": roughness},
+                                            **textures)}
+
+
+def coat_plate(metal, view_degrees, fov_degrees):
+    """A smooth coat over a black base: metal (baseColor 0, metallic 1,
+    roughness 0: Schlick reflectance (1 - mu)^5), or a dielectric of
+    specular 0 that reflects nothing."""
+    def material(w):
+        if metal:
+            return w.add_material("CoatOverBlackMetal", base_color=(0, 0, 0, 1), metallic=1.0,
+                                  roughness=0.0, extensions=coat())
+        return w.add_material("CoatOverBlack", base_color=(0, 0, 0, 1), metallic=0.0, roughness=1.0,
+                              specular=0.0, extensions=coat())
+    used = ["KHR_materials_clearcoat"] + ([] if metal else ["KHR_materials_specular"])
+    return plate_scene(material, view_degrees, fov_degrees, used)
+
+
+def textured_plate(path, fields, extensions, camera_fov, view_degrees=0.0):
+    """plate_scene's plate and camera with texture coordinates (u along +X,
+    v along -Y, so generated tangents are +X) and a material of raw JSON
+    `fields(s)`."""
+    s = TexturedScene()
+    s.w.doc["asset"]["generator"] = GENERATOR
+    corners = [(-20, -20, 0), (20, -20, 0), (20, 20, 0), (-20, 20, 0)]
+    s.quad("Plate", corners, [(0, 1), (1, 1), (1, 0), (0, 0)], s.material(**fields(s)), (0, 0, 1))
+    t = math.radians(view_degrees)
+    s.camera(math.radians(camera_fov), (0.0, -5.0 * math.sin(t), 5.0 * math.cos(t)), rotation_x(t))
+    s.write(path, extensions)
+
+
+def constant_texture(s, rgba):
+    """A 2 x 2 texture of one RGBA texel value, bilinear."""
+    return s.texture(s.image(data_uri(png([[rgba] * 2] * 2))), mag=LINEAR)
+
+
+COAT_TEXEL = (128, 0, 0, 255)      # clearcoatTexture: R = 128/255; roughness texture G = 0
+COAT_NORMAL = (191, 128, 221)      # clearcoatNormalTexture texel
+COAT_NORMAL_SCALE = 0.8
+
+
+def coat_textured(path):
+    """clearcoatFactor 1 x texture R (COAT_TEXEL), roughness factor 1 x
+    texture G = 0 (smooth), over a black dielectric of specular 0, seen at
+    45 degrees with a 50-degree field of view: each pixel is R Fc(mu)."""
+    def fields(s):
+        tex = constant_texture(s, COAT_TEXEL)
+        return {"name": "TexturedCoat", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                "extensions": dict(coat(1.0, 1.0, clearcoatTexture={"index": tex},
+                                        clearcoatRoughnessTexture={"index": tex}),
+                                   KHR_materials_specular={"specularFactor": 0.0})}
+    textured_plate(path, fields, ["KHR_materials_clearcoat", "KHR_materials_specular"], 50.0, 45.0)
+
+
+def coat_normal_mapped(path):
+    """A smooth coat with a constant clearcoatNormalTexture (COAT_NORMAL,
+    scale COAT_NORMAL_SCALE) over a black dielectric of specular 0, seen
+    head-on with a 20-degree field of view: each pixel is Fc at the view
+    against the mapped coat normal."""
+    def fields(s):
+        tex = constant_texture(s, COAT_NORMAL + (255,))
+        return {"name": "MappedCoat", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                "extensions": dict(coat(clearcoatNormalTexture={"index": tex, "scale": COAT_NORMAL_SCALE}),
+                                   KHR_materials_specular={"specularFactor": 0.0})}
+    textured_plate(path, fields, ["KHR_materials_clearcoat", "KHR_materials_specular"], 20.0)
+
+
+def layers_scene(path, materials):
+    """Loader checks: one quad per material of raw JSON `materials(s, tex)`
+    (tex: two constant textures), with TEXCOORD_0 and TEXCOORD_1."""
+    s = TexturedScene()
+    s.w.doc["asset"]["generator"] = GENERATOR
+    tex = [constant_texture(s, (10, 20, 30, 40)), constant_texture(s, (200, 150, 100, 50))]
+    for i, fields in enumerate(materials(s, tex)):
+        corners = [(i, 0, 0), (i + 1, 0, 0), (i + 1, 1, 0), (i, 1, 0)]
+        uvs = [(0, 1), (1, 1), (1, 0), (0, 0)]
+        s.quad(fields["name"], corners, uvs, s.material(**fields), (0, 0, 1), uv_sets=[uvs, uvs])
+    s.camera(0.7, (0, 0, 3))
+    s.write(path, ["KHR_materials_clearcoat", "KHR_texture_transform"])
+
+
+def layer_materials(s, tex):
+    """layers.gltf's materials (tests/test_gltf_materials.cpp checks them)."""
+    transform = {"KHR_texture_transform": {"offset": [0.5, 0.25], "scale": [2.0, 2.0]}}
+    return [
+        {"name": "Coat", "extensions": coat(0.8, 0.3, clearcoatTexture={"index": tex[0]},
+                                            clearcoatRoughnessTexture={"index": tex[1], "texCoord": 1},
+                                            clearcoatNormalTexture={"index": tex[1], "scale": 0.5,
+                                                                    "extensions": transform})},
+        {"name": "Defaults", "extensions": {"KHR_materials_clearcoat": {}}},
+    ]
+
+
+# broken/: file -> the one bad material (tests/test_gltf_materials.cpp has
+# each file's message).
+BROKEN = {
+    "clearcoat-negative.gltf": lambda tex: {"name": "Bad", "extensions": coat(-0.5)},
+    "clearcoat-roughness-above-1.gltf": lambda tex: {"name": "Bad", "extensions": coat(1.0, 1.5)},
+    "clearcoat-missing-texture.gltf":
+        lambda tex: {"name": "Bad", "extensions": coat(1.0, clearcoatTexture={"index": 5})},
+}
 
 
 def metal(roughness):
@@ -153,12 +278,22 @@ def main():
         "plate-a0.1-mu1.gltf": plate(math.sqrt(0.1), 0.0),
         "unlit.gltf": unlit(),
         "volume-slab.gltf": volume_slab(),
+        # KHR_materials_clearcoat in a white furnace (the metal base only
+        # below mu 0.75: tests/test_material_layers.cpp says why).
+        "coat-black-metal.gltf": coat_plate(True, 60.0, 24.0),
+        "coat-black.gltf": coat_plate(False, 45.0, 50.0),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))
         with open(path, "w") as f:
             f.write(text)
         print("wrote", path)
+    coat_textured(os.path.join(out, "coat-textured.gltf"))
+    coat_normal_mapped(os.path.join(out, "coat-normal-map.gltf"))
+    layers_scene(os.path.join(out, "layers.gltf"), layer_materials)
+    os.makedirs(os.path.join(out, "broken"), exist_ok=True)
+    for name, material in BROKEN.items():
+        layers_scene(os.path.join(out, "broken", name), lambda s, tex, m=material: [m(tex)])
 
 
 if __name__ == "__main__":

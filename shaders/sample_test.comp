@@ -20,8 +20,13 @@ layout(push_constant) uniform Push { SampleTestParams params; };
 Bsdf testBsdf(out vec3 wo) {
     float c = params.bsdf0.x;
     wo = vec3(sqrt(max(0.0, 1.0 - c * c)), 0.0, c);
+    BsdfLayers layers = noLayers();
+    layers.coat = params.bsdf2.x;
+    layers.coatRoughness = params.bsdf2.y;
+    float tilt = params.bsdf3.w;
+    layers.coatNormal = vec3(0.6 * sin(tilt), 0.8 * sin(tilt), cos(tilt));
     return makeBsdf(vec3(params.bsdf1.z), params.bsdf0.z, params.bsdf0.y, params.bsdf0.w,
-                    params.bsdf1.x, params.bsdf1.y, params.bsdf1.w != 0.0, c);
+                    params.bsdf1.x, params.bsdf1.y, layers, params.bsdf1.w != 0.0, wo);
 }
 
 // 8-point Gauss-Legendre nodes and weights on [-1, 1] (positive half).

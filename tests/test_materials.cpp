@@ -32,16 +32,6 @@ double fresnel(double c, double eta) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
-// The camera ray through image point (x, y) in pixels, as pathtrace.comp makes it.
-glm::dvec3 cameraRay(const Camera& cam, int w, int h, double x, double y) {
-    const double tanHalf = std::tan(cam.yfov * 0.5);
-    const double aspect = double(w) / h;
-    const glm::dvec3 f(cam.forward), right = glm::normalize(glm::cross(f, glm::dvec3(cam.up)));
-    const glm::dvec3 up = glm::cross(right, f);
-    const double nx = 2.0 * x / w - 1.0, ny = 1.0 - 2.0 * y / h;
-    return glm::normalize(f + nx * tanHalf * aspect * right + ny * tanHalf * up);
-}
-
 struct Reflection {
     bool hitsLamp = false;
     double cosine = 0.0;  // incidence cosine on the floor

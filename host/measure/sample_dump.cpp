@@ -19,7 +19,8 @@ namespace strata {
 
 std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::SampleTestParams& params,
                                        std::uint32_t sampler, const std::vector<gpu::Emitter>& emitters,
-                                       const PixelFilter& filter, const GpuScene* lights) {
+                                       const PixelFilter& filter, const GpuScene* lights,
+                                       std::uint32_t features) {
     using namespace gpu;
     const GpuScene none;
     const GpuScene& scene = lights ? *lights : none;
@@ -37,7 +38,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     vk::Buffer back(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
     std::vector<std::uint32_t> spec(4, 0u);
     spec[SPEC_SAMPLER] = sampler;
-    spec[SPEC_FEATURES] = scene.features.bits;
+    spec[SPEC_FEATURES] = scene.features.bits | features;
     vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
                       {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},

@@ -110,6 +110,12 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
         g.normalTex = addRef(m.normalTexture, false);
         g.emissiveTex = addRef(m.emissiveTexture, true);
         g.transmissionTex = addRef(m.transmissionTexture, false);
+        g.clearcoatTex = g.clearcoatRoughnessTex = g.clearcoatNormalTex = gpu::kNoTexture;
+        if (m.coated()) {
+            g.clearcoatTex = addRef(m.clearcoatTexture, false);
+            g.clearcoatRoughnessTex = addRef(m.clearcoatRoughnessTexture, false);
+            g.clearcoatNormalTex = addRef(m.clearcoatNormalTexture, false);
+        }
     }
     return out;
 }

@@ -1,7 +1,8 @@
 // glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
-// KHR_materials_emissive_strength, _ior, _transmission and _specular, and the
-// texture slots (occlusionTexture is not read: a path tracer computes
-// occlusion).
+// KHR_materials_emissive_strength, _ior, _transmission, _specular, _unlit,
+// _volume and _clearcoat, and the texture slots (occlusionTexture is not
+// read: a path tracer computes occlusion). Factors outside their range are
+// errors.
 #include <cmath>
 #include <sstream>
 
@@ -62,15 +63,24 @@ TextureSlot slotOf(const std::string& path, const tinygltf::Model& model, const 
                               textureTransform(info.extensions));
 }
 
-// KHR_materials_transmission.transmissionTexture: a textureInfo kept as JSON.
-TextureSlot transmissionSlot(const std::string& path, const tinygltf::Model& model,
-                             const std::string& label, const tinygltf::Material& material) {
-    const auto it = material.extensions.find("KHR_materials_transmission");
-    if (it == material.extensions.end() || !it->second.Has("transmissionTexture")) return {};
-    const tinygltf::Value& info = it->second.Get("transmissionTexture");
-    const std::string where = label + " transmissionTexture";
+// Texture `key` of extension object `extension` (a textureInfo kept as
+// JSON), e.g. KHR_materials_transmission.transmissionTexture; an empty slot
+// when absent. `scale`, when not null, receives a normalTextureInfo's scale
+// (default 1).
+TextureSlot extensionSlot(const std::string& path, const tinygltf::Model& model, const std::string& label,
+                          const tinygltf::Material& material, const char* extension, const char* key,
+                          float* scale = nullptr) {
+    const auto it = material.extensions.find(extension);
+    if (it == material.extensions.end() || !it->second.Has(key)) return {};
+    const tinygltf::Value& info = it->second.Get(key);
+    const std::string where = label + " " + key;
     if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) {
         fail(path, where + " has no integer index");
+    }
+    if (scale) {
+        const tinygltf::Value* s = info.Has("scale") ? &info.Get("scale") : nullptr;
+        if (s && !s->IsNumber()) fail(path, where + ".scale is not a number");
+        *scale = s ? static_cast<float>(s->GetNumberAsDouble()) : 1.0f;
     }
     const int texCoord = info.Has("texCoord") && info.Get("texCoord").IsInt()
                              ? info.Get("texCoord").GetNumberAsInt()
@@ -175,7 +185,16 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.normalTexture = slotOf(path, model, label, "normalTexture", src.normalTexture);
     m.normalScale = static_cast<float>(src.normalTexture.scale);
     m.emissiveTexture = slotOf(path, model, label, "emissiveTexture", src.emissiveTexture);
-    m.transmissionTexture = transmissionSlot(path, model, label, src);
+    m.transmissionTexture =
+        extensionSlot(path, model, label, src, "KHR_materials_transmission", "transmissionTexture");
+
+    const char* coat = "KHR_materials_clearcoat";
+    m.clearcoat = unitFactor(coat, "clearcoatFactor", 0.0);
+    m.clearcoatRoughness = unitFactor(coat, "clearcoatRoughnessFactor", 0.0);
+    m.clearcoatTexture = extensionSlot(path, model, label, src, coat, "clearcoatTexture");
+    m.clearcoatRoughnessTexture = extensionSlot(path, model, label, src, coat, "clearcoatRoughnessTexture");
+    m.clearcoatNormalTexture =
+        extensionSlot(path, model, label, src, coat, "clearcoatNormalTexture", &m.clearcoatNormalScale);
     return m;
 }
 

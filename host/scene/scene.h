@@ -68,6 +68,14 @@ struct MaterialDesc {
     float thickness = 0.0f;
     float attenuationDistance = std::numeric_limits<float>::infinity();
     glm::vec3 attenuationColor{1.0f};
+    // KHR_materials_clearcoat: a GGX coat of ior 1.5 (0: none).
+    float clearcoat = 0.0f;                // clearcoatFactor
+    float clearcoatRoughness = 0.0f;       // clearcoatRoughnessFactor
+    TextureSlot clearcoatTexture;          // linear R
+    TextureSlot clearcoatRoughnessTexture; // linear G
+    TextureSlot clearcoatNormalTexture;    // linear, tangent space
+    float clearcoatNormalScale = 1.0f;     // clearcoatNormalTexture.scale
+    bool coated() const { return clearcoat > 0.0f && !unlit; }
     glm::vec3 emission() const { return unlit ? glm::vec3(0.0f) : emissiveFactor * emissiveStrength; }
 };
 

@@ -15,6 +15,15 @@
 // alpha kDeltaAlpha the reflection and transmission lobes are exact (delta)
 // mirror and refraction, so roughness 0 is a perfect mirror.
 //
+// KHR_materials_clearcoat (kFeatureClearcoat) lays a GGX coat of ior 1.5
+// with its own roughness and normal over all of that, as the extension's
+// fresnel_coat does:
+//
+//   f = base * (1 - coatF) + coatF * GGX(coat alpha, coat normal)
+//   coatF = clearcoat * Schlick(F0 0.04, wo . coat normal)
+//
+// (the coat lobe evaluated in the coat's frame, |cos| of its own normal).
+//
 // All directions are in the local shading frame: z is the shading normal on
 // the side the ray came from, so wo.z > 0; reflection has wi.z > 0 and
 // transmission wi.z < 0. `etap` is the ratio of the indices of refraction
@@ -22,6 +31,9 @@
 #ifndef STRATA_LIB_BSDF_GLSL
 #define STRATA_LIB_BSDF_GLSL
 
+#include "shared/types.h"
+#include "shared/bindings.h"
+#include "lib/features.glsl"
 #include "lib/sampling.glsl"
 
 const float kDeltaAlpha = 1.0e-3;
@@ -34,11 +46,28 @@ struct Bsdf {
     float etap;          // far-side ior / near-side ior
     float specular;      // KHR_materials_specular factor on the dielectric Fresnel
     bool delta;          // alpha < kDeltaAlpha: mirror / refraction lobes are deltas
-    // Probabilities of the two sampling strategies (set by makeBsdf): the
-    // microfacet lobes (then reflection or transmission by specularSplit)
-    // and the diffuse lobe.
-    float pSpecular, pDiffuse;
+    // KHR_materials_clearcoat (kFeatureClearcoat; coat 0 without one).
+    float coat;          // clearcoat factor x texture
+    float coatAlpha;     // GGX alpha of the coat
+    bool coatDelta;      // coatAlpha < kDeltaAlpha: the coat is a mirror
+    vec3 coatN;          // the coat's normal in the shading frame (wo . coatN > 0)
+    float coatF;         // coat * Schlick(0.04, wo . coatN): the coat's weight
+    float baseScale;     // what the layers leave the base: 1 - coatF
+    // Probabilities of the sampling strategies (set by makeBsdf): the
+    // microfacet lobes (then reflection or transmission by specularSplit),
+    // the diffuse lobe and the coat.
+    float pSpecular, pDiffuse, pCoat;
 };
+
+// The layers over the base a surface point gives makeBsdf; each is read
+// only under its feature bit.
+struct BsdfLayers {
+    float coat;           // KHR_materials_clearcoat: clearcoat factor x texture (0: none)
+    float coatRoughness;  // perceptual
+    vec3 coatNormal;      // unit, in the shading frame
+};
+
+BsdfLayers noLayers() { return BsdfLayers(0.0, 0.0, vec3(0.0, 0.0, 1.0)); }
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -77,11 +106,25 @@ float specularSplit(Bsdf b, float c) {
     return wr + wt > 0.0 ? wr / (wr + wt) : 1.0;
 }
 
+// No coat: what makeBsdf and makeLambert leave.
+void clearLayers(inout Bsdf b) {
+    b.coat = 0.0;
+    b.coatAlpha = 1.0;
+    b.coatDelta = false;
+    b.coatN = vec3(0.0, 0.0, 1.0);
+    b.coatF = 0.0;
+    b.baseScale = 1.0;
+    b.pCoat = 0.0;
+}
+
 // ior < 1 (KHR_materials_ior allows 0) is treated as 1.5, the default.
-// cosO is wo.z, used to weigh the sampling strategies.
+// wo weighs the sampling strategies (wo.z > 0). A coat normal facing away
+// from wo is replaced by the shading normal.
 Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmission, float ior,
-              float specular, bool entering, float cosO) {
+              float specular, BsdfLayers layers, bool entering, vec3 wo) {
+    float cosO = wo.z;
     Bsdf b;
+    clearLayers(b);
     b.baseColor = clamp(baseColor, 0.0, 1.0);
     b.metallic = clamp(metallic, 0.0, 1.0);
     float r = clamp(roughness, 0.0, 1.0);
@@ -101,6 +144,20 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
                (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
     float wd = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05) * lumBase;
     float total = ws + wd;
+    if (hasFeature(kFeatureClearcoat) && layers.coat > 0.0) {
+        b.coat = min(layers.coat, 1.0);
+        float rc = clamp(layers.coatRoughness, 0.0, 1.0);
+        b.coatAlpha = rc * rc;
+        b.coatDelta = b.coatAlpha < kDeltaAlpha;
+        if (dot(wo, layers.coatNormal) > 0.0) b.coatN = layers.coatNormal;
+        b.coatF = b.coat * fresnelSchlick(vec3(0.04), dot(wo, b.coatN)).x;
+        b.baseScale = 1.0 - b.coatF;
+        // The coat's albedo estimate is its Fresnel weight.
+        ws *= b.baseScale;
+        wd *= b.baseScale;
+        total = ws + wd + b.coatF;
+        b.pCoat = b.coatF / total;
+    }
     b.pSpecular = total > 0.0 ? ws / total : 0.0;
     b.pDiffuse = total > 0.0 ? wd / total : 0.0;
     return b;
@@ -119,6 +176,7 @@ Bsdf makeLambert(vec3 baseColor) {
     b.delta = false;
     b.pSpecular = 0.0;
     b.pDiffuse = 1.0;
+    clearLayers(b);
     return b;
 }
 
@@ -176,9 +234,9 @@ bool refractDir(vec3 wo, vec3 h, float etap, out vec3 wi) {
     return true;
 }
 
-// The non-delta part of the BSDF times |wi.z|, and the density with which
-// sampleBsdf produces wi (solid angle, strategy and lobe choice included).
-vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+// The base's non-delta part times |wi.z| (before the layers' scaling), and
+// the density of its strategies (their choice included).
+vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
     pdf = 0.0;
     vec3 f = vec3(0.0);
     if (wo.z <= 0.0 || wi.z == 0.0) return f;
@@ -214,6 +272,36 @@ vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
     return f;
 }
 
+// w in the coat's frame (coatN as z, a tangent frame by basis()).
+vec3 toCoatFrame(Bsdf b, vec3 w) {
+    vec3 t, bt;
+    basis(b.coatN, t, bt);
+    return vec3(dot(w, t), dot(w, bt), dot(w, b.coatN));
+}
+
+vec3 fromCoatFrame(Bsdf b, vec3 w) {
+    vec3 t, bt;
+    basis(b.coatN, t, bt);
+    return w.x * t + w.y * bt + w.z * b.coatN;
+}
+
+// The non-delta part of the BSDF times |cos| (each lobe's own normal), and
+// the density with which sampleBsdf produces wi (solid angle, strategy and
+// lobe choice included).
+vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+    if (!hasFeature(kFeatureClearcoat)) return evalBase(b, wo, wi, pdf);
+    vec3 f = evalBase(b, wo, wi, pdf) * b.baseScale;
+    if (b.pCoat > 0.0 && !b.coatDelta && wo.z > 0.0) {
+        vec3 o = toCoatFrame(b, wo), i = toCoatFrame(b, wi);
+        if (o.z > 0.0 && i.z > 0.0) {
+            vec3 h = normalize(o + i);
+            f += vec3(b.coatF * ggxD(h, b.coatAlpha) * ggxG2(o, i, b.coatAlpha) / (4.0 * o.z));
+            pdf += b.pCoat * ggxVisiblePdf(o, h, b.coatAlpha) / (4.0 * dot(o, h));
+        }
+    }
+    return f;
+}
+
 struct BsdfSample {
     vec3 wi;
     vec3 weight;   // f |wi.z| / pdf (delta lobes: their reflectance / choice probability)
@@ -222,17 +310,42 @@ struct BsdfSample {
     bool valid;
 };
 
-// One direction: uLobe picks the microfacet or the diffuse strategy by the
-// probabilities of makeBsdf and then, rescaled, reflection or transmission
-// at the sampled microfacet; u is the direction within the lobe.
+BsdfSample noSample() { return BsdfSample(vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, false, false); }
+
+// The weight and pdf of a non-delta sample s.wi: the whole BSDF's.
+BsdfSample finishSample(Bsdf b, vec3 wo, BsdfSample s) {
+    vec3 f = evalBsdf(b, wo, s.wi, s.pdf);
+    if (s.pdf <= 0.0) return s;
+    s.weight = f / s.pdf;
+    s.valid = true;
+    return s;
+}
+
+// The coat strategy: a GGX visible normal in the coat's frame (its mirror
+// normal when the coat is smooth), reflection.
+BsdfSample sampleCoat(Bsdf b, vec3 wo, vec2 u) {
+    BsdfSample s = noSample();
+    vec3 o = toCoatFrame(b, wo);
+    vec3 h = b.coatDelta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(o, b.coatAlpha, u);
+    vec3 i = reflect(-o, h);
+    if (dot(o, h) <= 0.0 || i.z <= 0.0) return s;
+    s.wi = fromCoatFrame(b, i);
+    if (!b.coatDelta) return finishSample(b, wo, s);
+    s.weight = vec3(b.coatF / b.pCoat);
+    s.delta = s.valid = true;
+    return s;
+}
+
+// One direction: uLobe picks the coat, the microfacet or the diffuse
+// strategy by the probabilities of makeBsdf and then, rescaled, reflection
+// or transmission at the sampled microfacet; u is the direction within the lobe.
 BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
-    BsdfSample s;
-    s.wi = vec3(0.0, 0.0, 1.0);
-    s.weight = vec3(0.0);
-    s.pdf = 0.0;
-    s.delta = false;
-    s.valid = false;
+    BsdfSample s = noSample();
     if (wo.z <= 0.0) return s;
+    if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0) {
+        if (uLobe < b.pCoat) return sampleCoat(b, wo, u);
+        uLobe -= b.pCoat;
+    }
     if (uLobe < b.pSpecular) {
         float uSplit = uLobe / b.pSpecular;
         vec3 h = b.delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(wo, b.alpha, u);
@@ -243,6 +356,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
             s.wi = reflect(-wo, h);
             if (b.delta) {
                 s.weight = reflectance(b, c) / (b.pSpecular * pr);
+                if (hasFeature(kFeatureClearcoat)) s.weight *= b.baseScale;
                 s.delta = s.valid = true;
                 return s;
             }
@@ -253,6 +367,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
                 float fd = b.specular * fresnelDielectric(c, b.etap);
                 s.weight = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * b.baseColor /
                            (b.etap * b.etap * b.pSpecular * (1.0 - pr));
+                if (hasFeature(kFeatureClearcoat)) s.weight *= b.baseScale;
                 s.delta = s.valid = true;
                 return s;
             }
@@ -261,11 +376,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         s.wi = sampleCosineHemisphere(u);
         if (s.wi.z <= 0.0) return s;
     }
-    vec3 f = evalBsdf(b, wo, s.wi, s.pdf);
-    if (s.pdf <= 0.0) return s;
-    s.weight = f / s.pdf;
-    s.valid = true;
-    return s;
+    return finishSample(b, wo, s);
 }
 
 #endif

@@ -1,6 +1,7 @@
 // Material evaluation at a surface point: glTF factors times their textures
 // (baseColor and emissive sRGB; metallicRoughness G = roughness, B =
-// metallic; transmission R), the tangent-space normal map, and the alpha
+// metallic; transmission R; clearcoat R, clearcoatRoughness G), the
+// tangent-space normal maps (the base's and the coat's), and the alpha
 // test the BVH traversal uses to skip holes. Code for textures, normal maps
 // and alpha is compiled out by the kFeature* bits of SPEC_FEATURES when the
 // scene has none. Needs materials[], sceneShading, sceneTexcoords and
@@ -22,6 +23,11 @@ struct SurfacePoint {
     vec3 emission;       // radiance
     vec3 ns;             // unit shading normal on the incoming side (n's side)
     uint flags;          // kMaterial* bits
+    // KHR_materials_clearcoat (kFeatureClearcoat; clearcoat 0 otherwise)
+    float clearcoat;
+    float clearcoatRoughness;  // perceptual
+    vec3 coatNormal;           // unit, world space, on n's side: clearcoatNormalTexture's,
+                               // else the interpolated normal (not the base's normal map)
 };
 
 // (TEXCOORD_0.xy, TEXCOORD_1.xy) at barycentrics (u, v) of vertices 1 and 2.
@@ -37,15 +43,16 @@ vec4 materialTexture(uint ref, vec4 uvs) {
     return sampleTextureRef(r, (r.flags & kTexCoord1) != 0u ? uvs.zw : uvs.xy);
 }
 
-// The normal-mapped shading normal. The tangent frame is built on the front
+// The shading normal mapped by texture slot `tex` with scale `scale`
+// (normalTexture, clearcoatNormalTexture). The tangent frame is built on the front
 // face (the triangle's counter-clockwise side): the interpolated tangent,
 // Gram-Schmidt against the normal, bitangent w * cross(n, t); the mapped
 // normal is normalize(T x + B y + N z) with xy scaled by normalScale (glTF
 // 2.0 3.9.3), and is reversed on a back face as the spec reverses normals.
 // A mapped normal below the geometric horizon is lifted just above it.
-vec3 normalMapped(Material mat, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3 nsInterpolated) {
-    vec3 m = materialTexture(mat.normalTex, uvs).xyz * 2.0 - 1.0;
-    m.xy *= mat.normalScale;
+vec3 normalMapped(uint tex, float scale, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3 nsInterpolated) {
+    vec3 m = materialTexture(tex, uvs).xyz * 2.0 - 1.0;
+    m.xy *= scale;
     TriVerts tv = bvhFetchTri(triangle);
     float side = dot(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz), n) >= 0.0 ? 1.0 : -1.0;
     vec3 N = side * nsInterpolated;
@@ -81,6 +88,14 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     sp.emission = mat.emission;
     sp.ns = nsInterpolated;
     sp.flags = mat.flags;
+    sp.clearcoat = 0.0;
+    sp.clearcoatRoughness = 0.0;
+    sp.coatNormal = nsInterpolated;
+    bool coat = hasFeature(kFeatureClearcoat) && (mat.flags & kMaterialClearcoat) != 0u;
+    if (coat) {
+        sp.clearcoat = mat.clearcoat;
+        sp.clearcoatRoughness = mat.clearcoatRoughness;
+    }
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
     if (mat.baseColorTex != kNoTexture) {
@@ -96,7 +111,15 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     if (mat.emissiveTex != kNoTexture) sp.emission *= materialTexture(mat.emissiveTex, uvs).rgb;
     if (mat.transmissionTex != kNoTexture) sp.transmission *= materialTexture(mat.transmissionTex, uvs).r;
     if ((kFeatures & kFeatureNormalMap) != 0u && mat.normalTex != kNoTexture)
-        sp.ns = normalMapped(mat, triangle, bary, uvs, n, nsInterpolated);
+        sp.ns = normalMapped(mat.normalTex, mat.normalScale, triangle, bary, uvs, n, nsInterpolated);
+    if (coat) {
+        if (mat.clearcoatTex != kNoTexture) sp.clearcoat *= materialTexture(mat.clearcoatTex, uvs).r;
+        if (mat.clearcoatRoughnessTex != kNoTexture)
+            sp.clearcoatRoughness *= materialTexture(mat.clearcoatRoughnessTex, uvs).g;
+        if ((kFeatures & kFeatureNormalMap) != 0u && mat.clearcoatNormalTex != kNoTexture)
+            sp.coatNormal = normalMapped(mat.clearcoatNormalTex, mat.clearcoatNormalScale, triangle, bary, uvs, n,
+                                         nsInterpolated);
+    }
     return sp;
 }
 

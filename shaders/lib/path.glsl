@@ -14,8 +14,8 @@
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
 
-// Lambert only: no material of the scene has a specular or transmission lobe.
-const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
+// Lambert only: no material of the scene has a specular, transmission or coat lobe.
+const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission | kFeatureClearcoat)) == 0u;
 
 // MIS weight of a light found by BSDF sampling with density bsdfPdf, which
 // light sampling finds with density lightPdf.
@@ -109,8 +109,14 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         if (kLambertOnly) {
             bsdf = makeLambert(sp.baseColor);
         } else {
+            BsdfLayers layers = noLayers();
+            if (hasFeature(kFeatureClearcoat)) {
+                layers.coat = sp.clearcoat;
+                layers.coatRoughness = sp.clearcoatRoughness;
+                layers.coatNormal = vec3(dot(sp.coatNormal, t), dot(sp.coatNormal, b), dot(sp.coatNormal, ns));
+            }
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
-                            sp.specular, front, woL.z);
+                            sp.specular, layers, front, woL);
         }
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);

@@ -46,7 +46,7 @@ STRATA_CONST(uint, kTriShadingWordLight, 7u);
 STRATA_CONST(uint, kTriShadingWordN2, 8u);
 STRATA_CONST(uint, kTriShadingWordPad0, 11u);
 
-STRATA_CONST(uint, kMaterialTexels, 6u);
+STRATA_CONST(uint, kMaterialTexels, 8u);
 STRATA_CONST(uint, kMaterialWordBaseColor, 0u);
 STRATA_CONST(uint, kMaterialWordEmission, 4u);
 STRATA_CONST(uint, kMaterialWordMetallic, 7u);
@@ -64,6 +64,14 @@ STRATA_CONST(uint, kMaterialWordEmissiveTex, 18u);
 STRATA_CONST(uint, kMaterialWordTransmissionTex, 19u);
 STRATA_CONST(uint, kMaterialWordAttenuation, 20u);
 STRATA_CONST(uint, kMaterialWordThickness, 23u);
+STRATA_CONST(uint, kMaterialWordClearcoat, 24u);
+STRATA_CONST(uint, kMaterialWordClearcoatRoughness, 25u);
+STRATA_CONST(uint, kMaterialWordClearcoatTex, 26u);
+STRATA_CONST(uint, kMaterialWordClearcoatRoughnessTex, 27u);
+STRATA_CONST(uint, kMaterialWordClearcoatNormalTex, 28u);
+STRATA_CONST(uint, kMaterialWordClearcoatNormalScale, 29u);
+STRATA_CONST(uint, kMaterialWordPad0, 30u);
+STRATA_CONST(uint, kMaterialWordPad1, 31u);
 
 STRATA_CONST(uint, kTriTexcoordsTexels, 3u);
 STRATA_CONST(uint, kTriTexcoordsWordUv0, 0u);
@@ -155,6 +163,14 @@ STRATA_WORD(Material, emissiveTex, kMaterialWordEmissiveTex);
 STRATA_WORD(Material, transmissionTex, kMaterialWordTransmissionTex);
 STRATA_TEXEL_WORD(Material, attenuation, kMaterialWordAttenuation);
 STRATA_WORD(Material, thickness, kMaterialWordThickness);
+STRATA_WORD(Material, clearcoat, kMaterialWordClearcoat);
+STRATA_WORD(Material, clearcoatRoughness, kMaterialWordClearcoatRoughness);
+STRATA_WORD(Material, clearcoatTex, kMaterialWordClearcoatTex);
+STRATA_WORD(Material, clearcoatRoughnessTex, kMaterialWordClearcoatRoughnessTex);
+STRATA_WORD(Material, clearcoatNormalTex, kMaterialWordClearcoatNormalTex);
+STRATA_WORD(Material, clearcoatNormalScale, kMaterialWordClearcoatNormalScale);
+STRATA_WORD(Material, pad0, kMaterialWordPad0);
+STRATA_WORD(Material, pad1, kMaterialWordPad1);
 
 STRATA_TEXELS(TriTexcoords, kTriTexcoordsTexels);
 STRATA_TEXEL_WORD(TriTexcoords, uv0, kTriTexcoordsWordUv0);

@@ -104,6 +104,8 @@ STRATA_CONST(uint, kFeatureEnvironment, 64u);  // an environment light (constant
 STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
 STRATA_CONST(uint, kFeatureUnlit, 256u);       // KHR_materials_unlit
 STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with attenuation
+// 1024u and 2048u are taken (instancing, vertex colours).
+STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the coat lobe
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -118,6 +120,7 @@ STRATA_CONST(uint, kMaterialAlphaMask, 2u);    // alphaMode MASK: alpha < alphaC
 STRATA_CONST(uint, kMaterialAlphaBlend, 4u);   // alphaMode BLEND: stochastic transparency
 STRATA_CONST(uint, kMaterialUnlit, 8u);        // KHR_materials_unlit: shows baseColor, does not scatter
 STRATA_CONST(uint, kMaterialVolume, 16u);      // KHR_materials_volume: attenuates paths inside
+STRATA_CONST(uint, kMaterialClearcoat, 32u);   // KHR_materials_clearcoat: clearcoat > 0
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -145,6 +148,16 @@ struct Material {
     // unit length, -ln(attenuationColor) / attenuationDistance.
     vec3 attenuation;
     float thickness;        // thicknessFactor (the shader takes lengths from the geometry)
+    // KHR_materials_clearcoat (kMaterialClearcoat; the seventh and eighth
+    // texels, read only under kFeatureClearcoat).
+    float clearcoat;              // clearcoatFactor
+    float clearcoatRoughness;     // clearcoatRoughnessFactor (perceptual; alpha = roughness^2)
+    uint clearcoatTex;            // clearcoatTexture: R scales clearcoat
+    uint clearcoatRoughnessTex;   // clearcoatRoughnessTexture: G scales clearcoatRoughness
+    uint clearcoatNormalTex;      // clearcoatNormalTexture: the coat's own normal map
+    float clearcoatNormalScale;   // its scale
+    uint pad0;
+    uint pad1;
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_0.xy,
@@ -377,6 +390,9 @@ struct SampleTestParams {
     uint pad2;
     vec4 bsdf0;         // BSDF routines: cos(incidence), roughness, metallic, transmission
     vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
+    vec4 bsdf2;         // clearcoat, clearcoat roughness, unused, unused
+    vec4 bsdf3;         // unused xyz; w: the coat normal's tilt t from the shading
+                        // normal, towards (0.6, 0.8, 0): (0.6 sin t, 0.8 sin t, cos t)
 };
 
 // Statistics written by the shader with atomics. Ray counts are 64-bit
@@ -398,7 +414,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 96);
+static_assert(sizeof(Material) == 128);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
@@ -411,7 +427,7 @@ static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
 static_assert(sizeof(PathState) == 48);
 static_assert(sizeof(WaveParams) == 32);
-static_assert(sizeof(SampleTestParams) == 80);
+static_assert(sizeof(SampleTestParams) == 112);
 }  // namespace strata::gpu
 #endif
 

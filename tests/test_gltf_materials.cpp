@@ -1,0 +1,108 @@
+// glTF loader: the material layer extensions (KHR_materials_clearcoat)
+// load to the file's values and textures; a bad value is one error line
+// naming the file, the material and the value. Data:
+// scripts/make_material_tests.py (tests/data/materials/layers.gltf, broken/).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_util.h"
+#include "gltf_util.h"
+#include "pack/gpu_scene.h"
+#include "test_util.h"
+
+using namespace strata;
+using namespace strata::test;
+
+TEST_SUITE_BEGIN("unit");
+
+namespace {
+
+const MaterialDesc& materialNamed(const Scene& scene, const std::string& name) {
+    for (const MaterialDesc& m : scene.materials)
+        if (m.name == name) return m;
+    FAIL("no material " << name);
+    return scene.materials.front();
+}
+
+}  // namespace
+
+TEST_CASE("gltf materials: KHR_materials_clearcoat factors, textures (texCoord, transform) and normal scale") {
+    const Scene scene = loadGltf(dataPath("materials/layers.gltf"));
+    const MaterialDesc& coat = materialNamed(scene, "Coat");
+    CHECK(coat.clearcoat == doctest::Approx(0.8));
+    CHECK(coat.clearcoatRoughness == doctest::Approx(0.3));
+    CHECK(coat.clearcoatTexture.texture == 0);
+    CHECK(coat.clearcoatTexture.texCoord == 0);
+    CHECK(coat.clearcoatRoughnessTexture.texture == 1);
+    CHECK(coat.clearcoatRoughnessTexture.texCoord == 1);
+    CHECK(coat.clearcoatNormalTexture.texture == 1);
+    CHECK(coat.clearcoatNormalScale == doctest::Approx(0.5));
+    CHECK(coat.clearcoatNormalTexture.transform.offset == glm::vec2(0.5f, 0.25f));
+    CHECK(coat.clearcoatNormalTexture.transform.scale == glm::vec2(2.0f));
+    CHECK(coat.coated());
+    // The coat's normal map needs tangents (generated: the file has none).
+    CHECK(!scene.tangents.empty());
+    // The extension with no members: the spec's defaults, no coat.
+    const MaterialDesc& defaults = materialNamed(scene, "Defaults");
+    CHECK(defaults.clearcoat == 0.0f);
+    CHECK(defaults.clearcoatRoughness == 0.0f);
+    CHECK_FALSE(defaults.clearcoatTexture.used());
+    CHECK_FALSE(defaults.clearcoatNormalTexture.used());
+    CHECK(defaults.clearcoatNormalScale == 1.0f);
+    CHECK_FALSE(defaults.coated());
+    // Packed: the coat's flag, factors and three texture slots; the feature bits.
+    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
+    CHECK((gpu.features.bits & gpu::kFeatureClearcoat) != 0u);
+    CHECK((gpu.features.bits & gpu::kFeatureNormalMap) != 0u);
+    const auto names = gpu.features.names();
+    CHECK(std::find(names.begin(), names.end(), "clearcoat") != names.end());
+    const gpu::Material& packed = gpu.materials.at(0);
+    CHECK((packed.flags & gpu::kMaterialClearcoat) != 0u);
+    CHECK(packed.clearcoat == doctest::Approx(0.8));
+    CHECK(packed.clearcoatNormalScale == doctest::Approx(0.5));
+    CHECK(packed.clearcoatTex != gpu::kNoTexture);
+    CHECK(packed.clearcoatRoughnessTex != gpu::kNoTexture);
+    CHECK(packed.clearcoatNormalTex != gpu::kNoTexture);
+    CHECK((gpu.textureRefs.at(packed.clearcoatRoughnessTex).flags & gpu::kTexCoord1) != 0u);
+    CHECK((gpu.materials.at(1).flags & gpu::kMaterialClearcoat) == 0u);
+}
+
+TEST_CASE("gltf materials: scenes without the layer extensions have none of their feature bits") {
+    for (const char* file : {"scenes/materials-board.gltf", "scenes/cornell-box.gltf", "scenes/cornell-glass.gltf"}) {
+        CAPTURE(file);
+        const Scene scene = loadGltf(sourcePath(file));
+        for (const MaterialDesc& m : scene.materials) CHECK_FALSE(m.coated());
+        CHECK((packScene(scene, buildSceneBvh(scene)).features.bits & gpu::kFeatureClearcoat) == 0u);
+    }
+}
+
+TEST_CASE("gltf materials: every broken layer value is one error line naming file, material and value") {
+    struct Case {
+        const char* file;
+        const char* expected;
+    };
+    const Case cases[] = {
+        {"clearcoat-negative.gltf", "material 0 (\"Bad\"): KHR_materials_clearcoat.clearcoatFactor -0.5 is not in [0, 1]"},
+        {"clearcoat-roughness-above-1.gltf",
+         "material 0 (\"Bad\"): KHR_materials_clearcoat.clearcoatRoughnessFactor 1.5 is not in [0, 1]"},
+        {"clearcoat-missing-texture.gltf",
+         "material 0 (\"Bad\") clearcoatTexture: texture 5 does not exist (2 textures)"},
+    };
+    std::size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dataPath("materials/broken")))
+        files += entry.path().extension() == ".gltf";
+    CHECK(files == std::size(cases));  // every file in the folder has its case
+    for (const auto& [file, expected] : cases) {
+        const std::string path = dataPath(std::string("materials/broken/") + file);
+        CAPTURE(path);
+        const std::string message = loadError(path);
+        REQUIRE_MESSAGE(!message.empty(), "loaded without an error");
+        CHECK(isOneLine(message));
+        CHECK(message == path + ": error: " + expected);
+        checkRenderRefuses(path);
+    }
+}
+
+TEST_SUITE_END();

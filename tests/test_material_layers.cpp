@@ -1,0 +1,134 @@
+// Render tests of the layers over the glTF BSDF against closed forms, pixel
+// by pixel (scenes from scripts/make_material_tests.py):
+// KHR_materials_clearcoat in a white furnace.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include <glm/glm.hpp>
+
+#include "stats/stats.h"
+#include "test_util.h"
+
+using namespace strata;
+using namespace strata::test;
+
+TEST_SUITE_BEGIN("render");
+
+namespace {
+
+double schlick(double f0, double mu) { return f0 + (1.0 - f0) * std::pow(1.0 - mu, 5.0); }
+
+// Renders `file` (64 x 64, 16 independent samples per pixel, maxDepth 1)
+// in a uniform environment of radiance 1 and checks every pixel of channel
+// c against `expected(ray, c)`, the radiance along a camera ray. A pixel
+// (box filter of radius 0.5) is the mean of 16 values of expected at
+// uniform points of its square, whose mean A and standard deviation S the
+// test takes from 8 x 8 points: the pixel must lie within z S / 4 of A,
+// z the two-sided normal quantile at level 0.01 Sidak-corrected over the
+// image's values (4.9), plus 2e-5 relative and 1e-6 (float rounding).
+void checkFurnacePixels(const std::string& file, const std::function<double(const glm::dvec3&, int)>& expected,
+                        std::uint32_t feature) {
+    const Scene scene = loadWithWhiteEnvironment(sourcePath(file));
+    const GpuScene gpu = buildAndPack(scene);
+    CHECK((gpu.features.bits & feature) == feature);
+    RenderSettings s;
+    s.width = s.height = 64;
+    s.spp = 16;
+    s.maxDepth = 1;
+    s.sampler = gpu::kSamplerIndependent;
+    const RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
+    CHECK(r.nonFinite == 0);
+    const Camera& cam = scene.cameras.at(0);
+    const auto mean = r.film.mean();
+    const double z = -stats::normalQuantile(0.5 * stats::sidak(0.01, std::size_t(s.width) * s.height * 3));
+    int wrong = 0;
+    double worstZ = 0.0, worstRel = 0.0;
+    for (int py = 0; py < s.height; ++py) {
+        for (int px = 0; px < s.width; ++px) {
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0.0, sum2 = 0.0;
+                for (int j = 0; j < 8; ++j)
+                    for (int i = 0; i < 8; ++i) {
+                        const double v = expected(cameraRay(cam, s.width, s.height, px + (i + 0.5) / 8.0,
+                                                            py + (j + 0.5) / 8.0), c);
+                        sum += v;
+                        sum2 += v * v;
+                    }
+                const double a = sum / 64.0, sd = std::sqrt(std::max(0.0, sum2 / 64.0 - a * a));
+                const double m = mean[(std::size_t(py) * s.width + px) * 3 + c];
+                const double err = std::abs(m - a), tol = z * sd / 4.0 + 2e-5 * a + 1e-6;
+                worstZ = std::max(worstZ, err / tol);
+                worstRel = std::max(worstRel, err / std::max(a, 1e-30));
+                if (err > tol && ++wrong <= 5)
+                    MESSAGE("pixel " << px << "," << py << " channel " << c << ": " << m << ", expected " << a
+                                     << " +- " << tol);
+            }
+        }
+    }
+    MESSAGE(file << ": " << wrong << " wrong values; largest |error| / tolerance " << worstZ
+                 << ", largest relative error " << worstRel);
+    CHECK(wrong == 0);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// The incidence cosine of a camera ray on the plate z = 0 facing +Z.
+double plateCos(const glm::dvec3& d) { return -d.z; }
+
+}  // namespace
+
+TEST_CASE("clearcoat: a smooth coat over a black metal in a white furnace reflects Schlick F0 0.04 at N.V, and the metal the rest") {
+    // A smooth black metal (baseColor 0, metallic 1, roughness 0) reflects
+    // Schlick's (1 - mu)^5; a smooth coat of factor 1 over it reflects
+    // Fc = 0.04 + 0.96 (1 - mu)^5 and passes 1 - Fc to the base. Every ray
+    // escapes to the environment of radiance 1, so a pixel is
+    // Fc + (1 - Fc) (1 - mu)^5. Below mu = 0.75 the strategy weights equal
+    // the two reflectances and every sample is that value (above it the
+    // base's choice probability has a floor and single samples scatter
+    // about it), so the camera sees mu in [0.3, 0.7] only.
+    checkFurnacePixels("tests/data/materials/coat-black-metal.gltf", [](const glm::dvec3& d, int) {
+        const double mu = plateCos(d);
+        REQUIRE(mu < 0.75);
+        const double fc = schlick(0.04, mu);
+        return fc + (1.0 - fc) * std::pow(1.0 - mu, 5.0);
+    }, gpu::kFeatureClearcoat);
+}
+
+TEST_CASE("clearcoat: a smooth coat over a base that reflects nothing shows exactly Schlick F0 0.04 at N.V") {
+    // A black dielectric of specular 0 reflects nothing: the coat is the
+    // only strategy and every sample is Fc(mu), seen from mu 0.34 to 0.94.
+    checkFurnacePixels("tests/data/materials/coat-black.gltf",
+                       [](const glm::dvec3& d, int) { return schlick(0.04, plateCos(d)); }, gpu::kFeatureClearcoat);
+}
+
+TEST_CASE("clearcoat: clearcoatTexture R scales the factor and clearcoatRoughnessTexture G the roughness") {
+    // Factor 1 x R = 128/255; roughness factor 1 x G = 0: a smooth coat of
+    // weight 128/255 over a base that reflects nothing.
+    checkFurnacePixels("tests/data/materials/coat-textured.gltf",
+                       [](const glm::dvec3& d, int) { return 128.0 / 255.0 * schlick(0.04, plateCos(d)); },
+                       gpu::kFeatureClearcoat | gpu::kFeatureTextures);
+}
+
+TEST_CASE("clearcoat: clearcoatNormalTexture tilts the coat's normal: Fc at the view against the mapped normal") {
+    // The texel (191, 128, 221) with scale 0.8 in the plate's tangent frame
+    // (the loader's generated tangents): a coat normal about 30 degrees off
+    // the plate's, which the coat's Fresnel sees (the base reflects nothing).
+    const Scene scene = loadGltf(sourcePath("tests/data/materials/coat-normal-map.gltf"));
+    REQUIRE(!scene.tangents.empty());
+    const glm::dvec4 t(scene.tangents[0][0]);
+    const glm::dvec3 n(0.0, 0.0, 1.0), tangent(t);
+    const glm::dvec3 bitangent = (t.w < 0.0 ? -1.0 : 1.0) * glm::cross(n, tangent);
+    glm::dvec3 m = glm::dvec3(191.0, 128.0, 221.0) / 255.0 * 2.0 - 1.0;
+    m.x *= 0.8;
+    m.y *= 0.8;
+    const glm::dvec3 coatN = glm::normalize(m.x * tangent + m.y * bitangent + m.z * n);
+    MESSAGE("coat normal " << coatN.x << ", " << coatN.y << ", " << coatN.z);
+    CHECK(coatN.z < 0.9);
+    checkFurnacePixels("tests/data/materials/coat-normal-map.gltf",
+                       [&](const glm::dvec3& d, int) { return schlick(0.04, glm::dot(-d, coatN)); },
+                       gpu::kFeatureClearcoat | gpu::kFeatureNormalMap);
+}
+
+TEST_SUITE_END();
