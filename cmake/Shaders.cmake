@@ -6,17 +6,24 @@
 # NAME=shaders/SRC.comp:DEFINE compile SRC again with -DDEFINE as kSpirv_NAME
 # (a variant that compiles code out rather than leaving it to a
 # specialization constant: the driver then never sees it). The .spv files
-# stay in ${CMAKE_BINARY_DIR}/spirv for spirv-val in the tests.
+# stay in ${CMAKE_BINARY_DIR}/spirv for spirv-val in the tests. GENERATED
+# lists headers written at build time (absolute paths): their folders are
+# include folders and every shader depends on them.
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 
 function(strata_add_shaders target)
-  cmake_parse_arguments(ARG "" "" "SHADERS;VARIANTS;INCLUDE_DIRS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SHADERS;VARIANTS;INCLUDE_DIRS;GENERATED" ${ARGN})
   set(spv_dir ${CMAKE_BINARY_DIR}/spirv)
   file(MAKE_DIRECTORY ${spv_dir})
   set(inc_flags "")
   foreach(dir ${ARG_INCLUDE_DIRS})
     list(APPEND inc_flags "-I${CMAKE_SOURCE_DIR}/${dir}")  # glslang 12 wants no space
   endforeach()
+  foreach(file ${ARG_GENERATED})
+    get_filename_component(dir ${file} DIRECTORY)
+    list(APPEND inc_flags "-I${dir}")
+  endforeach()
+  list(REMOVE_DUPLICATES inc_flags)
   set(gen_sources "")
   set(decls "")
   set(entries "")
@@ -44,7 +51,7 @@ function(strata_add_shaders target)
               --depfile ${spv}.d -o ${spv} ${CMAKE_SOURCE_DIR}/${shader}
       COMMAND ${GLSLANG_VALIDATOR} --target-env vulkan1.1 ${inc_flags} ${define_flags}
               --vn kSpirv_${name} -o ${hdr} ${CMAKE_SOURCE_DIR}/${shader}
-      DEPENDS ${CMAKE_SOURCE_DIR}/${shader}
+      DEPENDS ${CMAKE_SOURCE_DIR}/${shader} ${ARG_GENERATED}
       DEPFILE ${spv}.d
       COMMENT "glslangValidator ${shader} ${define_flags}"
       VERBATIM)

@@ -15,6 +15,12 @@ plate z = 0 facing +Z under a smooth coat, seen by a camera 5 units away
 (and a smooth base) into the environment, so each pixel is the layers'
 reflectance at its rays' incidence.
 
+sheen-*.gltf (KHR_materials_sheen) are such plates under a sheen, seen
+through a 1-degree field of view at the incidence cosine of a node of the
+sheen albedo table (tools/sheen-albedo: mu_i = (i / 31)^3, roughness r_j =
+(0.1 + 0.9 j / 31)^2), so the image mean is the sheen colour times the
+table's E there (over black), or 1 (over white Lambert).
+
 layers.gltf holds the layer extensions' values and textures for the loader
 tests; broken/ one bad value each.
 """
@@ -166,6 +172,41 @@ def coat_normal_mapped(path):
     textured_plate(path, fields, ["KHR_materials_clearcoat", "KHR_materials_specular"], 20.0)
 
 
+def sheen(color, roughness, **textures):
+    return {"KHR_materials_sheen": dict({"sheenColorFactor": list(color), "sheenRoughnessFactor": roughness},
+                                        **textures)}
+
+
+SHEEN_MU_NODE, SHEEN_ROUGHNESS_NODE = 24, 20
+SHEEN_MU = (SHEEN_MU_NODE / 31) ** 3
+SHEEN_ROUGHNESS = (0.1 + 0.9 * SHEEN_ROUGHNESS_NODE / 31) ** 2
+SHEEN_COLOR = (0.9, 0.6, 0.3)
+SHEEN_TEXEL = (188, 128, 64, 128)  # sRGB colour; roughness A = 128/255
+
+
+def sheen_plate(base):
+    """A sheen of SHEEN_COLOR and roughness SHEEN_ROUGHNESS over black
+    (metallic 0, specular 0) or white Lambert."""
+    def material(w):
+        return w.add_material("Sheen", base_color=(base, base, base, 1), metallic=0.0, roughness=1.0, specular=0.0,
+                              extensions=sheen(SHEEN_COLOR, SHEEN_ROUGHNESS))
+    return plate_scene(material, math.degrees(math.acos(SHEEN_MU)), 1.0,
+                       ["KHR_materials_sheen", "KHR_materials_specular"])
+
+
+def sheen_textured(path):
+    """The black plate's sheen from textures: colour factor 1 x the sRGB
+    texel SHEEN_TEXEL, roughness factor SHEEN_ROUGHNESS * 255 / 128 x its A."""
+    def fields(s):
+        tex = constant_texture(s, SHEEN_TEXEL)
+        return {"name": "TexturedSheen", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                "extensions": dict(sheen((1, 1, 1), SHEEN_ROUGHNESS * 255 / 128, sheenColorTexture={"index": tex},
+                                         sheenRoughnessTexture={"index": tex}),
+                                   KHR_materials_specular={"specularFactor": 0.0})}
+    textured_plate(path, fields, ["KHR_materials_sheen", "KHR_materials_specular"], 1.0,
+                   math.degrees(math.acos(SHEEN_MU)))
+
+
 def layers_scene(path, materials):
     """Loader checks: one quad per material of raw JSON `materials(s, tex)`
     (tex: two constant textures), with TEXCOORD_0 and TEXCOORD_1."""
@@ -177,7 +218,7 @@ def layers_scene(path, materials):
         uvs = [(0, 1), (1, 1), (1, 0), (0, 0)]
         s.quad(fields["name"], corners, uvs, s.material(**fields), (0, 0, 1), uv_sets=[uvs, uvs])
     s.camera(0.7, (0, 0, 3))
-    s.write(path, ["KHR_materials_clearcoat", "KHR_texture_transform"])
+    s.write(path, ["KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_texture_transform"])
 
 
 def layer_materials(s, tex):
@@ -188,7 +229,9 @@ def layer_materials(s, tex):
                                             clearcoatRoughnessTexture={"index": tex[1], "texCoord": 1},
                                             clearcoatNormalTexture={"index": tex[1], "scale": 0.5,
                                                                     "extensions": transform})},
-        {"name": "Defaults", "extensions": {"KHR_materials_clearcoat": {}}},
+        {"name": "Sheen", "extensions": sheen((0.9, 0.6, 0.3), 0.4, sheenColorTexture={"index": tex[0]},
+                                              sheenRoughnessTexture={"index": tex[1], "texCoord": 1})},
+        {"name": "Defaults", "extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_sheen": {}}},
     ]
 
 
@@ -199,6 +242,10 @@ BROKEN = {
     "clearcoat-roughness-above-1.gltf": lambda tex: {"name": "Bad", "extensions": coat(1.0, 1.5)},
     "clearcoat-missing-texture.gltf":
         lambda tex: {"name": "Bad", "extensions": coat(1.0, clearcoatTexture={"index": 5})},
+    "sheen-color-above-1.gltf": lambda tex: {"name": "Bad", "extensions": sheen((1.5, 0, 0), 0.5)},
+    "sheen-roughness-negative.gltf": lambda tex: {"name": "Bad", "extensions": sheen((1, 1, 1), -0.1)},
+    "sheen-color-two-numbers.gltf":
+        lambda tex: {"name": "Bad", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1]}}},
 }
 
 
@@ -282,6 +329,8 @@ def main():
         # below mu 0.75: tests/test_material_layers.cpp says why).
         "coat-black-metal.gltf": coat_plate(True, 60.0, 24.0),
         "coat-black.gltf": coat_plate(False, 45.0, 50.0),
+        "sheen-black.gltf": sheen_plate(0.0),
+        "sheen-white.gltf": sheen_plate(1.0),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))
@@ -290,6 +339,7 @@ def main():
         print("wrote", path)
     coat_textured(os.path.join(out, "coat-textured.gltf"))
     coat_normal_mapped(os.path.join(out, "coat-normal-map.gltf"))
+    sheen_textured(os.path.join(out, "sheen-textured.gltf"))
     layers_scene(os.path.join(out, "layers.gltf"), layer_materials)
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
     for name, material in BROKEN.items():

@@ -1,5 +1,5 @@
-// glTF loader: the material layer extensions (KHR_materials_clearcoat)
-// load to the file's values and textures; a bad value is one error line
+// glTF loader: the material layer extensions (KHR_materials_clearcoat,
+// KHR_materials_sheen) load to the file's values and textures; a bad value is one error line
 // naming the file, the material and the value. Data:
 // scripts/make_material_tests.py (tests/data/materials/layers.gltf, broken/).
 #include <doctest/doctest.h>
@@ -10,6 +10,7 @@
 #include "cli_util.h"
 #include "gltf_util.h"
 #include "pack/gpu_scene.h"
+#include "pack/textures.h"
 #include "test_util.h"
 
 using namespace strata;
@@ -69,12 +70,46 @@ TEST_CASE("gltf materials: KHR_materials_clearcoat factors, textures (texCoord, 
     CHECK((gpu.materials.at(1).flags & gpu::kMaterialClearcoat) == 0u);
 }
 
+TEST_CASE("gltf materials: KHR_materials_sheen colour, roughness and their textures (sRGB colour, texCoord 1)") {
+    const Scene scene = loadGltf(dataPath("materials/layers.gltf"));
+    const MaterialDesc& sheen = materialNamed(scene, "Sheen");
+    CHECK(sheen.sheenColor == glm::vec3(0.9f, 0.6f, 0.3f));
+    CHECK(sheen.sheenRoughness == doctest::Approx(0.4));
+    CHECK(sheen.sheenColorTexture.texture == 0);
+    CHECK(sheen.sheenRoughnessTexture.texture == 1);
+    CHECK(sheen.sheenRoughnessTexture.texCoord == 1);
+    CHECK(sheen.sheened());
+    const MaterialDesc& defaults = materialNamed(scene, "Defaults");
+    CHECK(defaults.sheenColor == glm::vec3(0.0f));
+    CHECK(defaults.sheenRoughness == 0.0f);
+    CHECK_FALSE(defaults.sheened());
+    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
+    CHECK((gpu.features.bits & gpu::kFeatureSheen) != 0u);
+    const auto names = gpu.features.names();
+    CHECK(std::find(names.begin(), names.end(), "sheen") != names.end());
+    const gpu::Material& packed = gpu.materials.at(1);
+    CHECK((packed.flags & gpu::kMaterialSheen) != 0u);
+    CHECK(packed.sheenColor == glm::vec3(0.9f, 0.6f, 0.3f));
+    CHECK(packed.sheenRoughness == doctest::Approx(0.4));
+    REQUIRE(packed.sheenColorTex != gpu::kNoTexture);
+    REQUIRE(packed.sheenRoughnessTex != gpu::kNoTexture);
+    CHECK((gpu.textureRefs.at(packed.sheenColorTex).flags & gpu::kTexSrgb) != 0u);
+    CHECK((gpu.textureRefs.at(packed.sheenRoughnessTex).flags & gpu::kTexSrgb) == 0u);
+    CHECK((gpu.textureRefs.at(packed.sheenRoughnessTex).flags & gpu::kTexCoord1) != 0u);
+    // The texel words start with the sheen albedo table (lib/sheen.glsl reads it there).
+    const auto table = sheenAlbedoWords();
+    REQUIRE(gpu.texels.size() > table.size());
+    CHECK(std::equal(table.begin(), table.end(), gpu.texels.begin()));
+    CHECK(gpu.textureRefs.at(packed.sheenColorTex).offset >= table.size());
+}
+
 TEST_CASE("gltf materials: scenes without the layer extensions have none of their feature bits") {
     for (const char* file : {"scenes/materials-board.gltf", "scenes/cornell-box.gltf", "scenes/cornell-glass.gltf"}) {
         CAPTURE(file);
         const Scene scene = loadGltf(sourcePath(file));
-        for (const MaterialDesc& m : scene.materials) CHECK_FALSE(m.coated());
-        CHECK((packScene(scene, buildSceneBvh(scene)).features.bits & gpu::kFeatureClearcoat) == 0u);
+        for (const MaterialDesc& m : scene.materials) CHECK_FALSE((m.coated() || m.sheened()));
+        const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
+        CHECK((gpu.features.bits & (gpu::kFeatureClearcoat | gpu::kFeatureSheen)) == 0u);
     }
 }
 
@@ -89,6 +124,11 @@ TEST_CASE("gltf materials: every broken layer value is one error line naming fil
          "material 0 (\"Bad\"): KHR_materials_clearcoat.clearcoatRoughnessFactor 1.5 is not in [0, 1]"},
         {"clearcoat-missing-texture.gltf",
          "material 0 (\"Bad\") clearcoatTexture: texture 5 does not exist (2 textures)"},
+        {"sheen-color-above-1.gltf", "material 0 (\"Bad\"): KHR_materials_sheen.sheenColorFactor is not three numbers in [0, 1]"},
+        {"sheen-color-two-numbers.gltf",
+         "material 0 (\"Bad\"): KHR_materials_sheen.sheenColorFactor is not three numbers in [0, 1]"},
+        {"sheen-roughness-negative.gltf",
+         "material 0 (\"Bad\"): KHR_materials_sheen.sheenRoughnessFactor -0.1 is not in [0, 1]"},
     };
     std::size_t files = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dataPath("materials/broken")))

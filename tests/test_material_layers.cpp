@@ -1,6 +1,6 @@
 // Render tests of the layers over the glTF BSDF against closed forms, pixel
-// by pixel (scenes from scripts/make_material_tests.py):
-// KHR_materials_clearcoat in a white furnace.
+// by pixel or over the image (scenes from scripts/make_material_tests.py):
+// KHR_materials_clearcoat and KHR_materials_sheen in a white furnace.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "pack/textures.h"
+#include "sheen_albedo.h"
 #include "stats/stats.h"
 #include "test_util.h"
 
@@ -129,6 +131,65 @@ TEST_CASE("clearcoat: clearcoatNormalTexture tilts the coat's normal: Fc at the 
     checkFurnacePixels("tests/data/materials/coat-normal-map.gltf",
                        [&](const glm::dvec3& d, int) { return schlick(0.04, glm::dot(-d, coatN)); },
                        gpu::kFeatureClearcoat | gpu::kFeatureNormalMap);
+}
+
+namespace {
+
+// scripts/make_material_tests.py: the sheen plates' table node.
+constexpr int kSheenMuNode = 24, kSheenRoughnessNode = 20;
+const glm::dvec3 kSheenColor(0.9, 0.6, 0.3);
+
+// Renders `file` (16 x 16, 256 spp, maxDepth 1) in a uniform environment of
+// radiance 1 and checks each channel's image mean against expected[c]
+// within 4 standard errors plus `tolerance` x expected[c].
+void checkFurnaceMean(const std::string& file, const glm::dvec3& expected, double tolerance) {
+    const Scene scene = loadWithWhiteEnvironment(sourcePath(file));
+    const GpuScene gpu = buildAndPack(scene);
+    CHECK((gpu.features.bits & gpu::kFeatureSheen) != 0u);
+    RenderSettings s;
+    s.width = s.height = 16;
+    s.spp = 256;
+    s.maxDepth = 1;
+    const RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
+    CHECK(r.nonFinite == 0);
+    const auto m = r.film.mean();
+    const auto v = r.film.varianceOfMean();
+    const std::size_t n = m.size() / 3;
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0.0, var = 0.0;
+        for (std::size_t i = 0; i < n; ++i) sum += m[i * 3 + c], var += v[i * 3 + c];
+        const double mean = sum / double(n), se = std::sqrt(var) / double(n);
+        MESSAGE(file << " channel " << c << ": " << mean << " +- " << se << " (expected " << expected[c] << ")");
+        CHECK(std::abs(mean - expected[c]) < tolerance * expected[c] + 4.0 * se);
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+double sheenNodeAlbedo() { return kSheenAlbedo[kSheenRoughnessNode * kSheenAlbedoMuCount + kSheenMuNode]; }
+
+}  // namespace
+
+TEST_CASE("sheen: over a black base in a white furnace, the image is sheenColor x the lobe's albedo E(mu, roughness)") {
+    // A plate at a node of the albedo table (mu 0.464, roughness 0.463)
+    // through a 1-degree field of view: sheenColor x E, E within the
+    // table's quadrature (1e-3 relative).
+    const double e = sheenNodeAlbedo();
+    CHECK(e < 1.0);
+    checkFurnaceMean("tests/data/materials/sheen-black.gltf", kSheenColor * e, 1e-3);
+}
+
+TEST_CASE("sheen: sheenColorTexture (sRGB) and sheenRoughnessTexture (A) scale their factors") {
+    // Colour factor 1 x the sRGB texel (188, 128, 64); roughness factor
+    // r x 255/128 x A = 128/255: the black plate's node again.
+    const glm::dvec3 color(srgbToLinear(188.0 / 255.0), srgbToLinear(128.0 / 255.0), srgbToLinear(64.0 / 255.0));
+    checkFurnaceMean("tests/data/materials/sheen-textured.gltf", color * sheenNodeAlbedo(), 1e-3);
+}
+
+TEST_CASE("sheen: over white Lambert in a white furnace the albedo scaling keeps exactly the energy: 1") {
+    // The base keeps 1 - max(sheenColor) E and the sheen reflects sheenColor E:
+    // 1 - 0.9 E + (0.9, 0.6, 0.3) E per channel.
+    const double e = sheenNodeAlbedo();
+    checkFurnaceMean("tests/data/materials/sheen-white.gltf", glm::dvec3(1.0 - 0.9 * e) + kSheenColor * e, 1e-3);
 }
 
 TEST_SUITE_END();

@@ -24,7 +24,7 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureAlphaTest, "alpha-test"},    {gpu::kFeaturePunctual, "punctual-lights"},
         {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"},
         {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"},
-        {gpu::kFeatureClearcoat, "clearcoat"}};
+        {gpu::kFeatureClearcoat, "clearcoat"},     {gpu::kFeatureSheen, "sheen"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -163,8 +163,9 @@ std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used)
         const MaterialDesc& m = scene.materials[i];
         const bool coatTextures = m.coated() && (m.clearcoatTexture.used() || m.clearcoatRoughnessTexture.used() ||
                                                  m.clearcoatNormalTexture.used());
+        const bool sheenTextures = m.sheened() && (m.sheenColorTexture.used() || m.sheenRoughnessTexture.used());
         if (m.baseColorTexture.used() || m.metallicRoughnessTexture.used() || m.normalTexture.used() ||
-            m.emissiveTexture.used() || m.transmissionTexture.used() || coatTextures)
+            m.emissiveTexture.used() || m.transmissionTexture.used() || coatTextures || sheenTextures)
             bits |= gpu::kFeatureTextures;
         if (m.normalTexture.used() || (m.coated() && m.clearcoatNormalTexture.used()))
             bits |= gpu::kFeatureNormalMap;
@@ -292,8 +293,14 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
             gm.clearcoatRoughness = m.clearcoatRoughness;
             gm.clearcoatNormalScale = m.clearcoatNormalScale;
         }
+        if (m.sheened()) {
+            gm.flags |= gpu::kMaterialSheen;
+            gm.sheenColor = m.sheenColor;
+            gm.sheenRoughness = m.sheenRoughness;
+        }
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex = gm.transmissionTex =
-            gm.clearcoatTex = gm.clearcoatRoughnessTex = gm.clearcoatNormalTex = gpu::kNoTexture;
+            gm.clearcoatTex = gm.clearcoatRoughnessTex = gm.clearcoatNormalTex = gm.sheenColorTex =
+                gm.sheenRoughnessTex = gpu::kNoTexture;
         g.materials.push_back(gm);
     }
     std::vector<bool> used(g.materials.size(), false);
@@ -395,6 +402,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         if (m.transmission > 0.0f && m.metallic < 1.0f) g.features.bits |= gpu::kFeatureTransmission;
         if ((m.flags & gpu::kMaterialVolume) != 0u) g.features.bits |= gpu::kFeatureVolume;
         if ((m.flags & gpu::kMaterialClearcoat) != 0u) g.features.bits |= gpu::kFeatureClearcoat;
+        if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
     }
     if constexpr (consume) releaseGeometry(scene);
     return g;

@@ -1,7 +1,11 @@
 #include "pack/textures.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+
+#include "sheen_albedo.h"
 
 namespace strata {
 
@@ -75,9 +79,19 @@ void transformRows(const TextureTransform& t, glm::vec4& row0, glm::vec4& row1) 
     row1 = glm::vec4(static_cast<float>(-s * t.scale.x), static_cast<float>(c * t.scale.y), t.offset.y, 0.0f);
 }
 
+std::vector<std::uint32_t> sheenAlbedoWords() {
+    std::vector<std::uint32_t> words;
+    for (const float e : kSheenAlbedo) words.push_back(std::bit_cast<std::uint32_t>(e));
+    return words;
+}
+
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
                             std::vector<gpu::Material>& materials) {
     PackedTextures out;
+    // KHR_materials_sheen's albedo table first (lib/sheen.glsl reads it there).
+    bool sheen = false;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) sheen = sheen || (used[i] && scene.materials[i].sheened());
+    if (sheen) out.texels = sheenAlbedoWords();
     std::vector<std::int64_t> imageOffset(scene.images.size(), -1);
     auto addRef = [&](const TextureSlot& slot, bool srgb) -> std::uint32_t {
         if (!slot.used()) return gpu::kNoTexture;
@@ -115,6 +129,11 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
             g.clearcoatTex = addRef(m.clearcoatTexture, false);
             g.clearcoatRoughnessTex = addRef(m.clearcoatRoughnessTexture, false);
             g.clearcoatNormalTex = addRef(m.clearcoatNormalTexture, false);
+        }
+        g.sheenColorTex = g.sheenRoughnessTex = gpu::kNoTexture;
+        if (m.sheened()) {
+            g.sheenColorTex = addRef(m.sheenColorTexture, true);
+            g.sheenRoughnessTex = addRef(m.sheenRoughnessTexture, false);
         }
     }
     return out;

@@ -216,7 +216,9 @@ private:
             {&m.transmissionTexture, "transmissionTexture"},
             {&m.clearcoatTexture, "clearcoatTexture"},
             {&m.clearcoatRoughnessTexture, "clearcoatRoughnessTexture"},
-            {&m.clearcoatNormalTexture, "clearcoatNormalTexture"}};
+            {&m.clearcoatNormalTexture, "clearcoatNormalTexture"},
+            {&m.sheenColorTexture, "sheenColorTexture"},
+            {&m.sheenRoughnessTexture, "sheenRoughnessTexture"}};
         for (const auto& [slot, name] : slots) {
             if (slot->used() && prim.texcoords[slot->texCoord].empty()) {
                 fail(path_, gltf::meshLabel(model_, mesh) + " primitive " + std::to_string(prim.index) +

@@ -1,6 +1,6 @@
 // glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
 // KHR_materials_emissive_strength, _ior, _transmission, _specular, _unlit,
-// _volume and _clearcoat, and the texture slots (occlusionTexture is not
+// _volume, _clearcoat and _sheen, and the texture slots (occlusionTexture is not
 // read: a path tracer computes occlusion). Factors outside their range are
 // errors.
 #include <cmath>
@@ -34,19 +34,21 @@ double extensionNumber(const std::string& path, const std::string& label,
     return value.GetNumberAsDouble();
 }
 
-// KHR_materials_volume.attenuationColor: three numbers in [0, 1], default white.
-glm::vec3 volumeColor(const std::string& path, const std::string& label, const tinygltf::Material& material) {
-    const auto it = material.extensions.find("KHR_materials_volume");
-    if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has("attenuationColor"))
-        return glm::vec3(1.0f);
-    const tinygltf::Value& c = it->second.Get("attenuationColor");
+// The colour `key` of extension object `extension`: three numbers in [0, 1],
+// or `fallback` when absent.
+glm::vec3 extensionColor(const std::string& path, const std::string& label, const tinygltf::Material& material,
+                         const char* extension, const char* key, glm::vec3 fallback) {
+    const auto it = material.extensions.find(extension);
+    if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
+    const tinygltf::Value& c = it->second.Get(key);
     glm::vec3 color(0.0f);
     bool ok = c.IsArray() && c.ArrayLen() == 3;
     for (int k = 0; ok && k < 3; ++k) {
-        ok = c.Get(k).IsNumber() && c.Get(k).GetNumberAsDouble() >= 0.0 && c.Get(k).GetNumberAsDouble() <= 1.0;
-        if (ok) color[k] = static_cast<float>(c.Get(k).GetNumberAsDouble());
+        const double v = c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1.0;
+        ok = v >= 0.0 && v <= 1.0;
+        color[k] = static_cast<float>(v);
     }
-    if (!ok) fail(path, label + ": KHR_materials_volume.attenuationColor is not three numbers in [0, 1]");
+    if (!ok) fail(path, label + ": " + extension + "." + key + " is not three numbers in [0, 1]");
     return color;
 }
 
@@ -165,7 +167,7 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     if (!(distance > 0.0))
         fail(path, label + ": KHR_materials_volume.attenuationDistance " + formatNumber(distance) + " is not > 0");
     m.attenuationDistance = static_cast<float>(distance);
-    m.attenuationColor = volumeColor(path, label, src);
+    m.attenuationColor = extensionColor(path, label, src, "KHR_materials_volume", "attenuationColor", glm::vec3(1.0f));
     m.doubleSided = src.doubleSided;
     if (src.alphaMode == "OPAQUE") {
         m.alphaMode = MaterialDesc::AlphaMode::Opaque;
@@ -195,6 +197,12 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.clearcoatRoughnessTexture = extensionSlot(path, model, label, src, coat, "clearcoatRoughnessTexture");
     m.clearcoatNormalTexture =
         extensionSlot(path, model, label, src, coat, "clearcoatNormalTexture", &m.clearcoatNormalScale);
+
+    const char* sheen = "KHR_materials_sheen";
+    m.sheenColor = extensionColor(path, label, src, sheen, "sheenColorFactor", glm::vec3(0.0f));
+    m.sheenRoughness = unitFactor(sheen, "sheenRoughnessFactor", 0.0);
+    m.sheenColorTexture = extensionSlot(path, model, label, src, sheen, "sheenColorTexture");
+    m.sheenRoughnessTexture = extensionSlot(path, model, label, src, sheen, "sheenRoughnessTexture");
     return m;
 }
 

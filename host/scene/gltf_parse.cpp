@@ -24,7 +24,7 @@ namespace {
 constexpr std::string_view kSupportedExtensions[] = {
     "EXT_meshopt_compression", "KHR_draco_mesh_compression",
     "KHR_lights_punctual", "KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
+    "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_volume", "KHR_mesh_quantization",
     "KHR_texture_transform"};
 

@@ -76,6 +76,12 @@ struct MaterialDesc {
     TextureSlot clearcoatNormalTexture;    // linear, tangent space
     float clearcoatNormalScale = 1.0f;     // clearcoatNormalTexture.scale
     bool coated() const { return clearcoat > 0.0f && !unlit; }
+    // KHR_materials_sheen: a Charlie sheen over the base (sheenColor 0: none).
+    glm::vec3 sheenColor{0.0f};            // sheenColorFactor, linear
+    float sheenRoughness = 0.0f;           // sheenRoughnessFactor
+    TextureSlot sheenColorTexture;         // sRGB RGB
+    TextureSlot sheenRoughnessTexture;     // linear A
+    bool sheened() const { return glm::any(glm::greaterThan(sheenColor, glm::vec3(0.0f))) && !unlit; }
     glm::vec3 emission() const { return unlit ? glm::vec3(0.0f) : emissiveFactor * emissiveStrength; }
 };
 

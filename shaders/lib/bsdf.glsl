@@ -15,14 +15,20 @@
 // alpha kDeltaAlpha the reflection and transmission lobes are exact (delta)
 // mirror and refraction, so roughness 0 is a perfect mirror.
 //
-// KHR_materials_clearcoat (kFeatureClearcoat) lays a GGX coat of ior 1.5
-// with its own roughness and normal over all of that, as the extension's
-// fresnel_coat does:
+// KHR_materials_sheen (kFeatureSheen) lays a sheen over that base, and
+// KHR_materials_clearcoat (kFeatureClearcoat) a GGX coat of ior 1.5 with
+// its own roughness and normal over both, as the extensions do:
 //
-//   f = base * (1 - coatF) + coatF * GGX(coat alpha, coat normal)
+//   f = (1 - coatF) (sheen + base * sheenScale) + coatF * GGX(coat alpha, coat normal)
+//   sheen = sheenColor * Charlie D * V / max(1, E(wo.z))
+//   sheenScale = 1 - max3(sheenColor) min(1, E(wo.z))
 //   coatF = clearcoat * Schlick(F0 0.04, wo . coat normal)
 //
-// (the coat lobe evaluated in the coat's frame, |cos| of its own normal).
+// with E the sheen lobe's directional albedo (lib/sheen.glsl): the
+// extension's albedo scaling in its view-only form. Where the extension's
+// lobe reflects more than it receives (E > 1: small sheen roughness at
+// grazing views), it is divided by E. The coat lobe is evaluated in the
+// coat's frame, with |cos| of its own normal.
 //
 // All directions are in the local shading frame: z is the shading normal on
 // the side the ray came from, so wo.z > 0; reflection has wi.z > 0 and
@@ -35,6 +41,7 @@
 #include "shared/bindings.h"
 #include "lib/features.glsl"
 #include "lib/sampling.glsl"
+#include "lib/sheen.glsl"
 
 const float kDeltaAlpha = 1.0e-3;
 
@@ -52,11 +59,15 @@ struct Bsdf {
     bool coatDelta;      // coatAlpha < kDeltaAlpha: the coat is a mirror
     vec3 coatN;          // the coat's normal in the shading frame (wo . coatN > 0)
     float coatF;         // coat * Schlick(0.04, wo . coatN): the coat's weight
-    float baseScale;     // what the layers leave the base: 1 - coatF
+    // KHR_materials_sheen (kFeatureSheen; sheen 0 without one).
+    vec3 sheen;          // sheenColor (1 - coatF) / max(1, E(wo.z)): the Charlie lobe's weight
+    float sheenAlpha;    // Charlie alpha = roughness^2
+    float sheenLambdaO;  // the visibility fit's Lambda(wo.z)
+    float baseScale;     // what the layers leave the base: (1 - coatF) sheenScale
     // Probabilities of the sampling strategies (set by makeBsdf): the
     // microfacet lobes (then reflection or transmission by specularSplit),
-    // the diffuse lobe and the coat.
-    float pSpecular, pDiffuse, pCoat;
+    // the diffuse lobe, the coat and the sheen.
+    float pSpecular, pDiffuse, pCoat, pSheen;
 };
 
 // The layers over the base a surface point gives makeBsdf; each is read
@@ -65,9 +76,13 @@ struct BsdfLayers {
     float coat;           // KHR_materials_clearcoat: clearcoat factor x texture (0: none)
     float coatRoughness;  // perceptual
     vec3 coatNormal;      // unit, in the shading frame
+    vec3 sheenColor;      // KHR_materials_sheen: linear, factor x texture (0: none)
+    float sheenRoughness;
 };
 
-BsdfLayers noLayers() { return BsdfLayers(0.0, 0.0, vec3(0.0, 0.0, 1.0)); }
+BsdfLayers noLayers() { return BsdfLayers(0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0); }
+
+float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -106,15 +121,56 @@ float specularSplit(Bsdf b, float c) {
     return wr + wt > 0.0 ? wr / (wr + wt) : 1.0;
 }
 
-// No coat: what makeBsdf and makeLambert leave.
+// No layers: what makeBsdf and makeLambert start from.
 void clearLayers(inout Bsdf b) {
     b.coat = 0.0;
     b.coatAlpha = 1.0;
     b.coatDelta = false;
     b.coatN = vec3(0.0, 0.0, 1.0);
     b.coatF = 0.0;
+    b.sheen = vec3(0.0);
+    b.sheenAlpha = 1.0;
+    b.sheenLambdaO = 0.0;
     b.baseScale = 1.0;
     b.pCoat = 0.0;
+    b.pSheen = 0.0;
+}
+
+// The layers over the base (makeBsdf's last step): their weights, the base's
+// scale, and the strategies' probabilities from the base's albedo
+// estimates ws (microfacet) and wd (diffuse) and the layers' own.
+void addLayers(inout Bsdf b, BsdfLayers layers, vec3 wo, float ws, float wd) {
+    float wSheen = 0.0, wCoat = 0.0;
+    if (hasFeature(kFeatureSheen) && max3(layers.sheenColor) > 0.0) {
+        vec3 color = clamp(layers.sheenColor, 0.0, 1.0);
+        float r = max(clamp(layers.sheenRoughness, 0.0, 1.0), kSheenRoughnessMin);
+        b.sheenAlpha = r * r;
+        float e = sheenAlbedo(wo.z, r);
+        b.sheen = color / max(e, 1.0);
+        b.sheenLambdaO = charlieLambda(wo.z, b.sheenAlpha);
+        b.baseScale = 1.0 - max3(color) * min(e, 1.0);
+        // The lobe's albedo estimate, floored as the base's are.
+        wSheen = max3(color) * max(min(e, 1.0), 0.01);
+    }
+    if (hasFeature(kFeatureClearcoat) && layers.coat > 0.0) {
+        b.coat = min(layers.coat, 1.0);
+        float rc = clamp(layers.coatRoughness, 0.0, 1.0);
+        b.coatAlpha = rc * rc;
+        b.coatDelta = b.coatAlpha < kDeltaAlpha;
+        if (dot(wo, layers.coatNormal) > 0.0) b.coatN = layers.coatNormal;
+        b.coatF = b.coat * fresnelSchlick(vec3(0.04), dot(wo, b.coatN)).x;
+        b.baseScale *= 1.0 - b.coatF;
+        b.sheen *= 1.0 - b.coatF;
+        wSheen *= 1.0 - b.coatF;
+        wCoat = b.coatF;  // the coat's albedo estimate: its Fresnel weight
+    }
+    ws *= b.baseScale;
+    wd *= b.baseScale;
+    float total = ws + wd + wSheen + wCoat;
+    b.pSpecular = total > 0.0 ? ws / total : 0.0;
+    b.pDiffuse = total > 0.0 ? wd / total : 0.0;
+    b.pSheen = total > 0.0 ? wSheen / total : 0.0;
+    b.pCoat = total > 0.0 ? wCoat / total : 0.0;
 }
 
 // ior < 1 (KHR_materials_ior allows 0) is treated as 1.5, the default.
@@ -143,21 +199,11 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     float ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
                (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
     float wd = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05) * lumBase;
-    float total = ws + wd;
-    if (hasFeature(kFeatureClearcoat) && layers.coat > 0.0) {
-        b.coat = min(layers.coat, 1.0);
-        float rc = clamp(layers.coatRoughness, 0.0, 1.0);
-        b.coatAlpha = rc * rc;
-        b.coatDelta = b.coatAlpha < kDeltaAlpha;
-        if (dot(wo, layers.coatNormal) > 0.0) b.coatN = layers.coatNormal;
-        b.coatF = b.coat * fresnelSchlick(vec3(0.04), dot(wo, b.coatN)).x;
-        b.baseScale = 1.0 - b.coatF;
-        // The coat's albedo estimate is its Fresnel weight.
-        ws *= b.baseScale;
-        wd *= b.baseScale;
-        total = ws + wd + b.coatF;
-        b.pCoat = b.coatF / total;
+    if (hasFeature(kFeatureClearcoat | kFeatureSheen)) {
+        addLayers(b, layers, wo, ws, wd);
+        return b;
     }
+    float total = ws + wd;
     b.pSpecular = total > 0.0 ? ws / total : 0.0;
     b.pDiffuse = total > 0.0 ? wd / total : 0.0;
     return b;
@@ -289,9 +335,15 @@ vec3 fromCoatFrame(Bsdf b, vec3 w) {
 // the density with which sampleBsdf produces wi (solid angle, strategy and
 // lobe choice included).
 vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
-    if (!hasFeature(kFeatureClearcoat)) return evalBase(b, wo, wi, pdf);
+    if (!hasFeature(kFeatureClearcoat | kFeatureSheen)) return evalBase(b, wo, wi, pdf);
     vec3 f = evalBase(b, wo, wi, pdf) * b.baseScale;
-    if (b.pCoat > 0.0 && !b.coatDelta && wo.z > 0.0) {
+    if (hasFeature(kFeatureSheen) && b.pSheen > 0.0 && wo.z > 0.0 && wi.z > 0.0) {
+        vec3 h = normalize(wo + wi);
+        float d = charlieD(h.z, b.sheenAlpha);
+        f += b.sheen * (d / ((1.0 + b.sheenLambdaO + charlieLambda(wi.z, b.sheenAlpha)) * 4.0 * wo.z));
+        pdf += b.pSheen * d * h.z / (4.0 * dot(wo, h));
+    }
+    if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0 && !b.coatDelta && wo.z > 0.0) {
         vec3 o = toCoatFrame(b, wo), i = toCoatFrame(b, wi);
         if (o.z > 0.0 && i.z > 0.0) {
             vec3 h = normalize(o + i);
@@ -336,7 +388,16 @@ BsdfSample sampleCoat(Bsdf b, vec3 wo, vec2 u) {
     return s;
 }
 
-// One direction: uLobe picks the coat, the microfacet or the diffuse
+// The sheen strategy: a Charlie normal (density D h.z), reflection.
+BsdfSample sampleSheen(Bsdf b, vec3 wo, vec2 u) {
+    BsdfSample s = noSample();
+    vec3 h = charlieSample(b.sheenAlpha, u);
+    s.wi = reflect(-wo, h);
+    if (dot(wo, h) <= 0.0 || s.wi.z <= 0.0) return s;
+    return finishSample(b, wo, s);
+}
+
+// One direction: uLobe picks the coat, sheen, microfacet or diffuse
 // strategy by the probabilities of makeBsdf and then, rescaled, reflection
 // or transmission at the sampled microfacet; u is the direction within the lobe.
 BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
@@ -345,6 +406,10 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
     if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0) {
         if (uLobe < b.pCoat) return sampleCoat(b, wo, u);
         uLobe -= b.pCoat;
+    }
+    if (hasFeature(kFeatureSheen) && b.pSheen > 0.0) {
+        if (uLobe < b.pSheen) return sampleSheen(b, wo, u);
+        uLobe -= b.pSheen;
     }
     if (uLobe < b.pSpecular) {
         float uSplit = uLobe / b.pSpecular;
@@ -356,7 +421,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
             s.wi = reflect(-wo, h);
             if (b.delta) {
                 s.weight = reflectance(b, c) / (b.pSpecular * pr);
-                if (hasFeature(kFeatureClearcoat)) s.weight *= b.baseScale;
+                if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;
                 s.delta = s.valid = true;
                 return s;
             }
@@ -367,7 +432,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
                 float fd = b.specular * fresnelDielectric(c, b.etap);
                 s.weight = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * b.baseColor /
                            (b.etap * b.etap * b.pSpecular * (1.0 - pr));
-                if (hasFeature(kFeatureClearcoat)) s.weight *= b.baseScale;
+                if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;
                 s.delta = s.valid = true;
                 return s;
             }

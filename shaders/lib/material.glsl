@@ -1,6 +1,7 @@
 // Material evaluation at a surface point: glTF factors times their textures
 // (baseColor and emissive sRGB; metallicRoughness G = roughness, B =
-// metallic; transmission R; clearcoat R, clearcoatRoughness G), the
+// metallic; transmission R; clearcoat R, clearcoatRoughness G; sheenColor
+// sRGB RGB, sheenRoughness A), the
 // tangent-space normal maps (the base's and the coat's), and the alpha
 // test the BVH traversal uses to skip holes. Code for textures, normal maps
 // and alpha is compiled out by the kFeature* bits of SPEC_FEATURES when the
@@ -28,6 +29,9 @@ struct SurfacePoint {
     float clearcoatRoughness;  // perceptual
     vec3 coatNormal;           // unit, world space, on n's side: clearcoatNormalTexture's,
                                // else the interpolated normal (not the base's normal map)
+    // KHR_materials_sheen (kFeatureSheen; sheenColor 0 otherwise)
+    vec3 sheenColor;           // linear
+    float sheenRoughness;
 };
 
 // (TEXCOORD_0.xy, TEXCOORD_1.xy) at barycentrics (u, v) of vertices 1 and 2.
@@ -96,6 +100,13 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
         sp.clearcoat = mat.clearcoat;
         sp.clearcoatRoughness = mat.clearcoatRoughness;
     }
+    sp.sheenColor = vec3(0.0);
+    sp.sheenRoughness = 0.0;
+    bool sheen = hasFeature(kFeatureSheen) && (mat.flags & kMaterialSheen) != 0u;
+    if (sheen) {
+        sp.sheenColor = mat.sheenColor;
+        sp.sheenRoughness = mat.sheenRoughness;
+    }
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
     if (mat.baseColorTex != kNoTexture) {
@@ -119,6 +130,10 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
         if ((kFeatures & kFeatureNormalMap) != 0u && mat.clearcoatNormalTex != kNoTexture)
             sp.coatNormal = normalMapped(mat.clearcoatNormalTex, mat.clearcoatNormalScale, triangle, bary, uvs, n,
                                          nsInterpolated);
+    }
+    if (sheen) {
+        if (mat.sheenColorTex != kNoTexture) sp.sheenColor *= materialTexture(mat.sheenColorTex, uvs).rgb;
+        if (mat.sheenRoughnessTex != kNoTexture) sp.sheenRoughness *= materialTexture(mat.sheenRoughnessTex, uvs).a;
     }
     return sp;
 }

@@ -14,8 +14,9 @@
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
 
-// Lambert only: no material of the scene has a specular, transmission or coat lobe.
-const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission | kFeatureClearcoat)) == 0u;
+// Lambert only: no material of the scene has a specular, transmission, coat or sheen lobe.
+const bool kLambertOnly =
+    (kFeatures & (kFeatureSpecular | kFeatureTransmission | kFeatureClearcoat | kFeatureSheen)) == 0u;
 
 // MIS weight of a light found by BSDF sampling with density bsdfPdf, which
 // light sampling finds with density lightPdf.
@@ -114,6 +115,10 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 layers.coat = sp.clearcoat;
                 layers.coatRoughness = sp.clearcoatRoughness;
                 layers.coatNormal = vec3(dot(sp.coatNormal, t), dot(sp.coatNormal, b), dot(sp.coatNormal, ns));
+            }
+            if (hasFeature(kFeatureSheen)) {
+                layers.sheenColor = sp.sheenColor;
+                layers.sheenRoughness = sp.sheenRoughness;
             }
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
                             sp.specular, layers, front, woL);

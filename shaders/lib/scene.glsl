@@ -88,14 +88,16 @@ TriTangents sceneTangents(uint triangle) {
 Material sceneMaterial(uint i) {
     if (!kTexelAll) return materials[i];
     // The texels of an extension only when a material of the scene has it
-    // (volume: the sixth; clearcoat: the seventh and eighth).
+    // (volume: the sixth; clearcoat: the seventh and eighth; sheen: the
+    // eighth and ninth).
     int base = int(kMaterialTexels * i);
     uvec4 t[kMaterialTexels] = uvec4[kMaterialTexels](
         texelFetch(materialsTexel, base), texelFetch(materialsTexel, base + 1), texelFetch(materialsTexel, base + 2),
         texelFetch(materialsTexel, base + 3), texelFetch(materialsTexel, base + 4),
         hasFeature(kFeatureVolume) ? texelFetch(materialsTexel, base + 5) : uvec4(0u),
         hasFeature(kFeatureClearcoat) ? texelFetch(materialsTexel, base + 6) : uvec4(0u),
-        hasFeature(kFeatureClearcoat) ? texelFetch(materialsTexel, base + 7) : uvec4(0u));
+        hasFeature(kFeatureClearcoat | kFeatureSheen) ? texelFetch(materialsTexel, base + 7) : uvec4(0u),
+        hasFeature(kFeatureSheen) ? texelFetch(materialsTexel, base + 8) : uvec4(0u));
     return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
                     TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
                     TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
@@ -107,8 +109,9 @@ Material sceneMaterial(uint i) {
                     TEXEL_FLOAT(t, kMaterialWordThickness), TEXEL_FLOAT(t, kMaterialWordClearcoat),
                     TEXEL_FLOAT(t, kMaterialWordClearcoatRoughness), TEXEL_UINT(t, kMaterialWordClearcoatTex),
                     TEXEL_UINT(t, kMaterialWordClearcoatRoughnessTex), TEXEL_UINT(t, kMaterialWordClearcoatNormalTex),
-                    TEXEL_FLOAT(t, kMaterialWordClearcoatNormalScale), TEXEL_UINT(t, kMaterialWordPad0),
-                    TEXEL_UINT(t, kMaterialWordPad1));
+                    TEXEL_FLOAT(t, kMaterialWordClearcoatNormalScale), TEXEL_FLOAT(t, kMaterialWordSheenRoughness),
+                    TEXEL_UINT(t, kMaterialWordSheenRoughnessTex), TEXEL_VEC3(t, kMaterialWordSheenColor),
+                    TEXEL_UINT(t, kMaterialWordSheenColorTex));
 }
 
 #include "lib/sampling.glsl"

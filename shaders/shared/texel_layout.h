@@ -46,7 +46,7 @@ STRATA_CONST(uint, kTriShadingWordLight, 7u);
 STRATA_CONST(uint, kTriShadingWordN2, 8u);
 STRATA_CONST(uint, kTriShadingWordPad0, 11u);
 
-STRATA_CONST(uint, kMaterialTexels, 8u);
+STRATA_CONST(uint, kMaterialTexels, 9u);
 STRATA_CONST(uint, kMaterialWordBaseColor, 0u);
 STRATA_CONST(uint, kMaterialWordEmission, 4u);
 STRATA_CONST(uint, kMaterialWordMetallic, 7u);
@@ -70,8 +70,10 @@ STRATA_CONST(uint, kMaterialWordClearcoatTex, 26u);
 STRATA_CONST(uint, kMaterialWordClearcoatRoughnessTex, 27u);
 STRATA_CONST(uint, kMaterialWordClearcoatNormalTex, 28u);
 STRATA_CONST(uint, kMaterialWordClearcoatNormalScale, 29u);
-STRATA_CONST(uint, kMaterialWordPad0, 30u);
-STRATA_CONST(uint, kMaterialWordPad1, 31u);
+STRATA_CONST(uint, kMaterialWordSheenRoughness, 30u);
+STRATA_CONST(uint, kMaterialWordSheenRoughnessTex, 31u);
+STRATA_CONST(uint, kMaterialWordSheenColor, 32u);
+STRATA_CONST(uint, kMaterialWordSheenColorTex, 35u);
 
 STRATA_CONST(uint, kTriTexcoordsTexels, 3u);
 STRATA_CONST(uint, kTriTexcoordsWordUv0, 0u);
@@ -169,8 +171,10 @@ STRATA_WORD(Material, clearcoatTex, kMaterialWordClearcoatTex);
 STRATA_WORD(Material, clearcoatRoughnessTex, kMaterialWordClearcoatRoughnessTex);
 STRATA_WORD(Material, clearcoatNormalTex, kMaterialWordClearcoatNormalTex);
 STRATA_WORD(Material, clearcoatNormalScale, kMaterialWordClearcoatNormalScale);
-STRATA_WORD(Material, pad0, kMaterialWordPad0);
-STRATA_WORD(Material, pad1, kMaterialWordPad1);
+STRATA_WORD(Material, sheenRoughness, kMaterialWordSheenRoughness);
+STRATA_WORD(Material, sheenRoughnessTex, kMaterialWordSheenRoughnessTex);
+STRATA_TEXEL_WORD(Material, sheenColor, kMaterialWordSheenColor);
+STRATA_WORD(Material, sheenColorTex, kMaterialWordSheenColorTex);
 
 STRATA_TEXELS(TriTexcoords, kTriTexcoordsTexels);
 STRATA_TEXEL_WORD(TriTexcoords, uv0, kTriTexcoordsWordUv0);

@@ -106,6 +106,7 @@ STRATA_CONST(uint, kFeatureUnlit, 256u);       // KHR_materials_unlit
 STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with attenuation
 // 1024u and 2048u are taken (instancing, vertex colours).
 STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the coat lobe
+STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -121,6 +122,7 @@ STRATA_CONST(uint, kMaterialAlphaBlend, 4u);   // alphaMode BLEND: stochastic tr
 STRATA_CONST(uint, kMaterialUnlit, 8u);        // KHR_materials_unlit: shows baseColor, does not scatter
 STRATA_CONST(uint, kMaterialVolume, 16u);      // KHR_materials_volume: attenuates paths inside
 STRATA_CONST(uint, kMaterialClearcoat, 32u);   // KHR_materials_clearcoat: clearcoat > 0
+STRATA_CONST(uint, kMaterialSheen, 64u);       // KHR_materials_sheen: sheenColorFactor > 0
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -156,8 +158,12 @@ struct Material {
     uint clearcoatRoughnessTex;   // clearcoatRoughnessTexture: G scales clearcoatRoughness
     uint clearcoatNormalTex;      // clearcoatNormalTexture: the coat's own normal map
     float clearcoatNormalScale;   // its scale
-    uint pad0;
-    uint pad1;
+    // KHR_materials_sheen (kMaterialSheen; the rest of the eighth texel and
+    // the ninth, read under kFeatureSheen).
+    float sheenRoughness;         // sheenRoughnessFactor (Charlie alpha = roughness^2)
+    uint sheenRoughnessTex;       // sheenRoughnessTexture: A scales sheenRoughness
+    vec3 sheenColor;              // sheenColorFactor, linear
+    uint sheenColorTex;           // sheenColorTexture: sRGB RGB scales sheenColor
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_0.xy,
@@ -390,7 +396,7 @@ struct SampleTestParams {
     uint pad2;
     vec4 bsdf0;         // BSDF routines: cos(incidence), roughness, metallic, transmission
     vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
-    vec4 bsdf2;         // clearcoat, clearcoat roughness, unused, unused
+    vec4 bsdf2;         // clearcoat, clearcoat roughness, sheen colour (grey), sheen roughness
     vec4 bsdf3;         // unused xyz; w: the coat normal's tilt t from the shading
                         // normal, towards (0.6, 0.8, 0): (0.6 sin t, 0.8 sin t, cos t)
 };
@@ -414,7 +420,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 128);
+static_assert(sizeof(Material) == 144);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
