@@ -21,6 +21,10 @@ sheen albedo table (tools/sheen-albedo: mu_i = (i / 31)^3, roughness r_j =
 (0.1 + 0.9 j / 31)^2), so the image mean is the sheen colour times the
 table's E there (over black), or 1 (over white Lambert).
 
+specular-*.gltf (KHR_materials_specular's colour) are such plates of a
+smooth black dielectric with a specular colour, head-on (the spec's F0:
+specular * min(F0 * specularColor, 1)) and at 60 degrees.
+
 layers.gltf holds the layer extensions' values and textures for the loader
 tests; broken/ one bad value each.
 """
@@ -207,6 +211,35 @@ def sheen_textured(path):
                    math.degrees(math.acos(SHEEN_MU)))
 
 
+SPECULAR_FACTOR = 0.8
+SPECULAR_COLOR = (0.5, 2.0, 30.0)   # F0 0.04 x colour: 0.02, 0.08, 1.2 -> clamped to 1
+SPECULAR_TEXEL = (255, 128, 64, 128)  # sRGB colour; specular A = 128/255
+SPECULAR_TEXTURED_COLOR = 20.0
+
+
+def specular_plate(view_degrees, fov_degrees):
+    """A smooth black dielectric of specularFactor SPECULAR_FACTOR and
+    specularColorFactor SPECULAR_COLOR."""
+    def material(w):
+        return w.add_material("Tinted", base_color=(0, 0, 0, 1), metallic=0.0, roughness=0.0,
+                              extensions={"KHR_materials_specular": {"specularFactor": SPECULAR_FACTOR,
+                                                                     "specularColorFactor": list(SPECULAR_COLOR)}})
+    return plate_scene(material, view_degrees, fov_degrees, ["KHR_materials_specular"])
+
+
+def specular_textured(path):
+    """The same from textures: colour factor SPECULAR_TEXTURED_COLOR x the
+    sRGB texel SPECULAR_TEXEL, specular factor 1 x its A; seen at 60 degrees."""
+    def fields(s):
+        tex = constant_texture(s, SPECULAR_TEXEL)
+        return {"name": "TexturedTint",
+                "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+                "extensions": {"KHR_materials_specular": {
+                    "specularColorFactor": [SPECULAR_TEXTURED_COLOR] * 3, "specularColorTexture": {"index": tex},
+                    "specularTexture": {"index": tex}}}}
+    textured_plate(path, fields, ["KHR_materials_specular"], 30.0, 60.0)
+
+
 def layers_scene(path, materials):
     """Loader checks: one quad per material of raw JSON `materials(s, tex)`
     (tex: two constant textures), with TEXCOORD_0 and TEXCOORD_1."""
@@ -218,7 +251,7 @@ def layers_scene(path, materials):
         uvs = [(0, 1), (1, 1), (1, 0), (0, 0)]
         s.quad(fields["name"], corners, uvs, s.material(**fields), (0, 0, 1), uv_sets=[uvs, uvs])
     s.camera(0.7, (0, 0, 3))
-    s.write(path, ["KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_texture_transform"])
+    s.write(path, ["KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular", "KHR_texture_transform"])
 
 
 def layer_materials(s, tex):
@@ -231,7 +264,11 @@ def layer_materials(s, tex):
                                                                     "extensions": transform})},
         {"name": "Sheen", "extensions": sheen((0.9, 0.6, 0.3), 0.4, sheenColorTexture={"index": tex[0]},
                                               sheenRoughnessTexture={"index": tex[1], "texCoord": 1})},
-        {"name": "Defaults", "extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_sheen": {}}},
+        {"name": "Specular", "extensions": {"KHR_materials_specular": {
+            "specularFactor": 0.7, "specularColorFactor": [2.0, 0.5, 1.0], "specularTexture": {"index": tex[1]},
+            "specularColorTexture": {"index": tex[0], "texCoord": 1}}}},
+        {"name": "Defaults", "extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_sheen": {},
+                                            "KHR_materials_specular": {}}},
     ]
 
 
@@ -244,6 +281,10 @@ BROKEN = {
         lambda tex: {"name": "Bad", "extensions": coat(1.0, clearcoatTexture={"index": 5})},
     "sheen-color-above-1.gltf": lambda tex: {"name": "Bad", "extensions": sheen((1.5, 0, 0), 0.5)},
     "sheen-roughness-negative.gltf": lambda tex: {"name": "Bad", "extensions": sheen((1, 1, 1), -0.1)},
+    "specular-color-negative.gltf": lambda tex: {"name": "Bad", "extensions": {"KHR_materials_specular": {
+        "specularColorFactor": [1.0, -0.5, 1.0]}}},
+    "specular-texture-missing.gltf": lambda tex: {"name": "Bad", "extensions": {"KHR_materials_specular": {
+        "specularColorTexture": {"index": 9}}}},
     "sheen-color-two-numbers.gltf":
         lambda tex: {"name": "Bad", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1]}}},
 }
@@ -331,6 +372,8 @@ def main():
         "coat-black.gltf": coat_plate(False, 45.0, 50.0),
         "sheen-black.gltf": sheen_plate(0.0),
         "sheen-white.gltf": sheen_plate(1.0),
+        "specular-color-0.gltf": specular_plate(0.0, 2.0),
+        "specular-color-60.gltf": specular_plate(60.0, 30.0),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))
@@ -340,6 +383,7 @@ def main():
     coat_textured(os.path.join(out, "coat-textured.gltf"))
     coat_normal_mapped(os.path.join(out, "coat-normal-map.gltf"))
     sheen_textured(os.path.join(out, "sheen-textured.gltf"))
+    specular_textured(os.path.join(out, "specular-textured.gltf"))
     layers_scene(os.path.join(out, "layers.gltf"), layer_materials)
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
     for name, material in BROKEN.items():

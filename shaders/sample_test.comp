@@ -27,6 +27,7 @@ Bsdf testBsdf(out vec3 wo) {
     layers.coatNormal = vec3(0.6 * sin(tilt), 0.8 * sin(tilt), cos(tilt));
     layers.sheenColor = vec3(params.bsdf2.z);
     layers.sheenRoughness = params.bsdf2.w;
+    layers.specularColor = params.bsdf3.xyz;
     return makeBsdf(vec3(params.bsdf1.z), params.bsdf0.z, params.bsdf0.y, params.bsdf0.w,
                     params.bsdf1.x, params.bsdf1.y, layers, params.bsdf1.w != 0.0, wo);
 }

@@ -37,10 +37,13 @@ struct TestMaterial {
     // KHR_materials_sheen
     float sheen = 0.0f;       // grey sheen colour
     float sheenRoughness = 0.0f;
+    glm::vec3 specularColor{1.0f};  // KHR_materials_specular
+    std::uint32_t extraFeatures = 0;  // compiled in although the material does not need them
 
     // The feature bits the layers need compiled in.
     std::uint32_t features() const {
-        return (clearcoat > 0.0f ? gpu::kFeatureClearcoat : 0u) | (sheen > 0.0f ? gpu::kFeatureSheen : 0u);
+        return (clearcoat > 0.0f ? gpu::kFeatureClearcoat : 0u) | (sheen > 0.0f ? gpu::kFeatureSheen : 0u) |
+               (specularColor != glm::vec3(1.0f) ? gpu::kFeatureSpecularColor : 0u) | extraFeatures;
     }
 };
 
@@ -54,7 +57,7 @@ inline gpu::SampleTestParams bsdfParams(const TestMaterial& m, std::uint32_t rou
     p.bsdf0 = glm::vec4(c, m.roughness, m.metallic, m.transmission);
     p.bsdf1 = glm::vec4(m.ior, m.specular, m.base, m.entering ? 1.0f : 0.0f);
     p.bsdf2 = glm::vec4(m.clearcoat, m.clearcoatRoughness, m.sheen, m.sheenRoughness);
-    p.bsdf3 = glm::vec4(0.0f, 0.0f, 0.0f, m.coatTilt);
+    p.bsdf3 = glm::vec4(m.specularColor, m.coatTilt);
     return p;
 }
 

@@ -1,5 +1,5 @@
 // glTF loader: the material layer extensions (KHR_materials_clearcoat,
-// KHR_materials_sheen) load to the file's values and textures; a bad value is one error line
+// KHR_materials_sheen, KHR_materials_specular's colour and textures) load to the file's values and textures; a bad value is one error line
 // naming the file, the material and the value. Data:
 // scripts/make_material_tests.py (tests/data/materials/layers.gltf, broken/).
 #include <doctest/doctest.h>
@@ -103,13 +103,41 @@ TEST_CASE("gltf materials: KHR_materials_sheen colour, roughness and their textu
     CHECK(gpu.textureRefs.at(packed.sheenColorTex).offset >= table.size());
 }
 
+TEST_CASE("gltf materials: KHR_materials_specular colour (above 1 allowed) and textures (sRGB colour, A factor)") {
+    const Scene scene = loadGltf(dataPath("materials/layers.gltf"));
+    const MaterialDesc& m = materialNamed(scene, "Specular");
+    CHECK(m.specular == doctest::Approx(0.7));
+    CHECK(m.specularColor == glm::vec3(2.0f, 0.5f, 1.0f));
+    CHECK(m.specularTexture.texture == 1);
+    CHECK(m.specularColorTexture.texture == 0);
+    CHECK(m.specularColorTexture.texCoord == 1);
+    CHECK(m.tinted());
+    const MaterialDesc& defaults = materialNamed(scene, "Defaults");
+    CHECK(defaults.specular == 1.0f);
+    CHECK(defaults.specularColor == glm::vec3(1.0f));
+    CHECK_FALSE(defaults.tinted());
+    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
+    CHECK((gpu.features.bits & gpu::kFeatureSpecularColor) != 0u);
+    const auto names = gpu.features.names();
+    CHECK(std::find(names.begin(), names.end(), "specular-color") != names.end());
+    const gpu::Material& packed = gpu.materials.at(2);
+    CHECK((packed.flags & gpu::kMaterialSpecularColor) != 0u);
+    CHECK(packed.specularColor == glm::vec3(2.0f, 0.5f, 1.0f));
+    REQUIRE(packed.specularColorTex != gpu::kNoTexture);
+    REQUIRE(packed.specularTex != gpu::kNoTexture);
+    CHECK((gpu.textureRefs.at(packed.specularColorTex).flags & gpu::kTexSrgb) != 0u);
+    CHECK((gpu.textureRefs.at(packed.specularColorTex).flags & gpu::kTexCoord1) != 0u);
+    CHECK((gpu.textureRefs.at(packed.specularTex).flags & gpu::kTexSrgb) == 0u);
+    CHECK((gpu.materials.at(3).flags & gpu::kMaterialSpecularColor) == 0u);
+}
+
 TEST_CASE("gltf materials: scenes without the layer extensions have none of their feature bits") {
     for (const char* file : {"scenes/materials-board.gltf", "scenes/cornell-box.gltf", "scenes/cornell-glass.gltf"}) {
         CAPTURE(file);
         const Scene scene = loadGltf(sourcePath(file));
-        for (const MaterialDesc& m : scene.materials) CHECK_FALSE((m.coated() || m.sheened()));
+        for (const MaterialDesc& m : scene.materials) CHECK_FALSE((m.coated() || m.sheened() || m.tinted()));
         const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
-        CHECK((gpu.features.bits & (gpu::kFeatureClearcoat | gpu::kFeatureSheen)) == 0u);
+        CHECK((gpu.features.bits & (gpu::kFeatureClearcoat | gpu::kFeatureSheen | gpu::kFeatureSpecularColor)) == 0u);
     }
 }
 
@@ -127,6 +155,9 @@ TEST_CASE("gltf materials: every broken layer value is one error line naming fil
         {"sheen-color-above-1.gltf", "material 0 (\"Bad\"): KHR_materials_sheen.sheenColorFactor is not three numbers in [0, 1]"},
         {"sheen-color-two-numbers.gltf",
          "material 0 (\"Bad\"): KHR_materials_sheen.sheenColorFactor is not three numbers in [0, 1]"},
+        {"specular-color-negative.gltf",
+         "material 0 (\"Bad\"): KHR_materials_specular.specularColorFactor is not three numbers in [0, inf)"},
+        {"specular-texture-missing.gltf", "material 0 (\"Bad\") specularColorTexture: texture 9 does not exist (2 textures)"},
         {"sheen-roughness-negative.gltf",
          "material 0 (\"Bad\"): KHR_materials_sheen.sheenRoughnessFactor -0.1 is not in [0, 1]"},
     };

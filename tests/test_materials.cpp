@@ -22,16 +22,6 @@ constexpr float kLampHalf = 0.5f;
 constexpr float kLampHeight = 1.0f;
 constexpr float kLampLe = 2.0f;
 
-// Fresnel reflectance of a dielectric (relative index eta) for unpolarised
-// light at incidence cosine c (Born & Wolf).
-double fresnel(double c, double eta) {
-    const double s2 = (1.0 - c * c) / (eta * eta);
-    if (s2 >= 1.0) return 1.0;
-    const double t = std::sqrt(1.0 - s2);
-    const double rs = (c - eta * t) / (c + eta * t), rp = (eta * c - t) / (eta * c + t);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
 struct Reflection {
     bool hitsLamp = false;
     double cosine = 0.0;  // incidence cosine on the floor
@@ -108,7 +98,7 @@ TEST_CASE("a white metal of roughness 0 and 1e-4 is an exact mirror: the lamp's 
 }
 
 TEST_CASE("a smooth black dielectric reflects the lamp by the exact Fresnel factor of ior 1.5") {
-    checkMirror("tests/data/materials/black-gloss.gltf", [](double c) { return fresnel(c, 1.5); });
+    checkMirror("tests/data/materials/black-gloss.gltf", [](double c) { return fresnelDielectric(c, 1.5); });
 }
 
 namespace {

@@ -63,6 +63,16 @@ inline Rendered renderFile(const std::string& relPath, const RenderSettings& set
 }
 
 // A scene file lit by a uniform environment of radiance 1 (--env-color 1,1,1).
+// Fresnel reflectance of a dielectric (relative index eta) for unpolarised
+// light at incidence cosine c (Born & Wolf).
+inline double fresnelDielectric(double c, double eta) {
+    const double s2 = (1.0 - c * c) / (eta * eta);
+    if (s2 >= 1.0) return 1.0;
+    const double t = std::sqrt(1.0 - s2);
+    const double rs = (c - eta * t) / (c + eta * t), rp = (eta * c - t) / (eta * c + t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
 // The camera ray through image point (x, y) in pixels, as pathtrace.comp makes it.
 inline glm::dvec3 cameraRay(const Camera& cam, int w, int h, double x, double y) {
     const double tanHalf = std::tan(cam.yfov * 0.5);

@@ -24,7 +24,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureAlphaTest, "alpha-test"},    {gpu::kFeaturePunctual, "punctual-lights"},
         {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"},
         {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"},
-        {gpu::kFeatureClearcoat, "clearcoat"},     {gpu::kFeatureSheen, "sheen"}};
+        {gpu::kFeatureClearcoat, "clearcoat"},     {gpu::kFeatureSheen, "sheen"},
+        {gpu::kFeatureSpecularColor, "specular-color"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -164,8 +165,10 @@ std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used)
         const bool coatTextures = m.coated() && (m.clearcoatTexture.used() || m.clearcoatRoughnessTexture.used() ||
                                                  m.clearcoatNormalTexture.used());
         const bool sheenTextures = m.sheened() && (m.sheenColorTexture.used() || m.sheenRoughnessTexture.used());
+        const bool specularTextures = m.tinted() && (m.specularTexture.used() || m.specularColorTexture.used());
         if (m.baseColorTexture.used() || m.metallicRoughnessTexture.used() || m.normalTexture.used() ||
-            m.emissiveTexture.used() || m.transmissionTexture.used() || coatTextures || sheenTextures)
+            m.emissiveTexture.used() || m.transmissionTexture.used() || coatTextures || sheenTextures ||
+            specularTextures)
             bits |= gpu::kFeatureTextures;
         if (m.normalTexture.used() || (m.coated() && m.clearcoatNormalTexture.used()))
             bits |= gpu::kFeatureNormalMap;
@@ -293,6 +296,11 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
             gm.clearcoatRoughness = m.clearcoatRoughness;
             gm.clearcoatNormalScale = m.clearcoatNormalScale;
         }
+        gm.specularColor = glm::vec3(1.0f);
+        if (m.tinted()) {
+            gm.flags |= gpu::kMaterialSpecularColor;
+            gm.specularColor = m.specularColor;
+        }
         if (m.sheened()) {
             gm.flags |= gpu::kMaterialSheen;
             gm.sheenColor = m.sheenColor;
@@ -300,7 +308,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         }
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex = gm.transmissionTex =
             gm.clearcoatTex = gm.clearcoatRoughnessTex = gm.clearcoatNormalTex = gm.sheenColorTex =
-                gm.sheenRoughnessTex = gpu::kNoTexture;
+                gm.sheenRoughnessTex = gm.specularColorTex = gm.specularTex = gpu::kNoTexture;
         g.materials.push_back(gm);
     }
     std::vector<bool> used(g.materials.size(), false);
@@ -403,6 +411,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         if ((m.flags & gpu::kMaterialVolume) != 0u) g.features.bits |= gpu::kFeatureVolume;
         if ((m.flags & gpu::kMaterialClearcoat) != 0u) g.features.bits |= gpu::kFeatureClearcoat;
         if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
+        if ((m.flags & gpu::kMaterialSpecularColor) != 0u) g.features.bits |= gpu::kFeatureSpecularColor;
     }
     if constexpr (consume) releaseGeometry(scene);
     return g;

@@ -130,6 +130,11 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
             g.clearcoatRoughnessTex = addRef(m.clearcoatRoughnessTexture, false);
             g.clearcoatNormalTex = addRef(m.clearcoatNormalTexture, false);
         }
+        g.specularTex = g.specularColorTex = gpu::kNoTexture;
+        if (m.tinted()) {
+            g.specularTex = addRef(m.specularTexture, false);
+            g.specularColorTex = addRef(m.specularColorTexture, true);
+        }
         g.sheenColorTex = g.sheenRoughnessTex = gpu::kNoTexture;
         if (m.sheened()) {
             g.sheenColorTex = addRef(m.sheenColorTexture, true);

@@ -218,7 +218,9 @@ private:
             {&m.clearcoatRoughnessTexture, "clearcoatRoughnessTexture"},
             {&m.clearcoatNormalTexture, "clearcoatNormalTexture"},
             {&m.sheenColorTexture, "sheenColorTexture"},
-            {&m.sheenRoughnessTexture, "sheenRoughnessTexture"}};
+            {&m.sheenRoughnessTexture, "sheenRoughnessTexture"},
+            {&m.specularTexture, "specularTexture"},
+            {&m.specularColorTexture, "specularColorTexture"}};
         for (const auto& [slot, name] : slots) {
             if (slot->used() && prim.texcoords[slot->texCoord].empty()) {
                 fail(path_, gltf::meshLabel(model_, mesh) + " primitive " + std::to_string(prim.index) +

@@ -1,5 +1,6 @@
 // glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
-// KHR_materials_emissive_strength, _ior, _transmission, _specular, _unlit,
+// KHR_materials_emissive_strength, _ior, _transmission, _specular (factor,
+// colour, textures), _unlit,
 // _volume, _clearcoat and _sheen, and the texture slots (occlusionTexture is not
 // read: a path tracer computes occlusion). Factors outside their range are
 // errors.
@@ -34,10 +35,10 @@ double extensionNumber(const std::string& path, const std::string& label,
     return value.GetNumberAsDouble();
 }
 
-// The colour `key` of extension object `extension`: three numbers in [0, 1],
-// or `fallback` when absent.
+// The colour `key` of extension object `extension`: three numbers in [0, 1]
+// (in [0, inf) when not `unit`), or `fallback` when absent.
 glm::vec3 extensionColor(const std::string& path, const std::string& label, const tinygltf::Material& material,
-                         const char* extension, const char* key, glm::vec3 fallback) {
+                         const char* extension, const char* key, glm::vec3 fallback, bool unit = true) {
     const auto it = material.extensions.find(extension);
     if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
     const tinygltf::Value& c = it->second.Get(key);
@@ -45,10 +46,11 @@ glm::vec3 extensionColor(const std::string& path, const std::string& label, cons
     bool ok = c.IsArray() && c.ArrayLen() == 3;
     for (int k = 0; ok && k < 3; ++k) {
         const double v = c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1.0;
-        ok = v >= 0.0 && v <= 1.0;
+        ok = v >= 0.0 && (v <= 1.0 || (!unit && std::isfinite(v)));
         color[k] = static_cast<float>(v);
     }
-    if (!ok) fail(path, label + ": " + extension + "." + key + " is not three numbers in [0, 1]");
+    if (!ok)
+        fail(path, label + ": " + extension + "." + key + " is not three numbers in " + (unit ? "[0, 1]" : "[0, inf)"));
     return color;
 }
 
@@ -153,6 +155,8 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     };
     m.transmission = unitFactor("KHR_materials_transmission", "transmissionFactor", 0.0);
     m.specular = unitFactor("KHR_materials_specular", "specularFactor", 1.0);
+    m.specularColor =
+        extensionColor(path, label, src, "KHR_materials_specular", "specularColorFactor", glm::vec3(1.0f), false);
 
     if (const auto unlit = src.extensions.find("KHR_materials_unlit"); unlit != src.extensions.end()) {
         if (!unlit->second.IsObject()) fail(path, label + ": KHR_materials_unlit is not a JSON object");
@@ -203,6 +207,8 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.sheenRoughness = unitFactor(sheen, "sheenRoughnessFactor", 0.0);
     m.sheenColorTexture = extensionSlot(path, model, label, src, sheen, "sheenColorTexture");
     m.sheenRoughnessTexture = extensionSlot(path, model, label, src, sheen, "sheenRoughnessTexture");
+    m.specularTexture = extensionSlot(path, model, label, src, "KHR_materials_specular", "specularTexture");
+    m.specularColorTexture = extensionSlot(path, model, label, src, "KHR_materials_specular", "specularColorTexture");
     return m;
 }
 

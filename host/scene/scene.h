@@ -50,6 +50,9 @@ struct MaterialDesc {
     float ior = 1.5f;
     float transmission = 0.0f;  // KHR_materials_transmission transmissionFactor
     float specular = 1.0f;      // KHR_materials_specular specularFactor
+    glm::vec3 specularColor{1.0f};   // KHR_materials_specular specularColorFactor (linear, may exceed 1)
+    TextureSlot specularTexture;     // linear A: scales specular
+    TextureSlot specularColorTexture;  // sRGB RGB: scales specularColor
     bool doubleSided = false;
     enum class AlphaMode { Opaque, Mask, Blend } alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;
@@ -81,6 +84,11 @@ struct MaterialDesc {
     float sheenRoughness = 0.0f;           // sheenRoughnessFactor
     TextureSlot sheenColorTexture;         // sRGB RGB
     TextureSlot sheenRoughnessTexture;     // linear A
+    // KHR_materials_specular's colour or textures change the dielectric's Fresnel.
+    bool tinted() const {
+        return (specularColor != glm::vec3(1.0f) || specularTexture.used() || specularColorTexture.used()) &&
+               specular > 0.0f && !unlit;
+    }
     bool sheened() const { return glm::any(glm::greaterThan(sheenColor, glm::vec3(0.0f))) && !unlit; }
     glm::vec3 emission() const { return unlit ? glm::vec3(0.0f) : emissiveFactor * emissiveStrength; }
 };

@@ -1,5 +1,5 @@
 // The glTF 2.0 metallic-roughness BSDF (the spec's Appendix B mix) with
-// KHR_materials_transmission, _ior and _specular:
+// KHR_materials_transmission, _ior and _specular (factor and colour):
 //
 //   f = mix(dielectric, metal, metallic)
 //   metal      = GGX reflection with F = baseColor + (1 - baseColor)(1 - |wo.h|)^5
@@ -7,7 +7,15 @@
 //              + (1 - specular * Fd(wo.h)) * mix(baseColor / pi, baseColor * GGX transmission, transmission)
 //
 // Fd is the exact dielectric Fresnel of ior (the spec's Schlick form is an
-// approximation it allows replacing); transmission refracts into a closed
+// approximation it allows replacing). KHR_materials_specular's colour
+// (kFeatureSpecularColor) makes it RGB with the extension's F0 and F90:
+//
+//   Fd = specular * mix(F0c, 1, (F(wo.h) - F0) / (1 - F0)),  F0c = min(F0 * specularColor, 1)
+//
+// F the exact Fresnel and F0 = ((ior - 1) / (ior + 1))^2 its value at
+// normal incidence (so a colour of 1 is the exact Fresnel), and the layer
+// beneath keeps 1 - max(Fd), as the extension's fresnel_mix does.
+// Transmission refracts into a closed
 // volume (not thin-walled) and scales radiance by 1/eta^2 (Veach 1997,
 // sec. 5.2). GGX (Trowbridge-Reitz) with height-correlated Smith shadowing,
 // alpha = roughness^2; the visible normals are sampled with spherical caps
@@ -53,6 +61,9 @@ struct Bsdf {
     float etap;          // far-side ior / near-side ior
     float specular;      // KHR_materials_specular factor on the dielectric Fresnel
     bool delta;          // alpha < kDeltaAlpha: mirror / refraction lobes are deltas
+    // KHR_materials_specular's colour (kFeatureSpecularColor).
+    vec3 f0Tint;         // min(F0 * specularColor, 1)
+    float f0;            // F0 = ((ior - 1) / (ior + 1))^2
     // KHR_materials_clearcoat (kFeatureClearcoat; coat 0 without one).
     float coat;          // clearcoat factor x texture
     float coatAlpha;     // GGX alpha of the coat
@@ -73,6 +84,7 @@ struct Bsdf {
 // The layers over the base a surface point gives makeBsdf; each is read
 // only under its feature bit.
 struct BsdfLayers {
+    vec3 specularColor;   // KHR_materials_specular: linear, factor x texture (1: none)
     float coat;           // KHR_materials_clearcoat: clearcoat factor x texture (0: none)
     float coatRoughness;  // perceptual
     vec3 coatNormal;      // unit, in the shading frame
@@ -80,7 +92,7 @@ struct BsdfLayers {
     float sheenRoughness;
 };
 
-BsdfLayers noLayers() { return BsdfLayers(0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0); }
+BsdfLayers noLayers() { return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0); }
 
 float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
@@ -105,8 +117,25 @@ vec3 fresnelSchlick(vec3 f0, float cosI) {
     return f0 + (1.0 - f0) * (m2 * m2 * m);
 }
 
+// The dielectric's Fresnel reflectance Fd at wo.h = c, RGB (the header's
+// formula with a specular colour).
+vec3 dielectricFresnel(Bsdf b, float c) {
+    float w = clamp((fresnelDielectric(c, b.etap) - b.f0) / (1.0 - b.f0), 0.0, 1.0);
+    return b.specular * mix(b.f0Tint, vec3(1.0), w);
+}
+
+// max(Fd) at wo.h = c: what the dielectric's reflection takes from the
+// lobes beneath (Fd itself without a specular colour).
+float dielectricMax(Bsdf b, float c) {
+    if (!hasFeature(kFeatureSpecularColor)) return b.specular * fresnelDielectric(c, b.etap);
+    vec3 f = dielectricFresnel(b, c);
+    return max(f.r, max(f.g, f.b));
+}
+
 // Reflectance of the mirror lobe, metal and dielectric together, at wo.h = c.
 vec3 reflectance(Bsdf b, float c) {
+    if (hasFeature(kFeatureSpecularColor))
+        return b.metallic * fresnelSchlick(b.baseColor, c) + (1.0 - b.metallic) * dielectricFresnel(b, c);
     return b.metallic * fresnelSchlick(b.baseColor, c) +
            vec3((1.0 - b.metallic) * b.specular * fresnelDielectric(c, b.etap));
 }
@@ -114,7 +143,7 @@ vec3 reflectance(Bsdf b, float c) {
 // Probability of reflecting (rather than refracting) off a microfacet with
 // wo.h = c: the two lobes' albedo estimates, Fresnel exact.
 float specularSplit(Bsdf b, float c) {
-    float fd = b.specular * fresnelDielectric(c, b.etap);
+    float fd = dielectricMax(b, c);
     float wr = b.metallic * max(luminance(fresnelSchlick(b.baseColor, c)), 1.0e-3) +
                (1.0 - b.metallic) * fd;
     float wt = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * luminance(b.baseColor);
@@ -128,6 +157,8 @@ void clearLayers(inout Bsdf b) {
     b.coatDelta = false;
     b.coatN = vec3(0.0, 0.0, 1.0);
     b.coatF = 0.0;
+    b.f0Tint = vec3(0.04);
+    b.f0 = 0.04;
     b.sheen = vec3(0.0);
     b.sheenAlpha = 1.0;
     b.sheenLambdaO = 0.0;
@@ -190,11 +221,15 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     float eta = ior >= 1.0 ? ior : 1.5;
     b.etap = entering ? eta : 1.0 / eta;
     b.specular = clamp(specular, 0.0, 1.0);
+    if (hasFeature(kFeatureSpecularColor)) {
+        b.f0 = (eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0));
+        b.f0Tint = min(b.f0 * max(layers.specularColor, vec3(0.0)), vec3(1.0));
+    }
     // Strategy weights: the lobes' albedos estimated at the macro normal.
     // The floors keep every lobe that can be non-zero at some microfacet
     // samplable (a black metal at normal incidence, a diffuse base behind
     // total internal reflection), so the estimator stays unbiased.
-    float fd = b.specular * fresnelDielectric(cosO, b.etap);
+    float fd = dielectricMax(b, cosO);
     float lumBase = luminance(b.baseColor);
     float ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
                (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
@@ -290,7 +325,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         vec3 h = normalize(wo + wi);
         float c = dot(wo, h);
         if (b.pDiffuse > 0.0) {
-            float fd = b.specular > 0.0 ? b.specular * fresnelDielectric(c, b.etap) : 0.0;
+            float fd = b.specular > 0.0 ? dielectricMax(b, c) : 0.0;
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.baseColor * (kInvPi * wi.z);
             pdf += b.pDiffuse * wi.z * kInvPi;
         }
@@ -306,7 +341,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         if (h.z < 0.0) h = -h;
         float ci = dot(wi, h), co = dot(wo, h);
         if (ci >= 0.0 || co <= 0.0) return f;  // back-facing microfacet
-        float fd = b.specular * fresnelDielectric(co, b.etap);
+        float fd = dielectricMax(b, co);
         float denom = ci + co / b.etap;
         denom *= denom;
         float d = ggxD(h, b.alpha);
@@ -429,7 +464,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         } else {
             if (!refractDir(wo, h, b.etap, s.wi) || s.wi.z >= 0.0) return s;
             if (b.delta) {
-                float fd = b.specular * fresnelDielectric(c, b.etap);
+                float fd = dielectricMax(b, c);
                 s.weight = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * b.baseColor /
                            (b.etap * b.etap * b.pSpecular * (1.0 - pr));
                 if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;

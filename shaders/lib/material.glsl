@@ -1,7 +1,7 @@
 // Material evaluation at a surface point: glTF factors times their textures
 // (baseColor and emissive sRGB; metallicRoughness G = roughness, B =
 // metallic; transmission R; clearcoat R, clearcoatRoughness G; sheenColor
-// sRGB RGB, sheenRoughness A), the
+// sRGB RGB, sheenRoughness A; specularColor sRGB RGB, specular A), the
 // tangent-space normal maps (the base's and the coat's), and the alpha
 // test the BVH traversal uses to skip holes. Code for textures, normal maps
 // and alpha is compiled out by the kFeature* bits of SPEC_FEATURES when the
@@ -32,6 +32,7 @@ struct SurfacePoint {
     // KHR_materials_sheen (kFeatureSheen; sheenColor 0 otherwise)
     vec3 sheenColor;           // linear
     float sheenRoughness;
+    vec3 specularColor;        // KHR_materials_specular (kFeatureSpecularColor; 1 otherwise)
 };
 
 // (TEXCOORD_0.xy, TEXCOORD_1.xy) at barycentrics (u, v) of vertices 1 and 2.
@@ -107,6 +108,9 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
         sp.sheenColor = mat.sheenColor;
         sp.sheenRoughness = mat.sheenRoughness;
     }
+    sp.specularColor = vec3(1.0);
+    bool tinted = hasFeature(kFeatureSpecularColor) && (mat.flags & kMaterialSpecularColor) != 0u;
+    if (tinted) sp.specularColor = mat.specularColor;
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
     if (mat.baseColorTex != kNoTexture) {
@@ -134,6 +138,10 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     if (sheen) {
         if (mat.sheenColorTex != kNoTexture) sp.sheenColor *= materialTexture(mat.sheenColorTex, uvs).rgb;
         if (mat.sheenRoughnessTex != kNoTexture) sp.sheenRoughness *= materialTexture(mat.sheenRoughnessTex, uvs).a;
+    }
+    if (tinted) {
+        if (mat.specularColorTex != kNoTexture) sp.specularColor *= materialTexture(mat.specularColorTex, uvs).rgb;
+        if (mat.specularTex != kNoTexture) sp.specular *= materialTexture(mat.specularTex, uvs).a;
     }
     return sp;
 }

@@ -120,6 +120,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 layers.sheenColor = sp.sheenColor;
                 layers.sheenRoughness = sp.sheenRoughness;
             }
+            if (hasFeature(kFeatureSpecularColor)) layers.specularColor = sp.specularColor;
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
                             sp.specular, layers, front, woL);
         }

@@ -89,7 +89,7 @@ Material sceneMaterial(uint i) {
     if (!kTexelAll) return materials[i];
     // The texels of an extension only when a material of the scene has it
     // (volume: the sixth; clearcoat: the seventh and eighth; sheen: the
-    // eighth and ninth).
+    // eighth and ninth; specular colour: the tenth and eleventh).
     int base = int(kMaterialTexels * i);
     uvec4 t[kMaterialTexels] = uvec4[kMaterialTexels](
         texelFetch(materialsTexel, base), texelFetch(materialsTexel, base + 1), texelFetch(materialsTexel, base + 2),
@@ -97,7 +97,9 @@ Material sceneMaterial(uint i) {
         hasFeature(kFeatureVolume) ? texelFetch(materialsTexel, base + 5) : uvec4(0u),
         hasFeature(kFeatureClearcoat) ? texelFetch(materialsTexel, base + 6) : uvec4(0u),
         hasFeature(kFeatureClearcoat | kFeatureSheen) ? texelFetch(materialsTexel, base + 7) : uvec4(0u),
-        hasFeature(kFeatureSheen) ? texelFetch(materialsTexel, base + 8) : uvec4(0u));
+        hasFeature(kFeatureSheen) ? texelFetch(materialsTexel, base + 8) : uvec4(0u),
+        hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 9) : uvec4(0u),
+        hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 10) : uvec4(0u));
     return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
                     TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
                     TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
@@ -111,7 +113,9 @@ Material sceneMaterial(uint i) {
                     TEXEL_UINT(t, kMaterialWordClearcoatRoughnessTex), TEXEL_UINT(t, kMaterialWordClearcoatNormalTex),
                     TEXEL_FLOAT(t, kMaterialWordClearcoatNormalScale), TEXEL_FLOAT(t, kMaterialWordSheenRoughness),
                     TEXEL_UINT(t, kMaterialWordSheenRoughnessTex), TEXEL_VEC3(t, kMaterialWordSheenColor),
-                    TEXEL_UINT(t, kMaterialWordSheenColorTex));
+                    TEXEL_UINT(t, kMaterialWordSheenColorTex), TEXEL_VEC3(t, kMaterialWordSpecularColor),
+                    TEXEL_UINT(t, kMaterialWordSpecularColorTex), TEXEL_UINT(t, kMaterialWordSpecularTex),
+                    TEXEL_UINT(t, kMaterialWordPad0), TEXEL_UINT(t, kMaterialWordPad1), TEXEL_UINT(t, kMaterialWordPad2));
 }
 
 #include "lib/sampling.glsl"

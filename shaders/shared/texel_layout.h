@@ -46,7 +46,7 @@ STRATA_CONST(uint, kTriShadingWordLight, 7u);
 STRATA_CONST(uint, kTriShadingWordN2, 8u);
 STRATA_CONST(uint, kTriShadingWordPad0, 11u);
 
-STRATA_CONST(uint, kMaterialTexels, 9u);
+STRATA_CONST(uint, kMaterialTexels, 11u);
 STRATA_CONST(uint, kMaterialWordBaseColor, 0u);
 STRATA_CONST(uint, kMaterialWordEmission, 4u);
 STRATA_CONST(uint, kMaterialWordMetallic, 7u);
@@ -74,6 +74,12 @@ STRATA_CONST(uint, kMaterialWordSheenRoughness, 30u);
 STRATA_CONST(uint, kMaterialWordSheenRoughnessTex, 31u);
 STRATA_CONST(uint, kMaterialWordSheenColor, 32u);
 STRATA_CONST(uint, kMaterialWordSheenColorTex, 35u);
+STRATA_CONST(uint, kMaterialWordSpecularColor, 36u);
+STRATA_CONST(uint, kMaterialWordSpecularColorTex, 39u);
+STRATA_CONST(uint, kMaterialWordSpecularTex, 40u);
+STRATA_CONST(uint, kMaterialWordPad0, 41u);
+STRATA_CONST(uint, kMaterialWordPad1, 42u);
+STRATA_CONST(uint, kMaterialWordPad2, 43u);
 
 STRATA_CONST(uint, kTriTexcoordsTexels, 3u);
 STRATA_CONST(uint, kTriTexcoordsWordUv0, 0u);
@@ -175,6 +181,12 @@ STRATA_WORD(Material, sheenRoughness, kMaterialWordSheenRoughness);
 STRATA_WORD(Material, sheenRoughnessTex, kMaterialWordSheenRoughnessTex);
 STRATA_TEXEL_WORD(Material, sheenColor, kMaterialWordSheenColor);
 STRATA_WORD(Material, sheenColorTex, kMaterialWordSheenColorTex);
+STRATA_TEXEL_WORD(Material, specularColor, kMaterialWordSpecularColor);
+STRATA_WORD(Material, specularColorTex, kMaterialWordSpecularColorTex);
+STRATA_WORD(Material, specularTex, kMaterialWordSpecularTex);
+STRATA_WORD(Material, pad0, kMaterialWordPad0);
+STRATA_WORD(Material, pad1, kMaterialWordPad1);
+STRATA_WORD(Material, pad2, kMaterialWordPad2);
 
 STRATA_TEXELS(TriTexcoords, kTriTexcoordsTexels);
 STRATA_TEXEL_WORD(TriTexcoords, uv0, kTriTexcoordsWordUv0);

@@ -107,6 +107,7 @@ STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with atte
 // 1024u and 2048u are taken (instancing, vertex colours).
 STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the coat lobe
 STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
+STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular colour or textures
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -123,6 +124,7 @@ STRATA_CONST(uint, kMaterialUnlit, 8u);        // KHR_materials_unlit: shows bas
 STRATA_CONST(uint, kMaterialVolume, 16u);      // KHR_materials_volume: attenuates paths inside
 STRATA_CONST(uint, kMaterialClearcoat, 32u);   // KHR_materials_clearcoat: clearcoat > 0
 STRATA_CONST(uint, kMaterialSheen, 64u);       // KHR_materials_sheen: sheenColorFactor > 0
+STRATA_CONST(uint, kMaterialSpecularColor, 128u);  // KHR_materials_specular: a colour or texture
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -164,6 +166,14 @@ struct Material {
     uint sheenRoughnessTex;       // sheenRoughnessTexture: A scales sheenRoughness
     vec3 sheenColor;              // sheenColorFactor, linear
     uint sheenColorTex;           // sheenColorTexture: sRGB RGB scales sheenColor
+    // KHR_materials_specular's colour and textures (kMaterialSpecularColor;
+    // the tenth and eleventh texels, read under kFeatureSpecularColor).
+    vec3 specularColor;           // specularColorFactor, linear (may exceed 1)
+    uint specularColorTex;        // specularColorTexture: sRGB RGB scales specularColor
+    uint specularTex;             // specularTexture: A scales specular
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_0.xy,
@@ -397,7 +407,7 @@ struct SampleTestParams {
     vec4 bsdf0;         // BSDF routines: cos(incidence), roughness, metallic, transmission
     vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
     vec4 bsdf2;         // clearcoat, clearcoat roughness, sheen colour (grey), sheen roughness
-    vec4 bsdf3;         // unused xyz; w: the coat normal's tilt t from the shading
+    vec4 bsdf3;         // specular colour rgb; w: the coat normal's tilt t from the shading
                         // normal, towards (0.6, 0.8, 0): (0.6 sin t, 0.8 sin t, cos t)
 };
 
@@ -420,7 +430,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 144);
+static_assert(sizeof(Material) == 176);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
