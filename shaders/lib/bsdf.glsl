@@ -119,23 +119,23 @@ vec3 fresnelSchlick(vec3 f0, float cosI) {
 
 // The dielectric's Fresnel reflectance Fd at wo.h = c, RGB (the header's
 // formula with a specular colour).
-vec3 dielectricFresnel(Bsdf b, float c) {
-    float w = clamp((fresnelDielectric(c, b.etap) - b.f0) / (1.0 - b.f0), 0.0, 1.0);
-    return b.specular * mix(b.f0Tint, vec3(1.0), w);
+vec3 dielectricFresnel(float specular, float etap, vec3 f0Tint, float f0, float c) {
+    float w = clamp((fresnelDielectric(c, etap) - f0) / (1.0 - f0), 0.0, 1.0);
+    return specular * mix(f0Tint, vec3(1.0), w);
 }
 
 // max(Fd) at wo.h = c: what the dielectric's reflection takes from the
 // lobes beneath (Fd itself without a specular colour).
-float dielectricMax(Bsdf b, float c) {
-    if (!hasFeature(kFeatureSpecularColor)) return b.specular * fresnelDielectric(c, b.etap);
-    vec3 f = dielectricFresnel(b, c);
+float dielectricMax(float specular, float etap, vec3 f0Tint, float f0, float c) {
+    if (!hasFeature(kFeatureSpecularColor)) return specular * fresnelDielectric(c, etap);
+    vec3 f = dielectricFresnel(specular, etap, f0Tint, f0, c);
     return max(f.r, max(f.g, f.b));
 }
 
 // Reflectance of the mirror lobe, metal and dielectric together, at wo.h = c.
 vec3 reflectance(Bsdf b, float c) {
     if (hasFeature(kFeatureSpecularColor))
-        return b.metallic * fresnelSchlick(b.baseColor, c) + (1.0 - b.metallic) * dielectricFresnel(b, c);
+        return b.metallic * fresnelSchlick(b.baseColor, c) + (1.0 - b.metallic) * dielectricFresnel(b.specular, b.etap, b.f0Tint, b.f0, c);
     return b.metallic * fresnelSchlick(b.baseColor, c) +
            vec3((1.0 - b.metallic) * b.specular * fresnelDielectric(c, b.etap));
 }
@@ -143,7 +143,7 @@ vec3 reflectance(Bsdf b, float c) {
 // Probability of reflecting (rather than refracting) off a microfacet with
 // wo.h = c: the two lobes' albedo estimates, Fresnel exact.
 float specularSplit(Bsdf b, float c) {
-    float fd = dielectricMax(b, c);
+    float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, c);
     float wr = b.metallic * max(luminance(fresnelSchlick(b.baseColor, c)), 1.0e-3) +
                (1.0 - b.metallic) * fd;
     float wt = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * luminance(b.baseColor);
@@ -229,7 +229,7 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     // The floors keep every lobe that can be non-zero at some microfacet
     // samplable (a black metal at normal incidence, a diffuse base behind
     // total internal reflection), so the estimator stays unbiased.
-    float fd = dielectricMax(b, cosO);
+    float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, cosO);
     float lumBase = luminance(b.baseColor);
     float ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
                (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
@@ -325,7 +325,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         vec3 h = normalize(wo + wi);
         float c = dot(wo, h);
         if (b.pDiffuse > 0.0) {
-            float fd = b.specular > 0.0 ? dielectricMax(b, c) : 0.0;
+            float fd = b.specular > 0.0 ? dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, c) : 0.0;
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.baseColor * (kInvPi * wi.z);
             pdf += b.pDiffuse * wi.z * kInvPi;
         }
@@ -341,7 +341,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         if (h.z < 0.0) h = -h;
         float ci = dot(wi, h), co = dot(wo, h);
         if (ci >= 0.0 || co <= 0.0) return f;  // back-facing microfacet
-        float fd = dielectricMax(b, co);
+        float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, co);
         float denom = ci + co / b.etap;
         denom *= denom;
         float d = ggxD(h, b.alpha);
@@ -354,16 +354,16 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
 }
 
 // w in the coat's frame (coatN as z, a tangent frame by basis()).
-vec3 toCoatFrame(Bsdf b, vec3 w) {
+vec3 toCoatFrame(vec3 n, vec3 w) {
     vec3 t, bt;
-    basis(b.coatN, t, bt);
-    return vec3(dot(w, t), dot(w, bt), dot(w, b.coatN));
+    basis(n, t, bt);
+    return vec3(dot(w, t), dot(w, bt), dot(w, n));
 }
 
-vec3 fromCoatFrame(Bsdf b, vec3 w) {
+vec3 fromCoatFrame(vec3 n, vec3 w) {
     vec3 t, bt;
-    basis(b.coatN, t, bt);
-    return w.x * t + w.y * bt + w.z * b.coatN;
+    basis(n, t, bt);
+    return w.x * t + w.y * bt + w.z * n;
 }
 
 // The non-delta part of the BSDF times |cos| (each lobe's own normal), and
@@ -379,7 +379,7 @@ vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         pdf += b.pSheen * d * h.z / (4.0 * dot(wo, h));
     }
     if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0 && !b.coatDelta && wo.z > 0.0) {
-        vec3 o = toCoatFrame(b, wo), i = toCoatFrame(b, wi);
+        vec3 o = toCoatFrame(b.coatN, wo), i = toCoatFrame(b.coatN, wi);
         if (o.z > 0.0 && i.z > 0.0) {
             vec3 h = normalize(o + i);
             f += vec3(b.coatF * ggxD(h, b.coatAlpha) * ggxG2(o, i, b.coatAlpha) / (4.0 * o.z));
@@ -408,45 +408,51 @@ BsdfSample finishSample(Bsdf b, vec3 wo, BsdfSample s) {
     return s;
 }
 
-// The coat strategy: a GGX visible normal in the coat's frame (its mirror
-// normal when the coat is smooth), reflection.
-BsdfSample sampleCoat(Bsdf b, vec3 wo, vec2 u) {
-    BsdfSample s = noSample();
-    vec3 o = toCoatFrame(b, wo);
-    vec3 h = b.coatDelta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(o, b.coatAlpha, u);
+// The coat strategy's direction: a GGX visible normal in the coat's frame
+// (its mirror normal when the coat is smooth), reflected; false when the
+// direction leaves below the coat.
+bool sampleCoatDirection(vec3 n, float alpha, bool delta, vec3 wo, vec2 u, out vec3 wi) {
+    vec3 o = toCoatFrame(n, wo);
+    vec3 h = delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(o, alpha, u);
     vec3 i = reflect(-o, h);
-    if (dot(o, h) <= 0.0 || i.z <= 0.0) return s;
-    s.wi = fromCoatFrame(b, i);
-    if (!b.coatDelta) return finishSample(b, wo, s);
-    s.weight = vec3(b.coatF / b.pCoat);
-    s.delta = s.valid = true;
-    return s;
+    wi = fromCoatFrame(n, i);
+    return dot(o, h) > 0.0 && i.z > 0.0;
 }
 
-// The sheen strategy: a Charlie normal (density D h.z), reflection.
-BsdfSample sampleSheen(Bsdf b, vec3 wo, vec2 u) {
-    BsdfSample s = noSample();
-    vec3 h = charlieSample(b.sheenAlpha, u);
-    s.wi = reflect(-wo, h);
-    if (dot(wo, h) <= 0.0 || s.wi.z <= 0.0) return s;
-    return finishSample(b, wo, s);
+// The sheen strategy's direction: a Charlie normal (density D h.z), reflected.
+bool sampleSheenDirection(float alpha, vec3 wo, vec2 u, out vec3 wi) {
+    vec3 h = charlieSample(alpha, u);
+    wi = reflect(-wo, h);
+    return dot(wo, h) > 0.0 && wi.z > 0.0;
 }
 
 // One direction: uLobe picks the coat, sheen, microfacet or diffuse
 // strategy by the probabilities of makeBsdf and then, rescaled, reflection
-// or transmission at the sampled microfacet; u is the direction within the lobe.
+// or transmission at the sampled microfacet; u is the direction within the
+// lobe. A non-delta direction gets the whole BSDF's weight and pdf from one
+// evalBsdf (one copy of it in the compiled shader).
 BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
     BsdfSample s = noSample();
     if (wo.z <= 0.0) return s;
+    uint layer = 0u;  // the layers' strategies: 1 the coat, 2 the sheen
     if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0) {
-        if (uLobe < b.pCoat) return sampleCoat(b, wo, u);
-        uLobe -= b.pCoat;
+        if (uLobe < b.pCoat) layer = 1u;
+        else uLobe -= b.pCoat;
     }
-    if (hasFeature(kFeatureSheen) && b.pSheen > 0.0) {
-        if (uLobe < b.pSheen) return sampleSheen(b, wo, u);
-        uLobe -= b.pSheen;
+    if (hasFeature(kFeatureSheen) && layer == 0u && b.pSheen > 0.0) {
+        if (uLobe < b.pSheen) layer = 2u;
+        else uLobe -= b.pSheen;
     }
-    if (uLobe < b.pSpecular) {
+    if (layer == 1u) {
+        if (!sampleCoatDirection(b.coatN, b.coatAlpha, b.coatDelta, wo, u, s.wi)) return s;
+        if (b.coatDelta) {
+            s.weight = vec3(b.coatF / b.pCoat);
+            s.delta = s.valid = true;
+            return s;
+        }
+    } else if (layer == 2u) {
+        if (!sampleSheenDirection(b.sheenAlpha, wo, u, s.wi)) return s;
+    } else if (uLobe < b.pSpecular) {
         float uSplit = uLobe / b.pSpecular;
         vec3 h = b.delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(wo, b.alpha, u);
         float c = dot(wo, h);
@@ -464,7 +470,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         } else {
             if (!refractDir(wo, h, b.etap, s.wi) || s.wi.z >= 0.0) return s;
             if (b.delta) {
-                float fd = dielectricMax(b, c);
+                float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, c);
                 s.weight = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * b.baseColor /
                            (b.etap * b.etap * b.pSpecular * (1.0 - pr));
                 if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;
