@@ -3,7 +3,8 @@
 # static library. For each shaders/NAME.comp the library defines
 #   extern const std::uint32_t kSpirv_NAME[]; extern const std::size_t kSpirvSize_NAME;
 # (size in bytes) declared in <strata_spirv.h>. VARIANTS entries
-# NAME=shaders/SRC.comp:DEFINE compile SRC again with -DDEFINE as kSpirv_NAME
+# NAME=shaders/SRC.comp:DEFINE[,DEFINE...] compile SRC again with -DDEFINE
+# for each as kSpirv_NAME
 # (a variant that compiles code out rather than leaving it to a
 # specialization constant: the driver then never sees it). The .spv files
 # stay in ${CMAKE_BINARY_DIR}/spirv for spirv-val in the tests. GENERATED
@@ -41,7 +42,10 @@ function(strata_add_shaders target)
     set(shader ${CMAKE_MATCH_2})
     set(define_flags "")
     if(CMAKE_MATCH_3)
-      set(define_flags "-D${CMAKE_MATCH_3}")
+      string(REPLACE "," ";" defines "${CMAKE_MATCH_3}")
+      foreach(define ${defines})
+        list(APPEND define_flags "-D${define}")
+      endforeach()
     endif()
     set(spv ${spv_dir}/${name}.spv)
     set(hdr ${spv_dir}/${name}.spv.h)

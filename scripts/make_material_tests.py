@@ -35,7 +35,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "data"))
-from make_lights import add_sphere  # noqa: E402
+from make_lights import add_sphere, icosphere  # noqa: E402
 from make_scenes import Quads, camera, mesh, rotation_x, writer  # noqa: E402
 from make_texture_scenes import LINEAR, Scene as TexturedScene, data_uri, png  # noqa: E402
 
@@ -240,6 +240,43 @@ def specular_textured(path):
     textured_plate(path, fields, ["KHR_materials_specular"], 30.0, 60.0)
 
 
+def layer_spheres():
+    """Three smooth spheres (radius 0.5) on a grey floor under a square lamp,
+    seen from the front: a red plastic under a clear coat, a dark velvet (a
+    sheen over a dark base), a dielectric of gold specular colour. For the
+    README's picture and the wavefront integrator's test."""
+    w = writer()
+    verts, faces = icosphere(4)
+    sphere_idx = [i for f in faces for i in f]
+    materials = [
+        w.add_material("CoatedRed", base_color=(0.6, 0.05, 0.04, 1), metallic=0.0, roughness=0.6,
+                       extensions=coat(1.0, 0.05)),
+        w.add_material("Velvet", base_color=(0.05, 0.02, 0.12, 1), metallic=0.0, roughness=1.0,
+                       extensions=sheen((0.7, 0.5, 1.0), 0.4)),
+        w.add_material("GoldTint", base_color=(0.02, 0.02, 0.02, 1), metallic=0.0, roughness=0.25,
+                       extensions={"KHR_materials_specular": {"specularColorFactor": [25.0, 17.0, 6.0]}}),
+    ]
+    floor_material = w.add_material("Floor", base_color=(0.5, 0.5, 0.5, 1), metallic=0.0, roughness=1.0,
+                                    specular=0.0)
+    lamp = w.add_material("Lamp", base_color=(0, 0, 0, 1), metallic=0.0, roughness=1.0,
+                          emissive=(1.0, 1.0, 1.0), strength=8.0, specular=0.0)
+    roots = []
+    for k, m in enumerate(materials):
+        mesh_index = w.add_triangles("Sphere%d" % k, verts, normals=verts, indices=sphere_idx, material=m)
+        roots.append(w.add_node("Sphere%d" % k, mesh=mesh_index, translation=[1.2 * (k - 1), 0.5, 0.0],
+                                scale=[0.5, 0.5, 0.5]))
+    floor = Quads().add((-4, 0, -4), (0, 0, 8), (8, 0, 0), (0, 1, 0))
+    light = Quads().add((-1, 3, -1), (2, 0, 0), (0, 0, 2), (0, -1, 0))
+    roots.append(w.add_node("Floor", mesh=mesh(w, "Floor", floor, floor_material)))
+    roots.append(w.add_node("Lamp", mesh=mesh(w, "Lamp", light, lamp)))
+    roots.append(w.add_node("Camera", camera=camera(w, "Camera", 30.0), translation=[0.0, 1.2, 4.5],
+                            rotation=rotation_x(-math.atan2(0.7, 4.5))))
+    w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_sheen",
+                      "KHR_materials_specular"])
+    return w.gltf_text()
+
+
 def layers_scene(path, materials):
     """Loader checks: one quad per material of raw JSON `materials(s, tex)`
     (tex: two constant textures), with TEXCOORD_0 and TEXCOORD_1."""
@@ -374,6 +411,7 @@ def main():
         "sheen-white.gltf": sheen_plate(1.0),
         "specular-color-0.gltf": specular_plate(0.0, 2.0),
         "specular-color-60.gltf": specular_plate(60.0, 30.0),
+        "layer-spheres.gltf": layer_spheres(),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))

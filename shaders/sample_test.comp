@@ -2,6 +2,7 @@
 // Draws samples from the GLSL sampling routines exactly as the path tracer
 // calls them, for chi-square tests on the host (tests/test_sampling_glsl.cpp).
 #extension GL_GOOGLE_include_directive : require
+#define STRATA_LAYERS  // the BSDF's layers, under their feature bits (lib/features.glsl)
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 

@@ -38,6 +38,10 @@
 // grazing views), it is divided by E. The coat lobe is evaluated in the
 // coat's frame, with |cos| of its own normal.
 //
+// The layers and the specular colour are compiled only with STRATA_LAYERS
+// (the *_layers shader variants, lib/features.glsl), and then each under its
+// feature bit.
+//
 // All directions are in the local shading frame: z is the shading normal on
 // the side the ray came from, so wo.z > 0; reflection has wi.z > 0 and
 // transmission wi.z < 0. `etap` is the ratio of the indices of refraction
@@ -49,7 +53,9 @@
 #include "shared/bindings.h"
 #include "lib/features.glsl"
 #include "lib/sampling.glsl"
+#ifdef STRATA_LAYERS
 #include "lib/sheen.glsl"
+#endif
 
 const float kDeltaAlpha = 1.0e-3;
 
@@ -61,6 +67,11 @@ struct Bsdf {
     float etap;          // far-side ior / near-side ior
     float specular;      // KHR_materials_specular factor on the dielectric Fresnel
     bool delta;          // alpha < kDeltaAlpha: mirror / refraction lobes are deltas
+    // Probabilities of the base's sampling strategies (set by makeBsdf): the
+    // microfacet lobes (then reflection or transmission by specularSplit)
+    // and the diffuse lobe.
+    float pSpecular, pDiffuse;
+#ifdef STRATA_LAYERS
     // KHR_materials_specular's colour (kFeatureSpecularColor).
     vec3 f0Tint;         // min(F0 * specularColor, 1)
     float f0;            // F0 = ((ior - 1) / (ior + 1))^2
@@ -75,10 +86,8 @@ struct Bsdf {
     float sheenAlpha;    // Charlie alpha = roughness^2
     float sheenLambdaO;  // the visibility fit's Lambda(wo.z)
     float baseScale;     // what the layers leave the base: (1 - coatF) sheenScale
-    // Probabilities of the sampling strategies (set by makeBsdf): the
-    // microfacet lobes (then reflection or transmission by specularSplit),
-    // the diffuse lobe, the coat and the sheen.
-    float pSpecular, pDiffuse, pCoat, pSheen;
+    float pCoat, pSheen; // probabilities of the layers' strategies
+#endif
 };
 
 // The layers over the base a surface point gives makeBsdf; each is read
@@ -93,8 +102,6 @@ struct BsdfLayers {
 };
 
 BsdfLayers noLayers() { return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0); }
-
-float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -117,25 +124,32 @@ vec3 fresnelSchlick(vec3 f0, float cosI) {
     return f0 + (1.0 - f0) * (m2 * m2 * m);
 }
 
+#ifdef STRATA_LAYERS
+float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
 // The dielectric's Fresnel reflectance Fd at wo.h = c, RGB (the header's
 // formula with a specular colour).
-vec3 dielectricFresnel(float specular, float etap, vec3 f0Tint, float f0, float c) {
-    float w = clamp((fresnelDielectric(c, etap) - f0) / (1.0 - f0), 0.0, 1.0);
-    return specular * mix(f0Tint, vec3(1.0), w);
+vec3 dielectricFresnel(Bsdf b, float c) {
+    float w = clamp((fresnelDielectric(c, b.etap) - b.f0) / (1.0 - b.f0), 0.0, 1.0);
+    return b.specular * mix(b.f0Tint, vec3(1.0), w);
 }
+#endif
 
 // max(Fd) at wo.h = c: what the dielectric's reflection takes from the
 // lobes beneath (Fd itself without a specular colour).
-float dielectricMax(float specular, float etap, vec3 f0Tint, float f0, float c) {
-    if (!hasFeature(kFeatureSpecularColor)) return specular * fresnelDielectric(c, etap);
-    vec3 f = dielectricFresnel(specular, etap, f0Tint, f0, c);
-    return max(f.r, max(f.g, f.b));
+float dielectricMax(Bsdf b, float c) {
+#ifdef STRATA_LAYERS
+    if (hasFeature(kFeatureSpecularColor)) return max3(dielectricFresnel(b, c));
+#endif
+    return b.specular * fresnelDielectric(c, b.etap);
 }
 
 // Reflectance of the mirror lobe, metal and dielectric together, at wo.h = c.
 vec3 reflectance(Bsdf b, float c) {
+#ifdef STRATA_LAYERS
     if (hasFeature(kFeatureSpecularColor))
-        return b.metallic * fresnelSchlick(b.baseColor, c) + (1.0 - b.metallic) * dielectricFresnel(b.specular, b.etap, b.f0Tint, b.f0, c);
+        return b.metallic * fresnelSchlick(b.baseColor, c) + (1.0 - b.metallic) * dielectricFresnel(b, c);
+#endif
     return b.metallic * fresnelSchlick(b.baseColor, c) +
            vec3((1.0 - b.metallic) * b.specular * fresnelDielectric(c, b.etap));
 }
@@ -143,13 +157,14 @@ vec3 reflectance(Bsdf b, float c) {
 // Probability of reflecting (rather than refracting) off a microfacet with
 // wo.h = c: the two lobes' albedo estimates, Fresnel exact.
 float specularSplit(Bsdf b, float c) {
-    float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, c);
+    float fd = dielectricMax(b, c);
     float wr = b.metallic * max(luminance(fresnelSchlick(b.baseColor, c)), 1.0e-3) +
                (1.0 - b.metallic) * fd;
     float wt = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * luminance(b.baseColor);
     return wr + wt > 0.0 ? wr / (wr + wt) : 1.0;
 }
 
+#ifdef STRATA_LAYERS
 // No layers: what makeBsdf and makeLambert start from.
 void clearLayers(inout Bsdf b) {
     b.coat = 0.0;
@@ -203,6 +218,7 @@ void addLayers(inout Bsdf b, BsdfLayers layers, vec3 wo, float ws, float wd) {
     b.pSheen = total > 0.0 ? wSheen / total : 0.0;
     b.pCoat = total > 0.0 ? wCoat / total : 0.0;
 }
+#endif
 
 // ior < 1 (KHR_materials_ior allows 0) is treated as 1.5, the default.
 // wo weighs the sampling strategies (wo.z > 0). A coat normal facing away
@@ -211,7 +227,9 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
               float specular, BsdfLayers layers, bool entering, vec3 wo) {
     float cosO = wo.z;
     Bsdf b;
+#ifdef STRATA_LAYERS
     clearLayers(b);
+#endif
     b.baseColor = clamp(baseColor, 0.0, 1.0);
     b.metallic = clamp(metallic, 0.0, 1.0);
     float r = clamp(roughness, 0.0, 1.0);
@@ -221,23 +239,27 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     float eta = ior >= 1.0 ? ior : 1.5;
     b.etap = entering ? eta : 1.0 / eta;
     b.specular = clamp(specular, 0.0, 1.0);
+#ifdef STRATA_LAYERS
     if (hasFeature(kFeatureSpecularColor)) {
         b.f0 = (eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0));
         b.f0Tint = min(b.f0 * max(layers.specularColor, vec3(0.0)), vec3(1.0));
     }
+#endif
     // Strategy weights: the lobes' albedos estimated at the macro normal.
     // The floors keep every lobe that can be non-zero at some microfacet
     // samplable (a black metal at normal incidence, a diffuse base behind
     // total internal reflection), so the estimator stays unbiased.
-    float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, cosO);
+    float fd = dielectricMax(b, cosO);
     float lumBase = luminance(b.baseColor);
     float ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
                (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
     float wd = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05) * lumBase;
+#ifdef STRATA_LAYERS
     if (hasFeature(kFeatureClearcoat | kFeatureSheen)) {
         addLayers(b, layers, wo, ws, wd);
         return b;
     }
+#endif
     float total = ws + wd;
     b.pSpecular = total > 0.0 ? ws / total : 0.0;
     b.pDiffuse = total > 0.0 ? wd / total : 0.0;
@@ -257,7 +279,9 @@ Bsdf makeLambert(vec3 baseColor) {
     b.delta = false;
     b.pSpecular = 0.0;
     b.pDiffuse = 1.0;
+#ifdef STRATA_LAYERS
     clearLayers(b);
+#endif
     return b;
 }
 
@@ -325,7 +349,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         vec3 h = normalize(wo + wi);
         float c = dot(wo, h);
         if (b.pDiffuse > 0.0) {
-            float fd = b.specular > 0.0 ? dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, c) : 0.0;
+            float fd = b.specular > 0.0 ? dielectricMax(b, c) : 0.0;
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.baseColor * (kInvPi * wi.z);
             pdf += b.pDiffuse * wi.z * kInvPi;
         }
@@ -341,7 +365,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         if (h.z < 0.0) h = -h;
         float ci = dot(wi, h), co = dot(wo, h);
         if (ci >= 0.0 || co <= 0.0) return f;  // back-facing microfacet
-        float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, co);
+        float fd = dielectricMax(b, co);
         float denom = ci + co / b.etap;
         denom *= denom;
         float d = ggxD(h, b.alpha);
@@ -353,6 +377,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
     return f;
 }
 
+#ifdef STRATA_LAYERS
 // w in the coat's frame (coatN as z, a tangent frame by basis()).
 vec3 toCoatFrame(vec3 n, vec3 w) {
     vec3 t, bt;
@@ -365,11 +390,15 @@ vec3 fromCoatFrame(vec3 n, vec3 w) {
     basis(n, t, bt);
     return w.x * t + w.y * bt + w.z * n;
 }
+#endif
 
 // The non-delta part of the BSDF times |cos| (each lobe's own normal), and
 // the density with which sampleBsdf produces wi (solid angle, strategy and
 // lobe choice included).
 vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+#ifndef STRATA_LAYERS
+    return evalBase(b, wo, wi, pdf);
+#else
     if (!hasFeature(kFeatureClearcoat | kFeatureSheen)) return evalBase(b, wo, wi, pdf);
     vec3 f = evalBase(b, wo, wi, pdf) * b.baseScale;
     if (hasFeature(kFeatureSheen) && b.pSheen > 0.0 && wo.z > 0.0 && wi.z > 0.0) {
@@ -387,6 +416,7 @@ vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         }
     }
     return f;
+#endif
 }
 
 struct BsdfSample {
@@ -408,6 +438,7 @@ BsdfSample finishSample(Bsdf b, vec3 wo, BsdfSample s) {
     return s;
 }
 
+#ifdef STRATA_LAYERS
 // The coat strategy's direction: a GGX visible normal in the coat's frame
 // (its mirror normal when the coat is smooth), reflected; false when the
 // direction leaves below the coat.
@@ -425,6 +456,7 @@ bool sampleSheenDirection(float alpha, vec3 wo, vec2 u, out vec3 wi) {
     wi = reflect(-wo, h);
     return dot(wo, h) > 0.0 && wi.z > 0.0;
 }
+#endif
 
 // One direction: uLobe picks the coat, sheen, microfacet or diffuse
 // strategy by the probabilities of makeBsdf and then, rescaled, reflection
@@ -434,6 +466,7 @@ bool sampleSheenDirection(float alpha, vec3 wo, vec2 u, out vec3 wi) {
 BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
     BsdfSample s = noSample();
     if (wo.z <= 0.0) return s;
+#ifdef STRATA_LAYERS
     uint layer = 0u;  // the layers' strategies: 1 the coat, 2 the sheen
     if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0) {
         if (uLobe < b.pCoat) layer = 1u;
@@ -452,7 +485,9 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         }
     } else if (layer == 2u) {
         if (!sampleSheenDirection(b.sheenAlpha, wo, u, s.wi)) return s;
-    } else if (uLobe < b.pSpecular) {
+    } else
+#endif
+    if (uLobe < b.pSpecular) {
         float uSplit = uLobe / b.pSpecular;
         vec3 h = b.delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(wo, b.alpha, u);
         float c = dot(wo, h);
@@ -462,7 +497,9 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
             s.wi = reflect(-wo, h);
             if (b.delta) {
                 s.weight = reflectance(b, c) / (b.pSpecular * pr);
+#ifdef STRATA_LAYERS
                 if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;
+#endif
                 s.delta = s.valid = true;
                 return s;
             }
@@ -470,10 +507,12 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         } else {
             if (!refractDir(wo, h, b.etap, s.wi) || s.wi.z >= 0.0) return s;
             if (b.delta) {
-                float fd = dielectricMax(b.specular, b.etap, b.f0Tint, b.f0, c);
+                float fd = dielectricMax(b, c);
                 s.weight = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * b.baseColor /
                            (b.etap * b.etap * b.pSpecular * (1.0 - pr));
+#ifdef STRATA_LAYERS
                 if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;
+#endif
                 s.delta = s.valid = true;
                 return s;
             }

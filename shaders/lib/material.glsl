@@ -24,6 +24,7 @@ struct SurfacePoint {
     vec3 emission;       // radiance
     vec3 ns;             // unit shading normal on the incoming side (n's side)
     uint flags;          // kMaterial* bits
+#ifdef STRATA_LAYERS
     // KHR_materials_clearcoat (kFeatureClearcoat; clearcoat 0 otherwise)
     float clearcoat;
     float clearcoatRoughness;  // perceptual
@@ -33,6 +34,7 @@ struct SurfacePoint {
     vec3 sheenColor;           // linear
     float sheenRoughness;
     vec3 specularColor;        // KHR_materials_specular (kFeatureSpecularColor; 1 otherwise)
+#endif
 };
 
 // (TEXCOORD_0.xy, TEXCOORD_1.xy) at barycentrics (u, v) of vertices 1 and 2.
@@ -93,6 +95,7 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     sp.emission = mat.emission;
     sp.ns = nsInterpolated;
     sp.flags = mat.flags;
+#ifdef STRATA_LAYERS
     sp.clearcoat = 0.0;
     sp.clearcoatRoughness = 0.0;
     sp.coatNormal = nsInterpolated;
@@ -111,6 +114,7 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     sp.specularColor = vec3(1.0);
     bool tinted = hasFeature(kFeatureSpecularColor) && (mat.flags & kMaterialSpecularColor) != 0u;
     if (tinted) sp.specularColor = mat.specularColor;
+#endif
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
     if (mat.baseColorTex != kNoTexture) {
@@ -127,6 +131,7 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     if (mat.transmissionTex != kNoTexture) sp.transmission *= materialTexture(mat.transmissionTex, uvs).r;
     if ((kFeatures & kFeatureNormalMap) != 0u && mat.normalTex != kNoTexture)
         sp.ns = normalMapped(mat.normalTex, mat.normalScale, triangle, bary, uvs, n, nsInterpolated);
+#ifdef STRATA_LAYERS
     if (coat) {
         if (mat.clearcoatTex != kNoTexture) sp.clearcoat *= materialTexture(mat.clearcoatTex, uvs).r;
         if (mat.clearcoatRoughnessTex != kNoTexture)
@@ -143,6 +148,7 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
         if (mat.specularColorTex != kNoTexture) sp.specularColor *= materialTexture(mat.specularColorTex, uvs).rgb;
         if (mat.specularTex != kNoTexture) sp.specular *= materialTexture(mat.specularTex, uvs).a;
     }
+#endif
     return sp;
 }
 

@@ -111,6 +111,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             bsdf = makeLambert(sp.baseColor);
         } else {
             BsdfLayers layers = noLayers();
+#ifdef STRATA_LAYERS
             if (hasFeature(kFeatureClearcoat)) {
                 layers.coat = sp.clearcoat;
                 layers.coatRoughness = sp.clearcoatRoughness;
@@ -121,6 +122,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 layers.sheenRoughness = sp.sheenRoughness;
             }
             if (hasFeature(kFeatureSpecularColor)) layers.specularColor = sp.specularColor;
+#endif
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
                             sp.specular, layers, front, woL);
         }

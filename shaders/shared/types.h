@@ -108,6 +108,9 @@ STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with atte
 STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the coat lobe
 STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
 STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular colour or textures
+// The material layers: compiled only into the *_layers shader variants
+// (STRATA_LAYERS, lib/features.glsl).
+STRATA_CONST(uint, kFeaturesLayers, kFeatureClearcoat | kFeatureSheen | kFeatureSpecularColor);
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
