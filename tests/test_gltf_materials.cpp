@@ -29,6 +29,13 @@ const MaterialDesc& materialNamed(const Scene& scene, const std::string& name) {
 
 }  // namespace
 
+TEST_CASE("gltf materials: the layer extensions are supported: no warning names them") {
+    CerrCapture capture;
+    const Scene scene = loadGltf(dataPath("materials/layers.gltf"));
+    CHECK(scene.extensionsUsed.size() == 4);
+    CHECK(capture.text().find("KHR_materials") == std::string::npos);
+}
+
 TEST_CASE("gltf materials: KHR_materials_clearcoat factors, textures (texCoord, transform) and normal scale") {
     const Scene scene = loadGltf(dataPath("materials/layers.gltf"));
     const MaterialDesc& coat = materialNamed(scene, "Coat");
