@@ -240,6 +240,50 @@ def specular_textured(path):
     textured_plate(path, fields, ["KHR_materials_specular"], 30.0, 60.0)
 
 
+def look_at(eye, target):
+    """The node rotation (quaternion x, y, z, w) of a camera at `eye` looking
+    at `target` with +Y up (the camera looks down its local -Z)."""
+    f = [t - e for t, e in zip(target, eye)]
+    n = math.sqrt(sum(c * c for c in f))
+    f = [c / n for c in f]
+    r = [-f[2], 0.0, f[0]]  # cross(f, +Y)
+    n = math.sqrt(sum(c * c for c in r))
+    r = [c / n for c in r]
+    u = [r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]]
+    m = [[r[0], u[0], -f[0]], [r[1], u[1], -f[1]], [r[2], u[2], -f[2]]]  # columns: right, up, back
+    w = math.sqrt(max(0.0, 1.0 + m[0][0] + m[1][1] + m[2][2])) / 2.0
+    return [(m[2][1] - m[1][2]) / (4 * w), (m[0][2] - m[2][0]) / (4 * w), (m[1][0] - m[0][1]) / (4 * w), w]
+
+
+COAT_LAMP_Z = -2.0
+COAT_LAMP_EYE = (3.2, 0.6, COAT_LAMP_Z + 2.4)
+
+
+def coat_lamp():
+    """A 2 x 2 emitter (radiance 1, facing +Z at z = COAT_LAMP_Z, centred on
+    the z axis) under a smooth clear coat, over a white Lambert floor
+    y = -1.2 (albedo 0.8), seen from COAT_LAMP_EYE: the coat darkens the
+    emission leaving at cosine mu by 1 - Schlick(0.04, mu), for the camera
+    and for the floor alike. (Off z = 0: next-event estimation loses light
+    from an emitter in a coordinate plane through the origin, a fault of the
+    shadow rays' end point outside the layers.)"""
+    w = writer()
+    lamp = w.add_material("CoatedLamp", base_color=(0, 0, 0, 1), metallic=0.0, roughness=1.0, specular=0.0,
+                          emissive=(1.0, 1.0, 1.0), extensions=coat())
+    floor_material = w.add_material("Floor", base_color=(0.8, 0.8, 0.8, 1), metallic=0.0, roughness=1.0,
+                                    specular=0.0)
+    z = COAT_LAMP_Z
+    light = Quads().add((-1, -1, z), (2, 0, 0), (0, 2, 0), (0, 0, 1))
+    floor = Quads().add((-5, -1.2, z - 1), (0, 0, 7), (10, 0, 0), (0, 1, 0))
+    roots = [w.add_node("Lamp", mesh=mesh(w, "Lamp", light, lamp)),
+             w.add_node("Floor", mesh=mesh(w, "Floor", floor, floor_material)),
+             w.add_node("Camera", camera=camera(w, "Camera", 50.0), translation=list(COAT_LAMP_EYE),
+                        rotation=look_at(COAT_LAMP_EYE, (0.0, -0.5, COAT_LAMP_Z + 0.8)))]
+    w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_clearcoat", "KHR_materials_specular"])
+    return w.gltf_text()
+
+
 def layer_spheres():
     """Three smooth spheres (radius 0.5) on a grey floor under a square lamp,
     seen from the front: a red plastic under a clear coat, a dark velvet (a
@@ -412,6 +456,7 @@ def main():
         "specular-color-0.gltf": specular_plate(0.0, 2.0),
         "specular-color-60.gltf": specular_plate(60.0, 30.0),
         "layer-spheres.gltf": layer_spheres(),
+        "coat-lamp.gltf": coat_lamp(),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))

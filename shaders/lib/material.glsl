@@ -80,6 +80,23 @@ vec3 normalMapped(uint tex, float scale, uint triangle, vec2 bary, vec4 uvs, vec
     return ns;
 }
 
+#ifdef STRATA_LAYERS
+// KHR_materials_clearcoat at a point of a coated material: clearcoat x its
+// texture (R) and the coat's normal, clearcoatNormalTexture's or else the
+// interpolated normal (normalMapped's n and nsInterpolated).
+float coatAt(Material mat, uint triangle, vec2 bary, vec3 n, vec3 nsInterpolated, out vec3 coatNormal) {
+    float clearcoat = mat.clearcoat;
+    coatNormal = nsInterpolated;
+    if ((kFeatures & kFeatureTextures) == 0u) return clearcoat;
+    vec4 uvs = texcoordsAt(triangle, bary);
+    if (mat.clearcoatTex != kNoTexture) clearcoat *= materialTexture(mat.clearcoatTex, uvs).r;
+    if ((kFeatures & kFeatureNormalMap) != 0u && mat.clearcoatNormalTex != kNoTexture)
+        coatNormal = normalMapped(mat.clearcoatNormalTex, mat.clearcoatNormalScale, triangle, bary, uvs, n,
+                                  nsInterpolated);
+    return clearcoat;
+}
+#endif
+
 // The material at a hit: `bary` = barycentrics of vertices 1 and 2, `n` the
 // geometric normal on the incoming side, `nsInterpolated` the interpolated
 // vertex normal flipped to n's side.
@@ -101,7 +118,7 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     sp.coatNormal = nsInterpolated;
     bool coat = hasFeature(kFeatureClearcoat) && (mat.flags & kMaterialClearcoat) != 0u;
     if (coat) {
-        sp.clearcoat = mat.clearcoat;
+        sp.clearcoat = coatAt(mat, triangle, bary, n, nsInterpolated, sp.coatNormal);
         sp.clearcoatRoughness = mat.clearcoatRoughness;
     }
     sp.sheenColor = vec3(0.0);
@@ -132,14 +149,8 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     if ((kFeatures & kFeatureNormalMap) != 0u && mat.normalTex != kNoTexture)
         sp.ns = normalMapped(mat.normalTex, mat.normalScale, triangle, bary, uvs, n, nsInterpolated);
 #ifdef STRATA_LAYERS
-    if (coat) {
-        if (mat.clearcoatTex != kNoTexture) sp.clearcoat *= materialTexture(mat.clearcoatTex, uvs).r;
-        if (mat.clearcoatRoughnessTex != kNoTexture)
-            sp.clearcoatRoughness *= materialTexture(mat.clearcoatRoughnessTex, uvs).g;
-        if ((kFeatures & kFeatureNormalMap) != 0u && mat.clearcoatNormalTex != kNoTexture)
-            sp.coatNormal = normalMapped(mat.clearcoatNormalTex, mat.clearcoatNormalScale, triangle, bary, uvs, n,
-                                         nsInterpolated);
-    }
+    if (coat && mat.clearcoatRoughnessTex != kNoTexture)
+        sp.clearcoatRoughness *= materialTexture(mat.clearcoatRoughnessTex, uvs).g;
     if (sheen) {
         if (mat.sheenColorTex != kNoTexture) sp.sheenColor *= materialTexture(mat.sheenColorTex, uvs).rgb;
         if (mat.sheenRoughnessTex != kNoTexture) sp.sheenRoughness *= materialTexture(mat.sheenRoughnessTex, uvs).a;
@@ -165,6 +176,32 @@ vec3 emissionAt(uint materialIndex, uint triangle, vec2 bary) {
     Material mat = sceneMaterial(materialIndex);
     if ((kFeatures & kFeatureTextures) == 0u || mat.emissiveTex == kNoTexture) return mat.emission;
     return mat.emission * materialTexture(mat.emissiveTex, texcoordsAt(triangle, bary)).rgb;
+}
+
+// The emission `le` of material `materialIndex` at a point of `triangle`
+// as it leaves towards `toViewer` (unit): under KHR_materials_clearcoat's
+// coat it is darkened by the coat's Fresnel, le (1 - clearcoat
+// Schlick(0.04, |toViewer . coat normal|)), as the extension specifies. The
+// path's emission hits and next-event estimation both take it from here.
+vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 toViewer) {
+#ifdef STRATA_LAYERS
+    if (!hasFeature(kFeatureClearcoat)) return le;
+    Material mat = sceneMaterial(materialIndex);
+    if ((mat.flags & kMaterialClearcoat) == 0u) return le;
+    TriVerts tv = bvhFetchTri(triangle);
+    vec3 n = normalize(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz));
+    if (dot(n, toViewer) < 0.0) n = -n;
+    TriShading sh = sceneShading(triangle);
+    vec3 ns = normalize((1.0 - bary.x - bary.y) * sh.n0 + bary.x * sh.n1 + bary.y * sh.n2);
+    if (dot(ns, n) < 0.0) ns = -ns;
+    vec3 coatNormal;
+    float clearcoat = min(coatAt(mat, triangle, bary, n, ns, coatNormal), 1.0);
+    float m = 1.0 - min(abs(dot(toViewer, coatNormal)), 1.0);
+    float m2 = m * m;
+    return le * (1.0 - clearcoat * (0.04 + 0.96 * (m2 * m2 * m)));
+#else
+    return le;
+#endif
 }
 
 // Per-ray hash for stochastic transparency: a pure function of the ray's

@@ -86,7 +86,9 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
             float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
             float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
-            v.L += v.beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
+            vec2 bary = vec2(hit.u, hit.v);
+            vec3 le = emissionAt(sh.material, hit.triangle, bary);
+            v.L += v.beta * w * coatedEmission(sh.material, hit.triangle, bary, le, -dir);
         }
     }
     // KHR_materials_unlit: the surface's colour, seen from either side, and no scattering.
