@@ -15,9 +15,8 @@
 // F the exact Fresnel and F0 = ((ior - 1) / (ior + 1))^2 its value at
 // normal incidence (so a colour of 1 is the exact Fresnel), and the layer
 // beneath keeps 1 - max(Fd), as the extension's fresnel_mix does.
-// Transmission refracts into a closed
-// volume (not thin-walled) and scales radiance by 1/eta^2 (Veach 1997,
-// sec. 5.2). GGX (Trowbridge-Reitz) with height-correlated Smith shadowing,
+// Transmission refracts into a closed volume (not thin-walled) and scales
+// radiance by 1/eta^2 (Veach 1997, sec. 5.2). GGX (Trowbridge-Reitz) with height-correlated Smith shadowing,
 // alpha = roughness^2; the visible normals are sampled with spherical caps
 // (Dupuy & Benyoub 2023) and transmission follows Walter et al. 2007. Below
 // alpha kDeltaAlpha the reflection and transmission lobes are exact (delta)
