@@ -121,8 +121,9 @@ class GltfWriter:
     def add_material(self, name, base_color=None, metallic=None, roughness=None,
                      emissive=None, strength=None, ior=None, double_sided=False,
                      alpha_mode=None, alpha_cutoff=None, specular=None, transmission=None, unlit=False,
-                     volume=None):
-        """base_color is RGBA; factors left as None are omitted (glTF defaults)."""
+                     volume=None, extensions=None):
+        """base_color is RGBA; factors left as None are omitted (glTF defaults);
+        extensions: more {name: object} in the material's extensions."""
         mat = {"name": name}
         pbr = {}
         if base_color is not None:
@@ -149,6 +150,7 @@ class GltfWriter:
         if volume is not None:  # (thicknessFactor, attenuationDistance, attenuationColor)
             ext["KHR_materials_volume"] = {"thicknessFactor": volume[0], "attenuationDistance": volume[1],
                                            "attenuationColor": list(volume[2])}
+        ext.update(extensions or {})
         if ext:
             mat["extensions"] = ext
         if double_sided:

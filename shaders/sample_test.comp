@@ -2,6 +2,7 @@
 // Draws samples from the GLSL sampling routines exactly as the path tracer
 // calls them, for chi-square tests on the host (tests/test_sampling_glsl.cpp).
 #extension GL_GOOGLE_include_directive : require
+#define STRATA_LAYERS  // the BSDF's layers, under their feature bits (lib/features.glsl)
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
@@ -20,8 +21,16 @@ layout(push_constant) uniform Push { SampleTestParams params; };
 Bsdf testBsdf(out vec3 wo) {
     float c = params.bsdf0.x;
     wo = vec3(sqrt(max(0.0, 1.0 - c * c)), 0.0, c);
+    BsdfLayers layers = noLayers();
+    layers.coat = params.bsdf2.x;
+    layers.coatRoughness = params.bsdf2.y;
+    float tilt = params.bsdf3.w;
+    layers.coatNormal = vec3(0.6 * sin(tilt), 0.8 * sin(tilt), cos(tilt));
+    layers.sheenColor = vec3(params.bsdf2.z);
+    layers.sheenRoughness = params.bsdf2.w;
+    layers.specularColor = params.bsdf3.xyz;
     return makeBsdf(vec3(params.bsdf1.z), params.bsdf0.z, params.bsdf0.y, params.bsdf0.w,
-                    params.bsdf1.x, params.bsdf1.y, params.bsdf1.w != 0.0, c);
+                    params.bsdf1.x, params.bsdf1.y, layers, params.bsdf1.w != 0.0, wo);
 }
 
 // 8-point Gauss-Legendre nodes and weights on [-1, 1] (positive half).

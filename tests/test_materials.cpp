@@ -22,26 +22,6 @@ constexpr float kLampHalf = 0.5f;
 constexpr float kLampHeight = 1.0f;
 constexpr float kLampLe = 2.0f;
 
-// Fresnel reflectance of a dielectric (relative index eta) for unpolarised
-// light at incidence cosine c (Born & Wolf).
-double fresnel(double c, double eta) {
-    const double s2 = (1.0 - c * c) / (eta * eta);
-    if (s2 >= 1.0) return 1.0;
-    const double t = std::sqrt(1.0 - s2);
-    const double rs = (c - eta * t) / (c + eta * t), rp = (eta * c - t) / (eta * c + t);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
-// The camera ray through image point (x, y) in pixels, as pathtrace.comp makes it.
-glm::dvec3 cameraRay(const Camera& cam, int w, int h, double x, double y) {
-    const double tanHalf = std::tan(cam.yfov * 0.5);
-    const double aspect = double(w) / h;
-    const glm::dvec3 f(cam.forward), right = glm::normalize(glm::cross(f, glm::dvec3(cam.up)));
-    const glm::dvec3 up = glm::cross(right, f);
-    const double nx = 2.0 * x / w - 1.0, ny = 1.0 - 2.0 * y / h;
-    return glm::normalize(f + nx * tanHalf * aspect * right + ny * tanHalf * up);
-}
-
 struct Reflection {
     bool hitsLamp = false;
     double cosine = 0.0;  // incidence cosine on the floor
@@ -118,7 +98,7 @@ TEST_CASE("a white metal of roughness 0 and 1e-4 is an exact mirror: the lamp's 
 }
 
 TEST_CASE("a smooth black dielectric reflects the lamp by the exact Fresnel factor of ior 1.5") {
-    checkMirror("tests/data/materials/black-gloss.gltf", [](double c) { return fresnel(c, 1.5); });
+    checkMirror("tests/data/materials/black-gloss.gltf", [](double c) { return fresnelDielectric(c, 1.5); });
 }
 
 namespace {

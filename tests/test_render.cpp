@@ -260,6 +260,9 @@ TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit" 
     SUBCASE("materials board (textures, normal maps, transmission)") {
         checkWavefrontMatches(loadGltf(sourcePath("scenes/materials-board.gltf")), s);
     }
+    SUBCASE("material layers (clearcoat, sheen, specular colour)") {
+        checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/layer-spheres.gltf")), s);
+    }
     SUBCASE("alpha test") { checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/alpha-mask.gltf")), s); }
     SUBCASE("environment map and a directional light, light sampling only") {
         const Scene scene = envBoardWithSun();

@@ -63,6 +63,26 @@ inline Rendered renderFile(const std::string& relPath, const RenderSettings& set
 }
 
 // A scene file lit by a uniform environment of radiance 1 (--env-color 1,1,1).
+// Fresnel reflectance of a dielectric (relative index eta) for unpolarised
+// light at incidence cosine c (Born & Wolf).
+inline double fresnelDielectric(double c, double eta) {
+    const double s2 = (1.0 - c * c) / (eta * eta);
+    if (s2 >= 1.0) return 1.0;
+    const double t = std::sqrt(1.0 - s2);
+    const double rs = (c - eta * t) / (c + eta * t), rp = (eta * c - t) / (eta * c + t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// The camera ray through image point (x, y) in pixels, as pathtrace.comp makes it.
+inline glm::dvec3 cameraRay(const Camera& cam, int w, int h, double x, double y) {
+    const double tanHalf = std::tan(cam.yfov * 0.5);
+    const double aspect = double(w) / h;
+    const glm::dvec3 f(cam.forward), right = glm::normalize(glm::cross(f, glm::dvec3(cam.up)));
+    const glm::dvec3 up = glm::cross(right, f);
+    const double nx = 2.0 * x / w - 1.0, ny = 1.0 - 2.0 * y / h;
+    return glm::normalize(f + nx * tanHalf * aspect * right + ny * tanHalf * up);
+}
+
 inline Scene loadWithWhiteEnvironment(const std::string& path) {
     EnvironmentOptions env;
     env.hasColor = true;

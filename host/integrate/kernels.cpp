@@ -10,6 +10,11 @@ namespace strata {
 
 std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace) {
     using Span = std::span<const std::uint32_t>;
+    if (pathtrace && (scene.features.bits & gpu::kFeaturesLayers) != 0u) {
+        if (!scene.wide) return Span(kSpirvPtr_pathtrace_bvh2_layers, kSpirvSize_pathtrace_bvh2_layers / 4);
+        if (scene.memoryStack) return Span(kSpirvPtr_pathtrace_bvh4m_layers, kSpirvSize_pathtrace_bvh4m_layers / 4);
+        return Span(kSpirvPtr_pathtrace_layers, kSpirvSize_pathtrace_layers / 4);
+    }
     if (!scene.wide)
         return pathtrace ? Span(kSpirvPtr_pathtrace_bvh2, kSpirvSize_pathtrace_bvh2 / 4)
                          : Span(kSpirvPtr_trace_bvh2, kSpirvSize_trace_bvh2 / 4);
@@ -17,6 +22,12 @@ std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pa
         return pathtrace ? Span(kSpirvPtr_pathtrace_bvh4m, kSpirvSize_pathtrace_bvh4m / 4)
                          : Span(kSpirvPtr_trace_bvh4m, kSpirvSize_trace_bvh4m / 4);
     return pathtrace ? Span(kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4) : Span(kSpirvPtr_trace, kSpirvSize_trace / 4);
+}
+
+std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene) {
+    if ((scene.features.bits & gpu::kFeaturesLayers) != 0u)
+        return {kSpirvPtr_wavefront_layers, kSpirvSize_wavefront_layers / 4};
+    return {kSpirvPtr_wavefront, kSpirvSize_wavefront / 4};
 }
 
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {

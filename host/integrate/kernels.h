@@ -19,8 +19,12 @@ namespace strata {
 
 // The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp built for the
 // scene's traversal: BVH2, four-wide with registers, or four-wide with an
-// array stack.
+// array stack; the path tracer with the material layers (STRATA_LAYERS) when
+// the scene has one (gpu::kFeaturesLayers).
 std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace);
+
+// The SPIR-V of wavefront.comp, with the material layers when the scene has one.
+std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene);
 
 // The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,
 // SPEC_BVH_REGS) into `spec`, grown as needed. The BVH width and the stack

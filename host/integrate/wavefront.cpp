@@ -96,7 +96,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
         for (std::uint32_t i = BINDING_WAVE_STATE; i <= BINDING_WAVE_SHADOW_HITS; ++i)
             b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         auto k = std::make_unique<vk::Kernel>(
-            ctx, std::span<const std::uint32_t>(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4), std::move(b),
+            ctx, wavefrontShader(dev), std::move(b),
             sizeof(WaveParams), spec, t.reusePipeline);
         bindPathInputs(*k, dev, film);
         k->bind(BINDING_WAVE_STATE, m.state);

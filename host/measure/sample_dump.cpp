@@ -9,6 +9,7 @@
 #include "../../shaders/shared/bindings.h"
 #include "../../shaders/shared/types.h"
 #include "integrate/kernels.h"
+#include "pack/textures.h"
 #include "upload/device_scene.h"
 #include "render/filter.h"
 #include "render/sampler_kind.h"
@@ -19,7 +20,8 @@ namespace strata {
 
 std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::SampleTestParams& params,
                                        std::uint32_t sampler, const std::vector<gpu::Emitter>& emitters,
-                                       const PixelFilter& filter, const GpuScene* lights) {
+                                       const PixelFilter& filter, const GpuScene* lights,
+                                       std::uint32_t features) {
     using namespace gpu;
     const GpuScene none;
     const GpuScene& scene = lights ? *lights : none;
@@ -31,13 +33,16 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     DeviceScene env;
     uploadEnvironment(ctx, scene, env, sceneLimits(ctx));
     vk::Buffer table = vk::uploadVector(ctx, filterInverseCdf(filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    // The BSDF's sheen reads its albedo table from the texel words.
+    vk::Buffer texels = vk::uploadVector(ctx, sheenAlbedoWords(), VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    vk::TexelView texelsView(ctx, texels, VK_FORMAT_R32_UINT);
     const VkDeviceSize bytes = std::max<VkDeviceSize>(16, VkDeviceSize(params.count) * sizeof(glm::vec4));
     vk::Buffer out(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                    vk::MemoryUse::Device);
     vk::Buffer back(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
     std::vector<std::uint32_t> spec(4, 0u);
     spec[SPEC_SAMPLER] = sampler;
-    spec[SPEC_FEATURES] = scene.features.bits;
+    spec[SPEC_FEATURES] = scene.features.bits | features;
     vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
                       {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -46,7 +51,8 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
                        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
                        {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                       {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}},
+                       {BINDING_ENV_CDF_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                       {BINDING_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER}},
                       sizeof(SampleTestParams), spec, /*reuse=*/true);
     kernel.bind(BINDING_FRAME, frame);
     kernel.bind(BINDING_ENV_TEXELS, env.envTexelView);
@@ -54,6 +60,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, em);
     kernel.bind(BINDING_SAMPLES, out);
     kernel.bind(BINDING_FILTER, table);
+    kernel.bind(BINDING_TEXELS, texelsView);
     vk::OneShot submit(ctx);
     VkCommandBuffer cmd = submit.begin();
     kernel.dispatch(cmd, &params, (params.count + 63) / 64);

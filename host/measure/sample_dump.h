@@ -40,8 +40,11 @@ std::vector<glm::vec4> drawPixelSamples(const vk::Context& ctx, const PixelSampl
 // emitters (kSampleEmitterChoice) and pixel filter (kSampleFilter). With
 // `lights` (kSampleLight, kSampleEnvironmentPdf), its emitters, environment
 // and feature bits are used instead of `emitters`, as the path tracer sees them.
+// `features` (kFeature*) are added to SPEC_FEATURES: the BSDF's layers are
+// compiled in only under their bits.
 std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::SampleTestParams& params,
                                        std::uint32_t sampler, const std::vector<gpu::Emitter>& emitters = {},
-                                       const PixelFilter& filter = {}, const GpuScene* lights = nullptr);
+                                       const PixelFilter& filter = {}, const GpuScene* lights = nullptr,
+                                       std::uint32_t features = 0);
 
 }  // namespace strata

@@ -24,7 +24,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureAlphaTest, "alpha-test"},    {gpu::kFeaturePunctual, "punctual-lights"},
         {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"},
         {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"},
-        {gpu::kFeatureVertexColor, "vertex-colors"}};
+        {gpu::kFeatureVertexColor, "vertex-colors"}, {gpu::kFeatureClearcoat, "clearcoat"},
+        {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -162,10 +163,16 @@ std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used)
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
         const MaterialDesc& m = scene.materials[i];
-        if (m.baseColorTexture.used() || m.metallicRoughnessTexture.used() ||
-            m.normalTexture.used() || m.emissiveTexture.used() || m.transmissionTexture.used())
+        const bool coatTextures = m.coated() && (m.clearcoatTexture.used() || m.clearcoatRoughnessTexture.used() ||
+                                                 m.clearcoatNormalTexture.used());
+        const bool sheenTextures = m.sheened() && (m.sheenColorTexture.used() || m.sheenRoughnessTexture.used());
+        const bool specularTextures = m.tinted() && (m.specularTexture.used() || m.specularColorTexture.used());
+        if (m.baseColorTexture.used() || m.metallicRoughnessTexture.used() || m.normalTexture.used() ||
+            m.emissiveTexture.used() || m.transmissionTexture.used() || coatTextures || sheenTextures ||
+            specularTextures)
             bits |= gpu::kFeatureTextures;
-        if (m.normalTexture.used()) bits |= gpu::kFeatureNormalMap;
+        if (m.normalTexture.used() || (m.coated() && m.clearcoatNormalTexture.used()))
+            bits |= gpu::kFeatureNormalMap;
         const float alpha = m.baseColor.a;
         const bool textured = m.baseColorTexture.used() || colors;
         if ((m.alphaMode == MaterialDesc::AlphaMode::Mask && (textured || alpha < m.alphaCutoff)) ||
@@ -289,8 +296,25 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         gm.attenuation = volumeAttenuation(m);
         gm.thickness = m.thickness;
         if (gm.attenuation != glm::vec3(0.0f)) gm.flags |= gpu::kMaterialVolume;
-        gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex =
-            gm.transmissionTex = gpu::kNoTexture;
+        if (m.coated()) {
+            gm.flags |= gpu::kMaterialClearcoat;
+            gm.clearcoat = m.clearcoat;
+            gm.clearcoatRoughness = m.clearcoatRoughness;
+            gm.clearcoatNormalScale = m.clearcoatNormalScale;
+        }
+        gm.specularColor = glm::vec3(1.0f);
+        if (m.tinted()) {
+            gm.flags |= gpu::kMaterialSpecularColor;
+            gm.specularColor = m.specularColor;
+        }
+        if (m.sheened()) {
+            gm.flags |= gpu::kMaterialSheen;
+            gm.sheenColor = m.sheenColor;
+            gm.sheenRoughness = m.sheenRoughness;
+        }
+        gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex = gm.transmissionTex =
+            gm.clearcoatTex = gm.clearcoatRoughnessTex = gm.clearcoatNormalTex = gm.sheenColorTex =
+                gm.sheenRoughnessTex = gm.specularColorTex = gm.specularTex = gpu::kNoTexture;
         g.materials.push_back(gm);
     }
     std::vector<bool> used(g.materials.size(), false);
@@ -402,6 +426,9 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         if (m.metallic > 0.0f || m.specular > 0.0f) g.features.bits |= gpu::kFeatureSpecular;
         if (m.transmission > 0.0f && m.metallic < 1.0f) g.features.bits |= gpu::kFeatureTransmission;
         if ((m.flags & gpu::kMaterialVolume) != 0u) g.features.bits |= gpu::kFeatureVolume;
+        if ((m.flags & gpu::kMaterialClearcoat) != 0u) g.features.bits |= gpu::kFeatureClearcoat;
+        if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
+        if ((m.flags & gpu::kMaterialSpecularColor) != 0u) g.features.bits |= gpu::kFeatureSpecularColor;
     }
     if constexpr (consume) releaseGeometry(scene);
     return g;

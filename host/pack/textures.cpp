@@ -1,7 +1,11 @@
 #include "pack/textures.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+
+#include "sheen_albedo.h"
 
 namespace strata {
 
@@ -75,9 +79,19 @@ void transformRows(const TextureTransform& t, glm::vec4& row0, glm::vec4& row1) 
     row1 = glm::vec4(static_cast<float>(-s * t.scale.x), static_cast<float>(c * t.scale.y), t.offset.y, 0.0f);
 }
 
+std::vector<std::uint32_t> sheenAlbedoWords() {
+    std::vector<std::uint32_t> words;
+    for (const float e : kSheenAlbedo) words.push_back(std::bit_cast<std::uint32_t>(e));
+    return words;
+}
+
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
                             std::vector<gpu::Material>& materials) {
     PackedTextures out;
+    // KHR_materials_sheen's albedo table first (lib/sheen.glsl reads it there).
+    bool sheen = false;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) sheen = sheen || (used[i] && scene.materials[i].sheened());
+    if (sheen) out.texels = sheenAlbedoWords();
     std::vector<std::int64_t> imageOffset(scene.images.size(), -1);
     auto addRef = [&](const MaterialDesc& m, const TextureSlot& slot, bool srgb) -> std::uint32_t {
         if (!slot.used()) return gpu::kNoTexture;
@@ -110,6 +124,22 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
         g.normalTex = addRef(m, m.normalTexture, false);
         g.emissiveTex = addRef(m, m.emissiveTexture, true);
         g.transmissionTex = addRef(m, m.transmissionTexture, false);
+        g.clearcoatTex = g.clearcoatRoughnessTex = g.clearcoatNormalTex = gpu::kNoTexture;
+        if (m.coated()) {
+            g.clearcoatTex = addRef(m, m.clearcoatTexture, false);
+            g.clearcoatRoughnessTex = addRef(m, m.clearcoatRoughnessTexture, false);
+            g.clearcoatNormalTex = addRef(m, m.clearcoatNormalTexture, false);
+        }
+        g.specularTex = g.specularColorTex = gpu::kNoTexture;
+        if (m.tinted()) {
+            g.specularTex = addRef(m, m.specularTexture, false);
+            g.specularColorTex = addRef(m, m.specularColorTexture, true);
+        }
+        g.sheenColorTex = g.sheenRoughnessTex = gpu::kNoTexture;
+        if (m.sheened()) {
+            g.sheenColorTex = addRef(m, m.sheenColorTexture, true);
+            g.sheenRoughnessTex = addRef(m, m.sheenRoughnessTexture, false);
+        }
     }
     return out;
 }

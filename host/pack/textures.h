@@ -17,9 +17,13 @@ struct PackedTextures {
 
 // Fills the *Tex fields of `materials` (parallel to scene.materials) with
 // indices into refs, for the materials marked in `used`; other slots stay
-// gpu::kNoTexture.
+// gpu::kNoTexture. When a used material has a sheen (kFeatureSheen), the
+// texels start with the sheen albedo table (sheenAlbedoWords).
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
                             std::vector<gpu::Material>& materials);
+
+// KHR_materials_sheen's albedo table as texel words (tools/sheen-albedo).
+std::vector<std::uint32_t> sheenAlbedoWords();
 
 // The exact sRGB decoding curve (IEC 61966-2-1): c / 12.92 for c <= 0.04045,
 // else ((c + 0.055) / 1.055)^2.4; c in [0, 1].

@@ -205,18 +205,13 @@ private:
                                                      glm::vec4(1, 0, 0, 1)};
 
     // Checks that the primitive has every TEXCOORD set its material's
-    // textures read; drops TANGENT when the material has no normalTexture and
-    // generates tangents (tangents.h) when it has one and no TANGENT. Runs
+    // textures read; drops TANGENT when the material has no normal map
+    // (normalTexture, clearcoatNormalTexture) and generates tangents
+    // (tangents.h) when it has one and no TANGENT. Runs
     // on the cached local primitive, so once per mesh in practice.
     void prepareTextureInputs(int mesh, LocalPrimitive& prim) {
         const MaterialDesc& m = scene_.materials[static_cast<std::size_t>(prim.material)];
-        const std::pair<const TextureSlot*, const char*> slots[] = {
-            {&m.baseColorTexture, "baseColorTexture"},
-            {&m.metallicRoughnessTexture, "metallicRoughnessTexture"},
-            {&m.normalTexture, "normalTexture"},
-            {&m.emissiveTexture, "emissiveTexture"},
-            {&m.transmissionTexture, "transmissionTexture"}};
-        for (const auto& [slot, name] : slots) {
+        for (const auto& [slot, name] : m.textureSlots()) {
             if (slot->used() && prim.texcoord(slot->texCoord).empty()) {
                 fail(path_, gltf::meshLabel(model_, mesh) + " primitive " + std::to_string(prim.index) +
                                 ": material " + std::to_string(prim.material) + " " + name +
@@ -224,11 +219,14 @@ private:
                                 ", which the primitive does not have");
             }
         }
-        if (!m.normalTexture.used()) {
+        // One tangent frame serves both normal maps (generated from the
+        // normalTexture's set, else the clearcoatNormalTexture's).
+        const TextureSlot& mapped = m.normalTexture.used() ? m.normalTexture : m.clearcoatNormalTexture;
+        if (!mapped.used()) {
             prim.tangents.clear();
         } else if (prim.tangents.empty()) {
-            prim.tangents = generateTangents(prim.positions, prim.normals,
-                                             prim.texcoord(m.normalTexture.texCoord), prim.indices);
+            prim.tangents = generateTangents(prim.positions, prim.normals, prim.texcoord(mapped.texCoord),
+                                             prim.indices);
         }
     }
 

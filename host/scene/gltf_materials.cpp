@@ -1,7 +1,8 @@
 // glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
-// KHR_materials_emissive_strength, _ior, _transmission and _specular, and the
-// texture slots (occlusionTexture is not read: a path tracer computes
-// occlusion).
+// KHR_materials_emissive_strength, _ior, _transmission, _specular (factor,
+// colour, textures), _unlit, _volume, _clearcoat and _sheen, and the texture
+// slots (occlusionTexture is not read: a path tracer computes occlusion).
+// Factors outside their range are errors.
 #include <array>
 #include <cmath>
 #include <set>
@@ -35,19 +36,22 @@ double extensionNumber(const std::string& path, const std::string& label,
     return value.GetNumberAsDouble();
 }
 
-// KHR_materials_volume.attenuationColor: three numbers in [0, 1], default white.
-glm::vec3 volumeColor(const std::string& path, const std::string& label, const tinygltf::Material& material) {
-    const auto it = material.extensions.find("KHR_materials_volume");
-    if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has("attenuationColor"))
-        return glm::vec3(1.0f);
-    const tinygltf::Value& c = it->second.Get("attenuationColor");
+// The colour `key` of extension object `extension`: three numbers in [0, 1]
+// (in [0, inf) when not `unit`), or `fallback` when absent.
+glm::vec3 extensionColor(const std::string& path, const std::string& label, const tinygltf::Material& material,
+                         const char* extension, const char* key, glm::vec3 fallback, bool unit = true) {
+    const auto it = material.extensions.find(extension);
+    if (it == material.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
+    const tinygltf::Value& c = it->second.Get(key);
     glm::vec3 color(0.0f);
     bool ok = c.IsArray() && c.ArrayLen() == 3;
     for (int k = 0; ok && k < 3; ++k) {
-        ok = c.Get(k).IsNumber() && c.Get(k).GetNumberAsDouble() >= 0.0 && c.Get(k).GetNumberAsDouble() <= 1.0;
-        if (ok) color[k] = static_cast<float>(c.Get(k).GetNumberAsDouble());
+        const double v = c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1.0;
+        ok = v >= 0.0 && (v <= 1.0 || (!unit && std::isfinite(v)));
+        color[k] = static_cast<float>(v);
     }
-    if (!ok) fail(path, label + ": KHR_materials_volume.attenuationColor is not three numbers in [0, 1]");
+    if (!ok)
+        fail(path, label + ": " + extension + "." + key + " is not three numbers in " + (unit ? "[0, 1]" : "[0, inf)"));
     return color;
 }
 
@@ -64,15 +68,24 @@ TextureSlot slotOf(const std::string& path, const tinygltf::Model& model, const 
                               textureTransform(info.extensions));
 }
 
-// KHR_materials_transmission.transmissionTexture: a textureInfo kept as JSON.
-TextureSlot transmissionSlot(const std::string& path, const tinygltf::Model& model,
-                             const std::string& label, const tinygltf::Material& material) {
-    const auto it = material.extensions.find("KHR_materials_transmission");
-    if (it == material.extensions.end() || !it->second.Has("transmissionTexture")) return {};
-    const tinygltf::Value& info = it->second.Get("transmissionTexture");
-    const std::string where = label + " transmissionTexture";
+// Texture `key` of extension object `extension` (a textureInfo kept as
+// JSON), e.g. KHR_materials_transmission.transmissionTexture; an empty slot
+// when absent. `scale`, when not null, receives a normalTextureInfo's scale
+// (default 1).
+TextureSlot extensionSlot(const std::string& path, const tinygltf::Model& model, const std::string& label,
+                          const tinygltf::Material& material, const char* extension, const char* key,
+                          float* scale = nullptr) {
+    const auto it = material.extensions.find(extension);
+    if (it == material.extensions.end() || !it->second.Has(key)) return {};
+    const tinygltf::Value& info = it->second.Get(key);
+    const std::string where = label + " " + key;
     if (!info.IsObject() || !info.Has("index") || !info.Get("index").IsInt()) {
         fail(path, where + " has no integer index");
+    }
+    if (scale) {
+        const tinygltf::Value* s = info.Has("scale") ? &info.Get("scale") : nullptr;
+        if (s && !s->IsNumber()) fail(path, where + ".scale is not a number");
+        *scale = s ? static_cast<float>(s->GetNumberAsDouble()) : 1.0f;
     }
     const int texCoord = info.Has("texCoord") && info.Get("texCoord").IsInt()
                              ? info.Get("texCoord").GetNumberAsInt()
@@ -89,8 +102,8 @@ TextureSlot transmissionSlot(const std::string& path, const tinygltf::Model& mod
 // texture slots read when one is above 1; more than two is an error.
 std::array<int, 2> uvSets(const std::string& path, const std::string& label, const MaterialDesc& m) {
     std::set<int> sets;
-    for (const TextureSlot* slot : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                                    &m.emissiveTexture, &m.transmissionTexture}) {
+    for (const MaterialDesc::NamedSlot& named : m.textureSlots()) {
+        const TextureSlot* slot = named.slot;
         if (slot->used()) sets.insert(slot->texCoord);
     }
     if (sets.empty() || *sets.rbegin() <= 1) return {0, 1};
@@ -161,6 +174,8 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     };
     m.transmission = unitFactor("KHR_materials_transmission", "transmissionFactor", 0.0);
     m.specular = unitFactor("KHR_materials_specular", "specularFactor", 1.0);
+    m.specularColor =
+        extensionColor(path, label, src, "KHR_materials_specular", "specularColorFactor", glm::vec3(1.0f), false);
 
     if (const auto unlit = src.extensions.find("KHR_materials_unlit"); unlit != src.extensions.end()) {
         if (!unlit->second.IsObject()) fail(path, label + ": KHR_materials_unlit is not a JSON object");
@@ -175,7 +190,7 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     if (!(distance > 0.0))
         fail(path, label + ": KHR_materials_volume.attenuationDistance " + formatNumber(distance) + " is not > 0");
     m.attenuationDistance = static_cast<float>(distance);
-    m.attenuationColor = volumeColor(path, label, src);
+    m.attenuationColor = extensionColor(path, label, src, "KHR_materials_volume", "attenuationColor", glm::vec3(1.0f));
     m.doubleSided = src.doubleSided;
     if (src.alphaMode == "OPAQUE") {
         m.alphaMode = MaterialDesc::AlphaMode::Opaque;
@@ -195,7 +210,24 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.normalTexture = slotOf(path, model, label, "normalTexture", src.normalTexture);
     m.normalScale = static_cast<float>(src.normalTexture.scale);
     m.emissiveTexture = slotOf(path, model, label, "emissiveTexture", src.emissiveTexture);
-    m.transmissionTexture = transmissionSlot(path, model, label, src);
+    m.transmissionTexture =
+        extensionSlot(path, model, label, src, "KHR_materials_transmission", "transmissionTexture");
+
+    const char* coat = "KHR_materials_clearcoat";
+    m.clearcoat = unitFactor(coat, "clearcoatFactor", 0.0);
+    m.clearcoatRoughness = unitFactor(coat, "clearcoatRoughnessFactor", 0.0);
+    m.clearcoatTexture = extensionSlot(path, model, label, src, coat, "clearcoatTexture");
+    m.clearcoatRoughnessTexture = extensionSlot(path, model, label, src, coat, "clearcoatRoughnessTexture");
+    m.clearcoatNormalTexture =
+        extensionSlot(path, model, label, src, coat, "clearcoatNormalTexture", &m.clearcoatNormalScale);
+
+    const char* sheen = "KHR_materials_sheen";
+    m.sheenColor = extensionColor(path, label, src, sheen, "sheenColorFactor", glm::vec3(0.0f));
+    m.sheenRoughness = unitFactor(sheen, "sheenRoughnessFactor", 0.0);
+    m.sheenColorTexture = extensionSlot(path, model, label, src, sheen, "sheenColorTexture");
+    m.sheenRoughnessTexture = extensionSlot(path, model, label, src, sheen, "sheenRoughnessTexture");
+    m.specularTexture = extensionSlot(path, model, label, src, "KHR_materials_specular", "specularTexture");
+    m.specularColorTexture = extensionSlot(path, model, label, src, "KHR_materials_specular", "specularColorTexture");
     m.uvSets = uvSets(path, label, m);
     return m;
 }

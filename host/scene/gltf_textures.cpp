@@ -113,8 +113,8 @@ void warnTextureFallbacks(const std::string& path, const tinygltf::Model& model,
                           const std::vector<MaterialDesc>& materials) {
     std::vector<char> read(model.textures.size(), 0);
     for (const MaterialDesc& m : materials) {
-        for (const TextureSlot* slot : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                                        &m.emissiveTexture, &m.transmissionTexture}) {
+        for (const MaterialDesc::NamedSlot& named : m.textureSlots()) {
+            const TextureSlot* slot = named.slot;
             if (slot->used()) read[static_cast<std::size_t>(slot->texture)] = 1;
         }
     }

@@ -51,6 +51,9 @@ struct MaterialDesc {
     float ior = 1.5f;
     float transmission = 0.0f;  // KHR_materials_transmission transmissionFactor
     float specular = 1.0f;      // KHR_materials_specular specularFactor
+    glm::vec3 specularColor{1.0f};   // KHR_materials_specular specularColorFactor (linear, may exceed 1)
+    TextureSlot specularTexture;     // linear A: scales specular
+    TextureSlot specularColorTexture;  // sRGB RGB: scales specularColor
     bool doubleSided = false;
     enum class AlphaMode { Opaque, Mask, Blend } alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f;
@@ -69,6 +72,25 @@ struct MaterialDesc {
     float thickness = 0.0f;
     float attenuationDistance = std::numeric_limits<float>::infinity();
     glm::vec3 attenuationColor{1.0f};
+    // KHR_materials_clearcoat: a GGX coat of ior 1.5 (0: none).
+    float clearcoat = 0.0f;                // clearcoatFactor
+    float clearcoatRoughness = 0.0f;       // clearcoatRoughnessFactor
+    TextureSlot clearcoatTexture;          // linear R
+    TextureSlot clearcoatRoughnessTexture; // linear G
+    TextureSlot clearcoatNormalTexture;    // linear, tangent space
+    float clearcoatNormalScale = 1.0f;     // clearcoatNormalTexture.scale
+    bool coated() const { return clearcoat > 0.0f && !unlit; }
+    // KHR_materials_sheen: a Charlie sheen over the base (sheenColor 0: none).
+    glm::vec3 sheenColor{0.0f};            // sheenColorFactor, linear
+    float sheenRoughness = 0.0f;           // sheenRoughnessFactor
+    TextureSlot sheenColorTexture;         // sRGB RGB
+    TextureSlot sheenRoughnessTexture;     // linear A
+    // KHR_materials_specular's colour or textures change the dielectric's Fresnel.
+    bool tinted() const {
+        return (specularColor != glm::vec3(1.0f) || specularTexture.used() || specularColorTexture.used()) &&
+               specular > 0.0f && !unlit;
+    }
+    bool sheened() const { return glm::any(glm::greaterThan(sheenColor, glm::vec3(0.0f))) && !unlit; }
     // The TEXCOORD sets in the two texture coordinate slots of TriangleUv
     // (xy, zw): {0, 1} when every texture slot reads set 0 or 1; else the
     // distinct sets the slots read in increasing order ({s, s} for one). A
@@ -77,6 +99,25 @@ struct MaterialDesc {
     // The TriangleUv slot (0: xy, 1: zw) holding TEXCOORD_set.
     int uvSlot(int set) const { return set == uvSets[0] ? 0 : 1; }
     glm::vec3 emission() const { return unlit ? glm::vec3(0.0f) : emissiveFactor * emissiveStrength; }
+    // Every texture slot with its glTF name, in one fixed order.
+    struct NamedSlot {
+        const TextureSlot* slot;
+        const char* name;
+    };
+    std::array<NamedSlot, 12> textureSlots() const {
+        return {{{&baseColorTexture, "baseColorTexture"},
+                 {&metallicRoughnessTexture, "metallicRoughnessTexture"},
+                 {&normalTexture, "normalTexture"},
+                 {&emissiveTexture, "emissiveTexture"},
+                 {&transmissionTexture, "transmissionTexture"},
+                 {&clearcoatTexture, "clearcoatTexture"},
+                 {&clearcoatRoughnessTexture, "clearcoatRoughnessTexture"},
+                 {&clearcoatNormalTexture, "clearcoatNormalTexture"},
+                 {&sheenColorTexture, "sheenColorTexture"},
+                 {&sheenRoughnessTexture, "sheenRoughnessTexture"},
+                 {&specularTexture, "specularTexture"},
+                 {&specularColorTexture, "specularColorTexture"}}};
+    }
 };
 
 // A decoded image: RGBA, rows top to bottom (glTF uv (0, 0) is the top-left

@@ -1,5 +1,5 @@
 // The glTF 2.0 metallic-roughness BSDF (the spec's Appendix B mix) with
-// KHR_materials_transmission, _ior and _specular:
+// KHR_materials_transmission, _ior and _specular (factor and colour):
 //
 //   f = mix(dielectric, metal, metallic)
 //   metal      = GGX reflection with F = baseColor + (1 - baseColor)(1 - |wo.h|)^5
@@ -7,13 +7,39 @@
 //              + (1 - specular * Fd(wo.h)) * mix(baseColor / pi, baseColor * GGX transmission, transmission)
 //
 // Fd is the exact dielectric Fresnel of ior (the spec's Schlick form is an
-// approximation it allows replacing); transmission refracts into a closed
-// volume (not thin-walled) and scales radiance by 1/eta^2 (Veach 1997,
-// sec. 5.2). GGX (Trowbridge-Reitz) with height-correlated Smith shadowing,
+// approximation it allows replacing). KHR_materials_specular's colour
+// (kFeatureSpecularColor) makes it RGB with the extension's F0 and F90:
+//
+//   Fd = specular * mix(F0c, 1, (F(wo.h) - F0) / (1 - F0)),  F0c = min(F0 * specularColor, 1)
+//
+// F the exact Fresnel and F0 = ((ior - 1) / (ior + 1))^2 its value at
+// normal incidence (so a colour of 1 is the exact Fresnel), and the layer
+// beneath keeps 1 - max(Fd), as the extension's fresnel_mix does.
+// Transmission refracts into a closed volume (not thin-walled) and scales
+// radiance by 1/eta^2 (Veach 1997, sec. 5.2). GGX (Trowbridge-Reitz) with height-correlated Smith shadowing,
 // alpha = roughness^2; the visible normals are sampled with spherical caps
 // (Dupuy & Benyoub 2023) and transmission follows Walter et al. 2007. Below
 // alpha kDeltaAlpha the reflection and transmission lobes are exact (delta)
 // mirror and refraction, so roughness 0 is a perfect mirror.
+//
+// KHR_materials_sheen (kFeatureSheen) lays a sheen over that base, and
+// KHR_materials_clearcoat (kFeatureClearcoat) a GGX coat of ior 1.5 with
+// its own roughness and normal over both, as the extensions do:
+//
+//   f = (1 - coatF) (sheen + base * sheenScale) + coatF * GGX(coat alpha, coat normal)
+//   sheen = sheenColor * Charlie D * V / max(1, E(wo.z))
+//   sheenScale = 1 - max3(sheenColor) min(1, E(wo.z))
+//   coatF = clearcoat * Schlick(F0 0.04, wo . coat normal)
+//
+// with E the sheen lobe's directional albedo (lib/sheen.glsl): the
+// extension's albedo scaling in its view-only form. Where the extension's
+// lobe reflects more than it receives (E > 1: small sheen roughness at
+// grazing views), it is divided by E. The coat lobe is evaluated in the
+// coat's frame, with |cos| of its own normal.
+//
+// The layers and the specular colour are compiled only with STRATA_LAYERS
+// (the *_layers shader variants, lib/features.glsl), and then each under its
+// feature bit.
 //
 // All directions are in the local shading frame: z is the shading normal on
 // the side the ray came from, so wo.z > 0; reflection has wi.z > 0 and
@@ -22,7 +48,13 @@
 #ifndef STRATA_LIB_BSDF_GLSL
 #define STRATA_LIB_BSDF_GLSL
 
+#include "shared/types.h"
+#include "shared/bindings.h"
+#include "lib/features.glsl"
 #include "lib/sampling.glsl"
+#ifdef STRATA_LAYERS
+#include "lib/sheen.glsl"
+#endif
 
 const float kDeltaAlpha = 1.0e-3;
 
@@ -34,11 +66,41 @@ struct Bsdf {
     float etap;          // far-side ior / near-side ior
     float specular;      // KHR_materials_specular factor on the dielectric Fresnel
     bool delta;          // alpha < kDeltaAlpha: mirror / refraction lobes are deltas
-    // Probabilities of the two sampling strategies (set by makeBsdf): the
+    // Probabilities of the base's sampling strategies (set by makeBsdf): the
     // microfacet lobes (then reflection or transmission by specularSplit)
     // and the diffuse lobe.
     float pSpecular, pDiffuse;
+#ifdef STRATA_LAYERS
+    // KHR_materials_specular's colour (kFeatureSpecularColor).
+    vec3 f0Tint;         // min(F0 * specularColor, 1)
+    float f0;            // F0 = ((ior - 1) / (ior + 1))^2
+    // KHR_materials_clearcoat (kFeatureClearcoat; coat 0 without one).
+    float coat;          // clearcoat factor x texture
+    float coatAlpha;     // GGX alpha of the coat
+    bool coatDelta;      // coatAlpha < kDeltaAlpha: the coat is a mirror
+    vec3 coatN;          // the coat's normal in the shading frame (wo . coatN > 0)
+    float coatF;         // coat * Schlick(0.04, wo . coatN): the coat's weight
+    // KHR_materials_sheen (kFeatureSheen; sheen 0 without one).
+    vec3 sheen;          // sheenColor (1 - coatF) / max(1, E(wo.z)): the Charlie lobe's weight
+    float sheenAlpha;    // Charlie alpha = roughness^2
+    float sheenLambdaO;  // the visibility fit's Lambda(wo.z)
+    float baseScale;     // what the layers leave the base: (1 - coatF) sheenScale
+    float pCoat, pSheen; // probabilities of the layers' strategies
+#endif
 };
+
+// The layers over the base a surface point gives makeBsdf; each is read
+// only under its feature bit.
+struct BsdfLayers {
+    vec3 specularColor;   // KHR_materials_specular: linear, factor x texture (1: none)
+    float coat;           // KHR_materials_clearcoat: clearcoat factor x texture (0: none)
+    float coatRoughness;  // perceptual
+    vec3 coatNormal;      // unit, in the shading frame
+    vec3 sheenColor;      // KHR_materials_sheen: linear, factor x texture (0: none)
+    float sheenRoughness;
+};
+
+BsdfLayers noLayers() { return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0); }
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -61,8 +123,32 @@ vec3 fresnelSchlick(vec3 f0, float cosI) {
     return f0 + (1.0 - f0) * (m2 * m2 * m);
 }
 
+#ifdef STRATA_LAYERS
+float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// The dielectric's Fresnel reflectance Fd at wo.h = c, RGB (the header's
+// formula with a specular colour).
+vec3 dielectricFresnel(Bsdf b, float c) {
+    float w = clamp((fresnelDielectric(c, b.etap) - b.f0) / (1.0 - b.f0), 0.0, 1.0);
+    return b.specular * mix(b.f0Tint, vec3(1.0), w);
+}
+#endif
+
+// max(Fd) at wo.h = c: what the dielectric's reflection takes from the
+// lobes beneath (Fd itself without a specular colour).
+float dielectricMax(Bsdf b, float c) {
+#ifdef STRATA_LAYERS
+    if (hasFeature(kFeatureSpecularColor)) return max3(dielectricFresnel(b, c));
+#endif
+    return b.specular * fresnelDielectric(c, b.etap);
+}
+
 // Reflectance of the mirror lobe, metal and dielectric together, at wo.h = c.
 vec3 reflectance(Bsdf b, float c) {
+#ifdef STRATA_LAYERS
+    if (hasFeature(kFeatureSpecularColor))
+        return b.metallic * fresnelSchlick(b.baseColor, c) + (1.0 - b.metallic) * dielectricFresnel(b, c);
+#endif
     return b.metallic * fresnelSchlick(b.baseColor, c) +
            vec3((1.0 - b.metallic) * b.specular * fresnelDielectric(c, b.etap));
 }
@@ -70,18 +156,79 @@ vec3 reflectance(Bsdf b, float c) {
 // Probability of reflecting (rather than refracting) off a microfacet with
 // wo.h = c: the two lobes' albedo estimates, Fresnel exact.
 float specularSplit(Bsdf b, float c) {
-    float fd = b.specular * fresnelDielectric(c, b.etap);
+    float fd = dielectricMax(b, c);
     float wr = b.metallic * max(luminance(fresnelSchlick(b.baseColor, c)), 1.0e-3) +
                (1.0 - b.metallic) * fd;
     float wt = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * luminance(b.baseColor);
     return wr + wt > 0.0 ? wr / (wr + wt) : 1.0;
 }
 
+#ifdef STRATA_LAYERS
+// No layers: what makeBsdf and makeLambert start from.
+void clearLayers(inout Bsdf b) {
+    b.coat = 0.0;
+    b.coatAlpha = 1.0;
+    b.coatDelta = false;
+    b.coatN = vec3(0.0, 0.0, 1.0);
+    b.coatF = 0.0;
+    b.f0Tint = vec3(0.04);
+    b.f0 = 0.04;
+    b.sheen = vec3(0.0);
+    b.sheenAlpha = 1.0;
+    b.sheenLambdaO = 0.0;
+    b.baseScale = 1.0;
+    b.pCoat = 0.0;
+    b.pSheen = 0.0;
+}
+
+// The layers over the base (makeBsdf's last step): their weights, the base's
+// scale, and the strategies' probabilities from the base's albedo
+// estimates ws (microfacet) and wd (diffuse) and the layers' own.
+void addLayers(inout Bsdf b, BsdfLayers layers, vec3 wo, float ws, float wd) {
+    float wSheen = 0.0, wCoat = 0.0;
+    if (hasFeature(kFeatureSheen) && max3(layers.sheenColor) > 0.0) {
+        vec3 color = clamp(layers.sheenColor, 0.0, 1.0);
+        float r = max(clamp(layers.sheenRoughness, 0.0, 1.0), kSheenRoughnessMin);
+        b.sheenAlpha = r * r;
+        float e = sheenAlbedo(wo.z, r);
+        b.sheen = color / max(e, 1.0);
+        b.sheenLambdaO = charlieLambda(wo.z, b.sheenAlpha);
+        b.baseScale = 1.0 - max3(color) * min(e, 1.0);
+        // The lobe's albedo estimate, floored as the base's are.
+        wSheen = max3(color) * max(min(e, 1.0), 0.01);
+    }
+    if (hasFeature(kFeatureClearcoat) && layers.coat > 0.0) {
+        b.coat = min(layers.coat, 1.0);
+        float rc = clamp(layers.coatRoughness, 0.0, 1.0);
+        b.coatAlpha = rc * rc;
+        b.coatDelta = b.coatAlpha < kDeltaAlpha;
+        if (dot(wo, layers.coatNormal) > 0.0) b.coatN = layers.coatNormal;
+        b.coatF = b.coat * fresnelSchlick(vec3(0.04), dot(wo, b.coatN)).x;
+        b.baseScale *= 1.0 - b.coatF;
+        b.sheen *= 1.0 - b.coatF;
+        wSheen *= 1.0 - b.coatF;
+        wCoat = b.coatF;  // the coat's albedo estimate: its Fresnel weight
+    }
+    ws *= b.baseScale;
+    wd *= b.baseScale;
+    float total = ws + wd + wSheen + wCoat;
+    b.pSpecular = total > 0.0 ? ws / total : 0.0;
+    b.pDiffuse = total > 0.0 ? wd / total : 0.0;
+    b.pSheen = total > 0.0 ? wSheen / total : 0.0;
+    b.pCoat = total > 0.0 ? wCoat / total : 0.0;
+}
+#endif
+
 // ior < 1 (KHR_materials_ior allows 0) is treated as 1.5, the default.
-// cosO is wo.z, used to weigh the sampling strategies.
+// wo weighs the sampling strategies (wo.z > 0). A coat normal facing away
+// from wo is replaced by the shading normal.
 Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmission, float ior,
-              float specular, bool entering, float cosO) {
+              float specular, BsdfLayers layers, bool entering, vec3 wo) {
+    float cosO = wo.z;
     Bsdf b;
+#ifdef STRATA_LAYERS
+    clearLayers(b);
+#endif
     b.baseColor = clamp(baseColor, 0.0, 1.0);
     b.metallic = clamp(metallic, 0.0, 1.0);
     float r = clamp(roughness, 0.0, 1.0);
@@ -91,15 +238,27 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     float eta = ior >= 1.0 ? ior : 1.5;
     b.etap = entering ? eta : 1.0 / eta;
     b.specular = clamp(specular, 0.0, 1.0);
+#ifdef STRATA_LAYERS
+    if (hasFeature(kFeatureSpecularColor)) {
+        b.f0 = (eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0));
+        b.f0Tint = min(b.f0 * max(layers.specularColor, vec3(0.0)), vec3(1.0));
+    }
+#endif
     // Strategy weights: the lobes' albedos estimated at the macro normal.
     // The floors keep every lobe that can be non-zero at some microfacet
     // samplable (a black metal at normal incidence, a diffuse base behind
     // total internal reflection), so the estimator stays unbiased.
-    float fd = b.specular * fresnelDielectric(cosO, b.etap);
+    float fd = dielectricMax(b, cosO);
     float lumBase = luminance(b.baseColor);
     float ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
                (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
     float wd = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05) * lumBase;
+#ifdef STRATA_LAYERS
+    if (hasFeature(kFeatureClearcoat | kFeatureSheen)) {
+        addLayers(b, layers, wo, ws, wd);
+        return b;
+    }
+#endif
     float total = ws + wd;
     b.pSpecular = total > 0.0 ? ws / total : 0.0;
     b.pDiffuse = total > 0.0 ? wd / total : 0.0;
@@ -119,6 +278,9 @@ Bsdf makeLambert(vec3 baseColor) {
     b.delta = false;
     b.pSpecular = 0.0;
     b.pDiffuse = 1.0;
+#ifdef STRATA_LAYERS
+    clearLayers(b);
+#endif
     return b;
 }
 
@@ -176,9 +338,9 @@ bool refractDir(vec3 wo, vec3 h, float etap, out vec3 wi) {
     return true;
 }
 
-// The non-delta part of the BSDF times |wi.z|, and the density with which
-// sampleBsdf produces wi (solid angle, strategy and lobe choice included).
-vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+// The base's non-delta part times |wi.z| (before the layers' scaling), and
+// the density of its strategies (their choice included).
+vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
     pdf = 0.0;
     vec3 f = vec3(0.0);
     if (wo.z <= 0.0 || wi.z == 0.0) return f;
@@ -186,7 +348,7 @@ vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         vec3 h = normalize(wo + wi);
         float c = dot(wo, h);
         if (b.pDiffuse > 0.0) {
-            float fd = b.specular > 0.0 ? b.specular * fresnelDielectric(c, b.etap) : 0.0;
+            float fd = b.specular > 0.0 ? dielectricMax(b, c) : 0.0;
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.baseColor * (kInvPi * wi.z);
             pdf += b.pDiffuse * wi.z * kInvPi;
         }
@@ -202,7 +364,7 @@ vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         if (h.z < 0.0) h = -h;
         float ci = dot(wi, h), co = dot(wo, h);
         if (ci >= 0.0 || co <= 0.0) return f;  // back-facing microfacet
-        float fd = b.specular * fresnelDielectric(co, b.etap);
+        float fd = dielectricMax(b, co);
         float denom = ci + co / b.etap;
         denom *= denom;
         float d = ggxD(h, b.alpha);
@@ -214,6 +376,48 @@ vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
     return f;
 }
 
+#ifdef STRATA_LAYERS
+// w in the coat's frame (coatN as z, a tangent frame by basis()).
+vec3 toCoatFrame(vec3 n, vec3 w) {
+    vec3 t, bt;
+    basis(n, t, bt);
+    return vec3(dot(w, t), dot(w, bt), dot(w, n));
+}
+
+vec3 fromCoatFrame(vec3 n, vec3 w) {
+    vec3 t, bt;
+    basis(n, t, bt);
+    return w.x * t + w.y * bt + w.z * n;
+}
+#endif
+
+// The non-delta part of the BSDF times |cos| (each lobe's own normal), and
+// the density with which sampleBsdf produces wi (solid angle, strategy and
+// lobe choice included).
+vec3 evalBsdf(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
+#ifndef STRATA_LAYERS
+    return evalBase(b, wo, wi, pdf);
+#else
+    if (!hasFeature(kFeatureClearcoat | kFeatureSheen)) return evalBase(b, wo, wi, pdf);
+    vec3 f = evalBase(b, wo, wi, pdf) * b.baseScale;
+    if (hasFeature(kFeatureSheen) && b.pSheen > 0.0 && wo.z > 0.0 && wi.z > 0.0) {
+        vec3 h = normalize(wo + wi);
+        float d = charlieD(h.z, b.sheenAlpha);
+        f += b.sheen * (d / ((1.0 + b.sheenLambdaO + charlieLambda(wi.z, b.sheenAlpha)) * 4.0 * wo.z));
+        pdf += b.pSheen * d * h.z / (4.0 * dot(wo, h));
+    }
+    if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0 && !b.coatDelta && wo.z > 0.0) {
+        vec3 o = toCoatFrame(b.coatN, wo), i = toCoatFrame(b.coatN, wi);
+        if (o.z > 0.0 && i.z > 0.0) {
+            vec3 h = normalize(o + i);
+            f += vec3(b.coatF * ggxD(h, b.coatAlpha) * ggxG2(o, i, b.coatAlpha) / (4.0 * o.z));
+            pdf += b.pCoat * ggxVisiblePdf(o, h, b.coatAlpha) / (4.0 * dot(o, h));
+        }
+    }
+    return f;
+#endif
+}
+
 struct BsdfSample {
     vec3 wi;
     vec3 weight;   // f |wi.z| / pdf (delta lobes: their reflectance / choice probability)
@@ -222,17 +426,66 @@ struct BsdfSample {
     bool valid;
 };
 
-// One direction: uLobe picks the microfacet or the diffuse strategy by the
-// probabilities of makeBsdf and then, rescaled, reflection or transmission
-// at the sampled microfacet; u is the direction within the lobe.
+BsdfSample noSample() { return BsdfSample(vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, false, false); }
+
+// The weight and pdf of a non-delta sample s.wi: the whole BSDF's.
+BsdfSample finishSample(Bsdf b, vec3 wo, BsdfSample s) {
+    vec3 f = evalBsdf(b, wo, s.wi, s.pdf);
+    if (s.pdf <= 0.0) return s;
+    s.weight = f / s.pdf;
+    s.valid = true;
+    return s;
+}
+
+#ifdef STRATA_LAYERS
+// The coat strategy's direction: a GGX visible normal in the coat's frame
+// (its mirror normal when the coat is smooth), reflected; false when the
+// direction leaves below the coat.
+bool sampleCoatDirection(vec3 n, float alpha, bool delta, vec3 wo, vec2 u, out vec3 wi) {
+    vec3 o = toCoatFrame(n, wo);
+    vec3 h = delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(o, alpha, u);
+    vec3 i = reflect(-o, h);
+    wi = fromCoatFrame(n, i);
+    return dot(o, h) > 0.0 && i.z > 0.0;
+}
+
+// The sheen strategy's direction: a Charlie normal (density D h.z), reflected.
+bool sampleSheenDirection(float alpha, vec3 wo, vec2 u, out vec3 wi) {
+    vec3 h = charlieSample(alpha, u);
+    wi = reflect(-wo, h);
+    return dot(wo, h) > 0.0 && wi.z > 0.0;
+}
+#endif
+
+// One direction: uLobe picks the coat, sheen, microfacet or diffuse
+// strategy by the probabilities of makeBsdf and then, rescaled, reflection
+// or transmission at the sampled microfacet; u is the direction within the
+// lobe. A non-delta direction gets the whole BSDF's weight and pdf from one
+// evalBsdf (one copy of it in the compiled shader).
 BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
-    BsdfSample s;
-    s.wi = vec3(0.0, 0.0, 1.0);
-    s.weight = vec3(0.0);
-    s.pdf = 0.0;
-    s.delta = false;
-    s.valid = false;
+    BsdfSample s = noSample();
     if (wo.z <= 0.0) return s;
+#ifdef STRATA_LAYERS
+    uint layer = 0u;  // the layers' strategies: 1 the coat, 2 the sheen
+    if (hasFeature(kFeatureClearcoat) && b.pCoat > 0.0) {
+        if (uLobe < b.pCoat) layer = 1u;
+        else uLobe -= b.pCoat;
+    }
+    if (hasFeature(kFeatureSheen) && layer == 0u && b.pSheen > 0.0) {
+        if (uLobe < b.pSheen) layer = 2u;
+        else uLobe -= b.pSheen;
+    }
+    if (layer == 1u) {
+        if (!sampleCoatDirection(b.coatN, b.coatAlpha, b.coatDelta, wo, u, s.wi)) return s;
+        if (b.coatDelta) {
+            s.weight = vec3(b.coatF / b.pCoat);
+            s.delta = s.valid = true;
+            return s;
+        }
+    } else if (layer == 2u) {
+        if (!sampleSheenDirection(b.sheenAlpha, wo, u, s.wi)) return s;
+    } else
+#endif
     if (uLobe < b.pSpecular) {
         float uSplit = uLobe / b.pSpecular;
         vec3 h = b.delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(wo, b.alpha, u);
@@ -243,6 +496,9 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
             s.wi = reflect(-wo, h);
             if (b.delta) {
                 s.weight = reflectance(b, c) / (b.pSpecular * pr);
+#ifdef STRATA_LAYERS
+                if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;
+#endif
                 s.delta = s.valid = true;
                 return s;
             }
@@ -250,9 +506,12 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         } else {
             if (!refractDir(wo, h, b.etap, s.wi) || s.wi.z >= 0.0) return s;
             if (b.delta) {
-                float fd = b.specular * fresnelDielectric(c, b.etap);
+                float fd = dielectricMax(b, c);
                 s.weight = (1.0 - b.metallic) * b.transmission * (1.0 - fd) * b.baseColor /
                            (b.etap * b.etap * b.pSpecular * (1.0 - pr));
+#ifdef STRATA_LAYERS
+                if (hasFeature(kFeatureClearcoat | kFeatureSheen)) s.weight *= b.baseScale;
+#endif
                 s.delta = s.valid = true;
                 return s;
             }
@@ -261,11 +520,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         s.wi = sampleCosineHemisphere(u);
         if (s.wi.z <= 0.0) return s;
     }
-    vec3 f = evalBsdf(b, wo, s.wi, s.pdf);
-    if (s.pdf <= 0.0) return s;
-    s.weight = f / s.pdf;
-    s.valid = true;
-    return s;
+    return finishSample(b, wo, s);
 }
 
 #endif

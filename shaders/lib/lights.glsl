@@ -89,9 +89,11 @@ LightSample sampleTriangleLight(Emitter e, vec3 p, vec2 u) {
     if (ls.pdf > 0.0) {
         ls.Li = e.radiance;
 #ifdef STRATA_LIB_MATERIAL_GLSL
-        // An emissive texture varies over the triangle (lib/material.glsl;
+        // An emissive texture varies over the triangle, and a clear coat
+        // darkens the emission by its Fresnel towards p (lib/material.glsl;
         // kernels without materials, such as sample_test.comp, skip this).
         if (hasFeature(kFeatureTextures)) ls.Li = emissionAt(sceneShading(e.triangle).material, e.triangle, b);
+        ls.Li = coatedEmission(sceneShading(e.triangle).material, e.triangle, b, ls.Li, -ls.wi);
 #endif
         ls.target = spawnOriginOnEmitter(pos, e.v0, e.e1, e.e2, cosSigned > 0.0 ? normal : -normal);
     }

@@ -1,7 +1,9 @@
 // Material evaluation at a surface point: glTF factors times their textures
 // (and baseColor times the COLOR_0 vertex colour)
 // (baseColor and emissive sRGB; metallicRoughness G = roughness, B =
-// metallic; transmission R), the tangent-space normal map, and the alpha
+// metallic; transmission R; clearcoat R, clearcoatRoughness G; sheenColor
+// sRGB RGB, sheenRoughness A; specularColor sRGB RGB, specular A), the
+// tangent-space normal maps (the base's and the coat's), and the alpha
 // test the BVH traversal uses to skip holes. Code for textures, normal maps
 // and alpha is compiled out by the kFeature* bits of SPEC_FEATURES when the
 // scene has none. Needs materials[], sceneShading, sceneTexcoords and
@@ -23,6 +25,17 @@ struct SurfacePoint {
     vec3 emission;       // radiance
     vec3 ns;             // unit shading normal on the incoming side (n's side)
     uint flags;          // kMaterial* bits
+#ifdef STRATA_LAYERS
+    // KHR_materials_clearcoat (kFeatureClearcoat; clearcoat 0 otherwise)
+    float clearcoat;
+    float clearcoatRoughness;  // perceptual
+    vec3 coatNormal;           // unit, world space, on n's side: clearcoatNormalTexture's,
+                               // else the interpolated normal (not the base's normal map)
+    // KHR_materials_sheen (kFeatureSheen; sheenColor 0 otherwise)
+    vec3 sheenColor;           // linear
+    float sheenRoughness;
+    vec3 specularColor;        // KHR_materials_specular (kFeatureSpecularColor; 1 otherwise)
+#endif
 };
 
 // (TEXCOORD_0.xy, TEXCOORD_1.xy) at barycentrics (u, v) of vertices 1 and 2.
@@ -46,15 +59,16 @@ vec4 materialTexture(uint ref, vec4 uvs) {
     return sampleTextureRef(r, (r.flags & kTexCoord1) != 0u ? uvs.zw : uvs.xy);
 }
 
-// The normal-mapped shading normal. The tangent frame is built on the front
+// The shading normal mapped by texture slot `tex` with scale `scale`
+// (normalTexture, clearcoatNormalTexture). The tangent frame is built on the front
 // face (the triangle's counter-clockwise side): the interpolated tangent,
 // Gram-Schmidt against the normal, bitangent w * cross(n, t); the mapped
 // normal is normalize(T x + B y + N z) with xy scaled by normalScale (glTF
 // 2.0 3.9.3), and is reversed on a back face as the spec reverses normals.
 // A mapped normal below the geometric horizon is lifted just above it.
-vec3 normalMapped(Material mat, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3 nsInterpolated) {
-    vec3 m = materialTexture(mat.normalTex, uvs).xyz * 2.0 - 1.0;
-    m.xy *= mat.normalScale;
+vec3 normalMapped(uint tex, float scale, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3 nsInterpolated) {
+    vec3 m = materialTexture(tex, uvs).xyz * 2.0 - 1.0;
+    m.xy *= scale;
     TriVerts tv = bvhFetchTri(triangle);
     float side = dot(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz), n) >= 0.0 ? 1.0 : -1.0;
     vec3 N = side * nsInterpolated;
@@ -74,6 +88,23 @@ vec3 normalMapped(Material mat, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3
     if (c < kMinCos) ns = normalize(ns + (kMinCos - c) * n);
     return ns;
 }
+
+#ifdef STRATA_LAYERS
+// KHR_materials_clearcoat at a point of a coated material: clearcoat x its
+// texture (R) and the coat's normal, clearcoatNormalTexture's or else the
+// interpolated normal (normalMapped's n and nsInterpolated).
+float coatAt(Material mat, uint triangle, vec2 bary, vec3 n, vec3 nsInterpolated, out vec3 coatNormal) {
+    float clearcoat = mat.clearcoat;
+    coatNormal = nsInterpolated;
+    if ((kFeatures & kFeatureTextures) == 0u) return clearcoat;
+    vec4 uvs = texcoordsAt(triangle, bary);
+    if (mat.clearcoatTex != kNoTexture) clearcoat *= materialTexture(mat.clearcoatTex, uvs).r;
+    if ((kFeatures & kFeatureNormalMap) != 0u && mat.clearcoatNormalTex != kNoTexture)
+        coatNormal = normalMapped(mat.clearcoatNormalTex, mat.clearcoatNormalScale, triangle, bary, uvs, n,
+                                  nsInterpolated);
+    return clearcoat;
+}
+#endif
 
 // The material at a hit: `bary` = barycentrics of vertices 1 and 2, `n` the
 // geometric normal on the incoming side, `nsInterpolated` the interpolated
@@ -95,6 +126,26 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
         sp.baseColor *= c.rgb;
         sp.alpha *= c.a;
     }
+#ifdef STRATA_LAYERS
+    sp.clearcoat = 0.0;
+    sp.clearcoatRoughness = 0.0;
+    sp.coatNormal = nsInterpolated;
+    bool coat = hasFeature(kFeatureClearcoat) && (mat.flags & kMaterialClearcoat) != 0u;
+    if (coat) {
+        sp.clearcoat = coatAt(mat, triangle, bary, n, nsInterpolated, sp.coatNormal);
+        sp.clearcoatRoughness = mat.clearcoatRoughness;
+    }
+    sp.sheenColor = vec3(0.0);
+    sp.sheenRoughness = 0.0;
+    bool sheen = hasFeature(kFeatureSheen) && (mat.flags & kMaterialSheen) != 0u;
+    if (sheen) {
+        sp.sheenColor = mat.sheenColor;
+        sp.sheenRoughness = mat.sheenRoughness;
+    }
+    sp.specularColor = vec3(1.0);
+    bool tinted = hasFeature(kFeatureSpecularColor) && (mat.flags & kMaterialSpecularColor) != 0u;
+    if (tinted) sp.specularColor = mat.specularColor;
+#endif
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
     if (mat.baseColorTex != kNoTexture) {
@@ -110,7 +161,19 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     if (mat.emissiveTex != kNoTexture) sp.emission *= materialTexture(mat.emissiveTex, uvs).rgb;
     if (mat.transmissionTex != kNoTexture) sp.transmission *= materialTexture(mat.transmissionTex, uvs).r;
     if ((kFeatures & kFeatureNormalMap) != 0u && mat.normalTex != kNoTexture)
-        sp.ns = normalMapped(mat, triangle, bary, uvs, n, nsInterpolated);
+        sp.ns = normalMapped(mat.normalTex, mat.normalScale, triangle, bary, uvs, n, nsInterpolated);
+#ifdef STRATA_LAYERS
+    if (coat && mat.clearcoatRoughnessTex != kNoTexture)
+        sp.clearcoatRoughness *= materialTexture(mat.clearcoatRoughnessTex, uvs).g;
+    if (sheen) {
+        if (mat.sheenColorTex != kNoTexture) sp.sheenColor *= materialTexture(mat.sheenColorTex, uvs).rgb;
+        if (mat.sheenRoughnessTex != kNoTexture) sp.sheenRoughness *= materialTexture(mat.sheenRoughnessTex, uvs).a;
+    }
+    if (tinted) {
+        if (mat.specularColorTex != kNoTexture) sp.specularColor *= materialTexture(mat.specularColorTex, uvs).rgb;
+        if (mat.specularTex != kNoTexture) sp.specular *= materialTexture(mat.specularTex, uvs).a;
+    }
+#endif
     return sp;
 }
 
@@ -129,6 +192,32 @@ vec3 emissionAt(uint materialIndex, uint triangle, vec2 bary) {
     Material mat = sceneMaterial(materialIndex);
     if ((kFeatures & kFeatureTextures) == 0u || mat.emissiveTex == kNoTexture) return mat.emission;
     return mat.emission * materialTexture(mat.emissiveTex, texcoordsAt(triangle, bary)).rgb;
+}
+
+// The emission `le` of material `materialIndex` at a point of `triangle`
+// as it leaves towards `toViewer` (unit): under KHR_materials_clearcoat's
+// coat it is darkened by the coat's Fresnel, le (1 - clearcoat
+// Schlick(0.04, |toViewer . coat normal|)), as the extension specifies. The
+// path's emission hits and next-event estimation both take it from here.
+vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 toViewer) {
+#ifdef STRATA_LAYERS
+    if (!hasFeature(kFeatureClearcoat)) return le;
+    Material mat = sceneMaterial(materialIndex);
+    if ((mat.flags & kMaterialClearcoat) == 0u) return le;
+    TriVerts tv = bvhFetchTri(triangle);
+    vec3 n = normalize(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz));
+    if (dot(n, toViewer) < 0.0) n = -n;
+    TriShading sh = sceneShading(triangle);
+    vec3 ns = normalize((1.0 - bary.x - bary.y) * sh.n0 + bary.x * sh.n1 + bary.y * sh.n2);
+    if (dot(ns, n) < 0.0) ns = -ns;
+    vec3 coatNormal;
+    float clearcoat = min(coatAt(mat, triangle, bary, n, ns, coatNormal), 1.0);
+    float m = 1.0 - min(abs(dot(toViewer, coatNormal)), 1.0);
+    float m2 = m * m;
+    return le * (1.0 - clearcoat * (0.04 + 0.96 * (m2 * m2 * m)));
+#else
+    return le;
+#endif
 }
 
 // Per-ray hash for stochastic transparency: a pure function of the ray's

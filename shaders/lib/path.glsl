@@ -14,8 +14,9 @@
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
 
-// Lambert only: no material of the scene has a specular or transmission lobe.
-const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission)) == 0u;
+// Lambert only: no material of the scene has a specular, transmission, coat or sheen lobe.
+const bool kLambertOnly =
+    (kFeatures & (kFeatureSpecular | kFeatureTransmission | kFeatureClearcoat | kFeatureSheen)) == 0u;
 
 // MIS weight of a light found by BSDF sampling with density bsdfPdf, which
 // light sampling finds with density lightPdf.
@@ -85,7 +86,9 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
             float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
             float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
-            v.L += v.beta * w * emissionAt(sh.material, hit.triangle, vec2(hit.u, hit.v));
+            vec2 bary = vec2(hit.u, hit.v);
+            vec3 le = emissionAt(sh.material, hit.triangle, bary);
+            v.L += v.beta * w * coatedEmission(sh.material, hit.triangle, bary, le, -dir);
         }
     }
     // KHR_materials_unlit: the surface's colour, seen from either side, and no scattering.
@@ -109,8 +112,21 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         if (kLambertOnly) {
             bsdf = makeLambert(sp.baseColor);
         } else {
+            BsdfLayers layers = noLayers();
+#ifdef STRATA_LAYERS
+            if (hasFeature(kFeatureClearcoat)) {
+                layers.coat = sp.clearcoat;
+                layers.coatRoughness = sp.clearcoatRoughness;
+                layers.coatNormal = vec3(dot(sp.coatNormal, t), dot(sp.coatNormal, b), dot(sp.coatNormal, ns));
+            }
+            if (hasFeature(kFeatureSheen)) {
+                layers.sheenColor = sp.sheenColor;
+                layers.sheenRoughness = sp.sheenRoughness;
+            }
+            if (hasFeature(kFeatureSpecularColor)) layers.specularColor = sp.specularColor;
+#endif
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
-                            sp.specular, front, woL.z);
+                            sp.specular, layers, front, woL);
         }
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);

@@ -96,12 +96,19 @@ TriColors sceneColors(uint triangle) {
 // the same shape for its own struct.)
 Material sceneMaterial(uint i) {
     if (!kTexelAll) return materials[i];
-    // The volume's texel only when a material of the scene has one.
+    // The texels of an extension only when a material of the scene has it
+    // (volume: the sixth; clearcoat: the seventh and eighth; sheen: the
+    // eighth and ninth; specular colour: the tenth and eleventh).
     int base = int(kMaterialTexels * i);
     uvec4 t[kMaterialTexels] = uvec4[kMaterialTexels](
         texelFetch(materialsTexel, base), texelFetch(materialsTexel, base + 1), texelFetch(materialsTexel, base + 2),
         texelFetch(materialsTexel, base + 3), texelFetch(materialsTexel, base + 4),
-        hasFeature(kFeatureVolume) ? texelFetch(materialsTexel, base + 5) : uvec4(0u));
+        hasFeature(kFeatureVolume) ? texelFetch(materialsTexel, base + 5) : uvec4(0u),
+        hasFeature(kFeatureClearcoat) ? texelFetch(materialsTexel, base + 6) : uvec4(0u),
+        hasFeature(kFeatureClearcoat | kFeatureSheen) ? texelFetch(materialsTexel, base + 7) : uvec4(0u),
+        hasFeature(kFeatureSheen) ? texelFetch(materialsTexel, base + 8) : uvec4(0u),
+        hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 9) : uvec4(0u),
+        hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 10) : uvec4(0u));
     return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
                     TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
                     TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
@@ -110,7 +117,14 @@ Material sceneMaterial(uint i) {
                     TEXEL_UINT(t, kMaterialWordBaseColorTex), TEXEL_UINT(t, kMaterialWordMetallicRoughnessTex),
                     TEXEL_UINT(t, kMaterialWordNormalTex), TEXEL_UINT(t, kMaterialWordEmissiveTex),
                     TEXEL_UINT(t, kMaterialWordTransmissionTex), TEXEL_VEC3(t, kMaterialWordAttenuation),
-                    TEXEL_FLOAT(t, kMaterialWordThickness));
+                    TEXEL_FLOAT(t, kMaterialWordThickness), TEXEL_FLOAT(t, kMaterialWordClearcoat),
+                    TEXEL_FLOAT(t, kMaterialWordClearcoatRoughness), TEXEL_UINT(t, kMaterialWordClearcoatTex),
+                    TEXEL_UINT(t, kMaterialWordClearcoatRoughnessTex), TEXEL_UINT(t, kMaterialWordClearcoatNormalTex),
+                    TEXEL_FLOAT(t, kMaterialWordClearcoatNormalScale), TEXEL_FLOAT(t, kMaterialWordSheenRoughness),
+                    TEXEL_UINT(t, kMaterialWordSheenRoughnessTex), TEXEL_VEC3(t, kMaterialWordSheenColor),
+                    TEXEL_UINT(t, kMaterialWordSheenColorTex), TEXEL_VEC3(t, kMaterialWordSpecularColor),
+                    TEXEL_UINT(t, kMaterialWordSpecularColorTex), TEXEL_UINT(t, kMaterialWordSpecularTex),
+                    TEXEL_UINT(t, kMaterialWordPad0), TEXEL_UINT(t, kMaterialWordPad1), TEXEL_UINT(t, kMaterialWordPad2));
 }
 
 #include "lib/sampling.glsl"

@@ -24,7 +24,7 @@ TextureRef textureRefAt(uint i) {
                       TEXEL_VEC4(t, kTextureRefWordRow0), TEXEL_VEC4(t, kTextureRefWordRow1));
 }
 
-layout(set = 0, binding = BINDING_TEXELS) uniform usamplerBuffer texelWords;
+#include "lib/texel_words.glsl"
 
 // The exact sRGB decoding curve (IEC 61966-2-1).
 vec3 srgbToLinear(vec3 c) {

@@ -105,6 +105,13 @@ STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
 STRATA_CONST(uint, kFeatureUnlit, 256u);       // KHR_materials_unlit
 STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with attenuation
 STRATA_CONST(uint, kFeatureVertexColor, 2048u);  // COLOR_0 vertex colours (TriColors)
+// 1024u is taken (instancing).
+STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the coat lobe
+STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
+STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular colour or textures
+// The material layers: compiled only into the *_layers shader variants
+// (STRATA_LAYERS, lib/features.glsl).
+STRATA_CONST(uint, kFeaturesLayers, kFeatureClearcoat | kFeatureSheen | kFeatureSpecularColor);
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -119,6 +126,9 @@ STRATA_CONST(uint, kMaterialAlphaMask, 2u);    // alphaMode MASK: alpha < alphaC
 STRATA_CONST(uint, kMaterialAlphaBlend, 4u);   // alphaMode BLEND: stochastic transparency
 STRATA_CONST(uint, kMaterialUnlit, 8u);        // KHR_materials_unlit: shows baseColor, does not scatter
 STRATA_CONST(uint, kMaterialVolume, 16u);      // KHR_materials_volume: attenuates paths inside
+STRATA_CONST(uint, kMaterialClearcoat, 32u);   // KHR_materials_clearcoat: clearcoat > 0
+STRATA_CONST(uint, kMaterialSheen, 64u);       // KHR_materials_sheen: sheenColorFactor > 0
+STRATA_CONST(uint, kMaterialSpecularColor, 128u);  // KHR_materials_specular: a colour or texture
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -146,6 +156,28 @@ struct Material {
     // unit length, -ln(attenuationColor) / attenuationDistance.
     vec3 attenuation;
     float thickness;        // thicknessFactor (the shader takes lengths from the geometry)
+    // KHR_materials_clearcoat (kMaterialClearcoat; the seventh and eighth
+    // texels, read only under kFeatureClearcoat).
+    float clearcoat;              // clearcoatFactor
+    float clearcoatRoughness;     // clearcoatRoughnessFactor (perceptual; alpha = roughness^2)
+    uint clearcoatTex;            // clearcoatTexture: R scales clearcoat
+    uint clearcoatRoughnessTex;   // clearcoatRoughnessTexture: G scales clearcoatRoughness
+    uint clearcoatNormalTex;      // clearcoatNormalTexture: the coat's own normal map
+    float clearcoatNormalScale;   // its scale
+    // KHR_materials_sheen (kMaterialSheen; the rest of the eighth texel and
+    // the ninth, read under kFeatureSheen).
+    float sheenRoughness;         // sheenRoughnessFactor (Charlie alpha = roughness^2)
+    uint sheenRoughnessTex;       // sheenRoughnessTexture: A scales sheenRoughness
+    vec3 sheenColor;              // sheenColorFactor, linear
+    uint sheenColorTex;           // sheenColorTexture: sRGB RGB scales sheenColor
+    // KHR_materials_specular's colour and textures (kMaterialSpecularColor;
+    // the tenth and eleventh texels, read under kFeatureSpecularColor).
+    vec3 specularColor;           // specularColorFactor, linear (may exceed 1)
+    uint specularColorTex;        // specularColorTexture: sRGB RGB scales specularColor
+    uint specularTex;             // specularTexture: A scales specular
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_a.xy,
@@ -389,6 +421,9 @@ struct SampleTestParams {
     uint pad2;
     vec4 bsdf0;         // BSDF routines: cos(incidence), roughness, metallic, transmission
     vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
+    vec4 bsdf2;         // clearcoat, clearcoat roughness, sheen colour (grey), sheen roughness
+    vec4 bsdf3;         // specular colour rgb; w: the coat normal's tilt t from the shading
+                        // normal, towards (0.6, 0.8, 0): (0.6 sin t, 0.8 sin t, cos t)
 };
 
 // Statistics written by the shader with atomics. Ray counts are 64-bit
@@ -410,7 +445,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 96);
+static_assert(sizeof(Material) == 176);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
@@ -424,7 +459,7 @@ static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(TraceParams) == 16);
 static_assert(sizeof(PathState) == 48);
 static_assert(sizeof(WaveParams) == 32);
-static_assert(sizeof(SampleTestParams) == 80);
+static_assert(sizeof(SampleTestParams) == 112);
 }  // namespace strata::gpu
 #endif
 
