@@ -267,16 +267,18 @@ def furnace(albedo=0.5, le=0.5):
 SQUARE_LIGHT_CAMERA = (0.0, 0.6, 2.5)   # looks at the origin, yfov 30 deg
 
 
-def square_light():
+def square_light(lower=0.0):
     """Known answer for direct lighting (scripts/square_light.py): a 20 x 20
-    Lambertian plane y = 0 under a black, one-sided square emitter."""
+    Lambertian plane y = 0 under a black, one-sided square emitter. `lower`
+    moves the whole scene down (lower = h puts the emitter in the plane y = 0,
+    where its coordinates give the shadow rays' end no rounding to scale by)."""
     w = writer()
     a, le = analytic.ALBEDO, analytic.LE
     hw, h = analytic.HALF_SIDE, analytic.HEIGHT
     plane = lambert(w, "Plane", (a, a, a))
     light = lambert(w, "Light", (0.0, 0.0, 0.0), emissive=(le, le, le))
-    floor = Quads().add((-10, 0, -10), (0, 0, 20), (20, 0, 0), (0, 1, 0))
-    lamp = Quads().add((-hw, h, -hw), (2 * hw, 0, 0), (0, 0, 2 * hw), (0, -1, 0))
+    floor = Quads().add((-10, 0.0 - lower, -10), (0, 0, 20), (20, 0, 0), (0, 1, 0))
+    lamp = Quads().add((-hw, h - lower, -hw), (2 * hw, 0, 0), (0, 0, 2 * hw), (0, -1, 0))
     x, y, z = SQUARE_LIGHT_CAMERA
     assert x == 0.0, "the camera only pitches"
     pitch = -math.atan2(y, z)  # about +X: -Z turns towards -Y
@@ -284,7 +286,7 @@ def square_light():
         w.add_node("Plane", mesh=mesh(w, "Plane", floor, plane)),
         w.add_node("Light", mesh=mesh(w, "Light", lamp, light)),
         w.add_node("Camera", camera=camera(w, "Camera", 30.0),
-                   translation=list(SQUARE_LIGHT_CAMERA), rotation=rotation_x(pitch)),
+                   translation=[x, y - lower, z], rotation=rotation_x(pitch)),
     ]
     w.set_scene(roots, name="Scene")
     w.use_extensions(["KHR_materials_specular"])
@@ -336,6 +338,7 @@ def main():
     # Le = 0.1 is not a float32 dyadic: sums of it drift in float32.
     write(scenes_dir, "furnace-a0.8-le0.1.gltf", furnace(albedo=0.8, le=0.1))
     write(scenes_dir, "square-light.gltf", square_light())
+    write(invariance_dir, "square-light-origin.gltf", square_light(lower=analytic.HEIGHT))
     lamp = [q for name, q, m in cornell_room() if name == "Light"][0]
     for name, transform, znear, grid, length in INVARIANCE:
         write(invariance_dir, name, cornell_box_baked(transform, znear, grid))

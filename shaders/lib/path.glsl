@@ -13,6 +13,15 @@
 // direction, roulette (1D in a pair).
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
+// A shadow ray towards a point on an emitter ends this fraction of the way
+// there. The end point is moved off the emitter by the rounding error of its
+// coordinates (spawnOriginOnEmitter), but the hit distance the triangle test
+// computes for the emitter itself has an error relative to the ray's length;
+// where the emitter's coordinates are 0 along its normal (a lamp in the plane
+// y = 0) the first is 0 and the shadow ray would find the emitter it aims at.
+// 1 - 2^-16: an occluder closer to the emitter than 1.5e-5 of the ray's
+// length is not seen (pbrt-v4's ShadowEpsilon is 1e-4).
+const float kShadowEnd = 1.0 - 1.52587890625e-5;
 
 // Lambert only: no material of the scene has a specular, transmission, coat or sheen lobe.
 const bool kLambertOnly =
@@ -152,7 +161,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                         float segLen = length(seg);
                         open = segLen > 0.0;
                         shadowDir = open ? seg / segLen : ls.wi;
-                        shadowMax = segLen;
+                        shadowMax = segLen * kShadowEnd;
                     }
                     o.shadowOpen = open;
                     o.shadow = TraceRay(from, 0.0, shadowDir, shadowMax);
