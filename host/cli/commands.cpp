@@ -144,12 +144,18 @@ void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
             badFlag(a + " needs --env or --env-color");
 }
 
-// --variant (the scene's materials).
+// --variant (the scene's materials), --instancing (its meshes).
 template <class T>
 std::vector<Flag<T>> sceneFlags() {
     return {text<T>("--variant", "NAME",
                     "give each primitive its material for this KHR_materials_variants variant; --stats lists them",
-                    STRATA_FIELD(variant))};
+                    STRATA_FIELD(variant)),
+            choice<T, Instancing>("--instancing",
+                                  "a mesh placed by several nodes or by EXT_mesh_gpu_instancing: stored once and "
+                                  "placed by instances (on), or flattened into world-space triangles (off); auto: "
+                                  "instanced when its placements hold more than 2^20 triangles",
+                                  {{"auto", Instancing::Auto}, {"on", Instancing::On}, {"off", Instancing::Off}},
+                                  [](auto& c) -> auto& { return c.instancing; })};
 }
 
 // --device, --validation.

@@ -50,7 +50,8 @@ std::vector<vk::BindingDesc> sceneBindings() {
             {BINDING_TEXCOORDS, storage}, {BINDING_TEXCOORDS_TEXEL, texel}, {BINDING_TANGENTS, storage},
             {BINDING_TANGENTS_TEXEL, texel}, {BINDING_MATERIALS, storage},  {BINDING_MATERIALS_TEXEL, texel},
             {BINDING_TEXREFS, storage},   {BINDING_TEXREFS_TEXEL, texel},   {BINDING_TEXELS, texel},
-            {BINDING_COLORS, storage},    {BINDING_COLORS_TEXEL, texel}};
+            {BINDING_COLORS, storage},    {BINDING_COLORS_TEXEL, texel},    {BINDING_INSTANCES, storage},
+            {BINDING_INSTANCES_TEXEL, texel}};
 }
 
 void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
@@ -61,6 +62,7 @@ void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene) {
     bindArray(kernel, BINDING_TEXCOORDS, BINDING_TEXCOORDS_TEXEL, scene.texcoords);
     bindArray(kernel, BINDING_TANGENTS, BINDING_TANGENTS_TEXEL, scene.tangents);
     bindArray(kernel, BINDING_COLORS, BINDING_COLORS_TEXEL, scene.colors);
+    bindArray(kernel, BINDING_INSTANCES, BINDING_INSTANCES_TEXEL, scene.instances);
     bindArray(kernel, BINDING_MATERIALS, BINDING_MATERIALS_TEXEL, scene.materials);
     bindArray(kernel, BINDING_TEXREFS, BINDING_TEXREFS_TEXEL, scene.textureRefs);
     kernel.bind(BINDING_TEXELS, scene.texelsView);

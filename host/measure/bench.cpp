@@ -285,6 +285,7 @@ int runBench(const BenchCommand& cmd) {
     LoadOptions options;
     options.requireEmitter = false;  // traversal needs no light
     options.variant = cmd.variant;
+    options.instancing = cmd.instancing;
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, options);
     const std::string environment = scene.environment.enabled ? scene.environment.source : "";

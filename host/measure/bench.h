@@ -14,6 +14,7 @@
 // - start-up (load, BVH build, pipeline creation, first dispatch) and the
 //   BVH and the scene's enabled features.
 #pragma once
+#include "scene/scene.h"
 #include <cstdint>
 #include <string>
 
@@ -41,6 +42,7 @@ struct BenchCommand {
     int reps = 5;                     // timed passes per ray set (median)
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     std::string variant;                // --variant (KHR_materials_variants)
+    Instancing instancing = Instancing::Auto;  // --instancing
     int device = -1;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
     EnvironmentOptions env;           // --env / --env-color, --env-intensity, --env-rotate (as render)

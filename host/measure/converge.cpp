@@ -93,6 +93,7 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
     const RgbImage ref = readReference(cmd.reference);
     LoadOptions load;
     load.variant = cmd.variant;
+    load.instancing = cmd.instancing;
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
     const Camera camera = chooseCamera(scene, cmd.view, ref.width, ref.height);
     const GpuScene gpu = packScene(scene, buildSceneBvh(scene));

@@ -4,6 +4,7 @@
 // checkpoint of that one progressive render (the samples of spp k are a
 // prefix of those of spp n > k).
 #pragma once
+#include "scene/scene.h"
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@ struct ConvergeCommand {
     bool allSamplers = false;           // --sampler all: every sampler that suits the spp list
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     std::string variant;                // --variant (KHR_materials_variants)
+    Instancing instancing = Instancing::Auto;  // --instancing
     int device = -1;
     bool validation = false;
     bool quiet = false;

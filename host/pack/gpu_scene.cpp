@@ -9,6 +9,8 @@
 #include <optional>
 #include <type_traits>
 
+#include <glm/gtc/matrix_access.hpp>
+
 #include "pack/env_tables.h"
 #include "pack/textures.h"
 #include "util/memory.h"
@@ -25,7 +27,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureEnvironment, "environment"}, {gpu::kFeatureEnvMap, "environment-map"},
         {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"},
         {gpu::kFeatureVertexColor, "vertex-colors"}, {gpu::kFeatureClearcoat, "clearcoat"},
-        {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"}};
+        {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"},
+        {gpu::kFeatureInstancing, "instancing"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -108,6 +111,42 @@ void packLights(const Scene& scene, GpuScene& g, std::vector<double>& weights) {
     g.envTables = buildEnvTables(env);
     g.features.bits |= gpu::kFeatureEnvironment;
     if (env.width > 0) g.features.bits |= gpu::kFeatureEnvMap;
+}
+
+// The instances array (GpuScene::instances) from the BVH stage's top level
+// and placements; the roots refer to the concatenated bottom levels.
+void packInstances(const Scene& scene, const SceneBvh& bvh, GpuScene& g) {
+    const std::vector<gpu::BvhNode>& nodes = bvh.top.nodes;
+    const std::size_t n = bvh.top.triIndices.size();
+    const std::size_t recordBase = nodes.size() * gpu::kBvhNodeTexels;
+    g.instances.reserve(recordBase + n * gpu::kInstanceTexels);
+    for (gpu::BvhNode node : nodes) {
+        if (node.count > 0) node.leftOrFirst = std::uint32_t(recordBase + std::size_t(node.leftOrFirst) * gpu::kInstanceTexels);
+        glm::uvec4 t[gpu::kBvhNodeTexels];
+        std::memcpy(t, &node, sizeof node);
+        for (const glm::uvec4& w : t) g.instances.push_back(w);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        const Placement& p = bvh.placements[bvh.top.triIndices[k]];
+        const BottomLevel& b = bvh.bottoms[p.bottom];
+        const glm::dmat4 toWorld(p.toWorld);
+        const glm::dmat4 toObject = glm::inverse(toWorld);
+        gpu::Instance rec{};
+        for (int r = 0; r < 3; ++r) {
+            rec.objectToWorld[r] = glm::vec4(glm::row(toWorld, r));
+            rec.worldToObject[r] = glm::vec4(glm::row(toObject, r));
+        }
+        rec.root4 = b.root4;
+        rec.root2 = b.root2;
+        glm::uvec4 t[gpu::kInstanceTexels];
+        std::memcpy(t, &rec, sizeof rec);
+        for (const glm::uvec4& w : t) g.instances.push_back(w);
+        g.placedTriangles += p.bottom == 0 ? scene.worldTriangles() : scene.sharedMeshes[p.bottom - 1].count;
+    }
+    g.placementCount = n;
+    g.sharedMeshCount = scene.sharedMeshes.size();
+    g.top = bvh.top.stats;
+    g.features.bits |= gpu::kFeatureInstancing;
 }
 
 }  // namespace
@@ -320,6 +359,14 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
     std::vector<bool> used(g.materials.size(), false);
     for (const auto& t : scene.triangles) used[t.material] = true;
     g.sceneRadius = sceneRadius(scene);  // before the triangles are consumed
+    if (sceneBvh.instanced()) {
+        packInstances(scene, sceneBvh, g);
+        const gpu::BvhNode& root = sceneBvh.top.nodes[0];  // every placement's world box
+        const double r = 0.5 * glm::length(glm::dvec3(root.bmax) - glm::dvec3(root.bmin));
+        g.sceneRadius = r > 0.0 ? r : 1.0;
+    } else {
+        g.placedTriangles = n;
+    }
     PackedTextures packed = packTextures(scene, used, g.materials);
     g.textureRefs = std::move(packed.refs);
     g.texels = std::move(packed.texels);

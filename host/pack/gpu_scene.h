@@ -48,6 +48,14 @@ struct GpuScene {
     std::vector<float> envTables;           // sampling tables (pack/env_tables.h)
     SceneFeatures features;
     BvhStats bvh;
+    // Instancing (kFeatureInstancing; empty otherwise): the top level's BVH2
+    // nodes, then one Instance record per placement in the top level's
+    // order (shaders/shared/types.h), as RGBA32UI texels.
+    std::vector<glm::uvec4> instances;
+    std::uint64_t placementCount = 0;    // records (the world's triangles count as one)
+    std::uint64_t sharedMeshCount = 0;   // bottom levels placed by instances
+    std::uint64_t placedTriangles = 0;   // triangles the placements show (flattened, the scene would store these)
+    BvhStats top;                        // the top level's build
 };
 
 // Lays the scene out in the order of its BVH (bvh/scene_bvh.h) and packs

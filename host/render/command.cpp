@@ -44,6 +44,7 @@ int runRender(const RenderCommand& cmd) {
     auto t0 = std::chrono::steady_clock::now();
     LoadOptions load;
     load.variant = cmd.variant;
+    load.instancing = cmd.instancing;
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
     const double loadMs = msSince(t0);
     const Camera camera = chooseCamera(scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));

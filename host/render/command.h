@@ -20,6 +20,7 @@ struct RenderCommand {
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     std::string variant;                // --variant (KHR_materials_variants)
+    Instancing instancing = Instancing::Auto;  // --instancing
     int device = -1;
     bool quiet = false;
     bool stats = false;

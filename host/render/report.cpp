@@ -27,6 +27,13 @@ nlohmann::json statsJson(const StatsInput& in) {
                   {"features", in.gpu->features.names()},
                   {"variants", in.scene->variants},
                   {"variant", in.scene->variant}};
+    if (in.gpu->placementCount > 0) {
+        const BvhStats& t = in.gpu->top;
+        j["instancing"] = {{"placements", in.gpu->placementCount},   {"shared_meshes", in.gpu->sharedMeshCount},
+                           {"stored_triangles", in.gpu->triangleCount}, {"placed_triangles", in.gpu->placedTriangles},
+                           {"top_nodes", t.nodes},                    {"top_max_depth", t.maxDepth},
+                           {"top_build_ms", t.buildMs}};
+    }
     const BvhStats& b = in.gpu->bvh;
     j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
                 {"sah_cost", b.sahCost}, {"build_ms", b.buildMs}, {"bytes", b.bytes}};
@@ -81,8 +88,18 @@ std::string statsText(const nlohmann::json& j) {
         const std::string chosen = s["variant"].get<std::string>();
         o << "variants   " << variants << " (" << (chosen.empty() ? "none chosen" : "rendering " + chosen) << ")\n";
     }
-    const auto& b = j["bvh"];
     char line[256];
+    if (j.contains("instancing")) {
+        const auto& i = j["instancing"];
+        std::snprintf(line, sizeof line,
+                      "instances  %llu placements of %llu shared meshes and the world's triangles: %llu triangles "
+                      "stored, %llu placed; top level %u nodes, max depth %u, build %.1f ms\n",
+                      i["placements"].get<unsigned long long>(), i["shared_meshes"].get<unsigned long long>(),
+                      i["stored_triangles"].get<unsigned long long>(), i["placed_triangles"].get<unsigned long long>(),
+                      i["top_nodes"].get<unsigned>(), i["top_max_depth"].get<unsigned>(), i["top_build_ms"].get<double>());
+        o << line;
+    }
+    const auto& b = j["bvh"];
     std::snprintf(line, sizeof line,
                   "bvh        %u nodes, %u leaves, max depth %u, SAH cost %.2f, build %.1f ms, %.2f MiB\n",
                   b["nodes"].get<unsigned>(), b["leaves"].get<unsigned>(), b["max_depth"].get<unsigned>(),

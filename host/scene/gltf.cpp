@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -66,27 +67,21 @@ glm::dmat4 localTransform(const std::string& path, const tinygltf::Model& model,
     checkSize(node.rotation, 4, "rotation");
     checkSize(node.scale, 3, "scale");
 
-    glm::dmat3 rotation(1.0);
+    glm::dvec4 q(0.0, 0.0, 0.0, 1.0);
     if (!node.rotation.empty()) {
-        // Unit quaternion (x, y, z, w) -> rotation matrix; m[column][row].
-        double x = node.rotation[0], y = node.rotation[1], z = node.rotation[2],
-               w = node.rotation[3];
-        const double len = std::sqrt(x * x + y * y + z * z + w * w);
+        q = glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
+        const double len = std::sqrt(glm::dot(q, q));
         if (!(len > 0.0) || !std::isfinite(len)) {
             fail(path, nodeLabel(model, index) + ": rotation is not a valid quaternion");
         }
-        x /= len, y /= len, z /= len, w /= len;
-        rotation[0] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
-        rotation[1] = {2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)};
-        rotation[2] = {2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
     }
     const glm::dvec3 scale = node.scale.empty()
                                  ? glm::dvec3(1.0)
                                  : glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
-    for (int c = 0; c < 3; ++c) m[c] = glm::dvec4(rotation[c] * scale[c], 0.0);
-    if (!node.translation.empty()) {
-        m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
-    }
+    const glm::dvec3 translation = node.translation.empty()
+                                       ? glm::dvec3(0.0)
+                                       : glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+    m = gltf::trs(translation, q, scale);
     return m;
 }
 
@@ -159,15 +154,55 @@ public:
                 enter(child, parent);
             }
         }
+        // Each mesh's placements (a node, or each of its EXT_mesh_gpu_instancing
+        // instances) decide whether it is flattened or instanced.
+        std::vector<gltf::GpuInstances> gpu(visits.size());
+        const std::size_t meshCount = model_.meshes.size();
+        std::vector<std::size_t> placements(meshCount, 0), meshTriangles(meshCount, 0);
+        std::vector<char> eligible(meshCount, 1);
+        for (std::size_t k = 0; k < visits.size(); ++k) {
+            const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
+            const int mesh = node.mesh;
+            if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshCount) continue;  // visit reports it
+            gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeLabel(model_, visits[k].node));
+            placements[std::size_t(mesh)] += gpu[k].count > 0 ? gpu[k].count : 1;
+            if (node.skin >= 0) eligible[std::size_t(mesh)] = 0;
+        }
         std::size_t triangles = 0;
-        for (const Frame& v : visits) {
-            const int mesh = model_.nodes[static_cast<std::size_t>(v.node)].mesh;
-            if (mesh < 0 || static_cast<std::size_t>(mesh) >= model_.meshes.size()) continue;  // visit reports it
-            for (const LocalPrimitive& prim : decodedMesh(mesh).primitives) triangles += prim.indices.size() / 3;
+        instanced_.assign(meshCount, 0);
+        for (std::size_t m = 0; m < meshCount; ++m) {
+            if (placements[m] == 0) continue;
+            for (const LocalPrimitive& prim : decodedMesh(int(m)).primitives) {
+                meshTriangles[m] += prim.indices.size() / 3;
+                const bool emissive = prim.material >= 0 && isEmissive(scene_.materials[std::size_t(prim.material)]);
+                if (emissive) eligible[m] = 0;  // each of its triangles is a light of its own
+            }
+            for (const tinygltf::Primitive& prim : model_.meshes[m].primitives)
+                if (!prim.targets.empty()) eligible[m] = 0;  // each node may pose it differently
+            const std::size_t placed = placements[m] * meshTriangles[m];
+            bool instance = eligible[m] && placements[m] >= 2 && instancing_ != Instancing::Off;
+            if (instancing_ == Instancing::Auto) instance = instance && placed > kInstancingMinTriangles;
+            instanced_[m] = instance;
+            triangles += instance ? 0 : placed;
         }
         reserveHuge(scene_.triangles, triangles);
-        for (const Frame& v : visits) visit(v.node, v.world);
+        for (std::size_t k = 0; k < visits.size(); ++k) visit(visits[k].node, visits[k].world, gpu[k]);
+        // The instanced meshes' own triangles after the world's, once per
+        // winding their placements need.
+        std::vector<std::pair<SharedKey, std::uint32_t>> order(shared_.begin(), shared_.end());
+        std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+        for (const auto& [key, index] : order) {
+            SharedMesh m;
+            m.first = scene_.triangles.size();
+            addMesh(key.node, glm::dmat4(1.0), key.mirrored);
+            m.count = scene_.triangles.size() - m.first;
+            const int mesh = model_.nodes[std::size_t(key.node)].mesh;
+            m.name = gltf::meshLabel(model_, mesh) + (key.mirrored ? " (mirrored)" : "");
+            scene_.sharedMeshes.push_back(m);
+        }
     }
+
+    void setInstancing(Instancing mode) { instancing_ = mode; }
 
     bool usesDefaultMaterial() const { return usesDefault_; }
     std::size_t zeroLights() const { return zeroLights_; }
@@ -276,10 +311,16 @@ private:
         return *decoded;
     }
 
-    void visit(int nodeIndex, const glm::dmat4& world) {
+    void visit(int nodeIndex, const glm::dmat4& world, const gltf::GpuInstances& gpu) {
         const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
         if (node.camera >= 0 || node.camera < -1) addCamera(nodeIndex, world);
-        if (node.mesh >= 0 || node.mesh < -1) addMesh(nodeIndex, world);
+        if (node.mesh >= 0 || node.mesh < -1) {
+            if (gpu.count == 0) {
+                place(nodeIndex, world);
+            } else {
+                for (std::size_t i = 0; i < gpu.count; ++i) place(nodeIndex, world * gpu.local(i));
+            }
+        }
         const int light = gltf::nodeLight(path_, model_, nodeIndex, nodeLabel(model_, nodeIndex));
         if (light >= 0) addLight(nodeIndex, light, world);
     }
@@ -339,7 +380,26 @@ private:
         scene_.cameras.push_back(camera);
     }
 
-    void addMesh(int nodeIndex, const glm::dmat4& world) {
+    // A placement of the node's mesh: an instance of its shared copy, or
+    // its triangles in world space.
+    void place(int nodeIndex, const glm::dmat4& world) {
+        const int mesh = model_.nodes[static_cast<std::size_t>(nodeIndex)].mesh;
+        const bool known = mesh >= 0 && std::size_t(mesh) < instanced_.size();
+        const double det = glm::determinant(glm::dmat3(world));
+        bool finite = true;
+        for (int c = 0; c < 4; ++c) finite = finite && isFinite(glm::dvec3(world[c]));
+        // A degenerate or non-finite placement is flattened (addMesh reports it).
+        if (!known || !instanced_[std::size_t(mesh)] || !finite || det == 0.0) {
+            addMesh(nodeIndex, world);
+            return;
+        }
+        const SharedKey key{mesh, det < 0.0, nodeIndex};
+        auto it = shared_.find(key);
+        if (it == shared_.end()) it = shared_.emplace(key, std::uint32_t(shared_.size())).first;
+        scene_.instances.push_back({it->second, glm::mat4(world)});
+    }
+
+    void addMesh(int nodeIndex, const glm::dmat4& world, bool reverseWinding = false) {
         const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
         if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
             fail(path_, nodeLabel(model_, nodeIndex) + ": mesh " + std::to_string(node.mesh) +
@@ -360,7 +420,7 @@ private:
             glm::dmat3(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]),
                        glm::cross(linear[0], linear[1])) *
             (det < 0.0 ? -1.0 : 1.0);
-        const bool flip = det < 0.0;
+        const bool flip = (det < 0.0) != reverseWinding;
 
         std::vector<glm::dvec3> positions;
         std::vector<glm::dvec3> normals;
@@ -432,9 +492,23 @@ private:
         }
     }
 
+    // A mesh's shared copy: a placement that mirrors gets one with the
+    // winding reversed. `node` is the first node that placed it (for the
+    // labels; such meshes have no skin or morph targets, so any node poses
+    // them alike) and takes no part in the order.
+    struct SharedKey {
+        int mesh;
+        bool mirrored;
+        int node;
+        bool operator<(const SharedKey& o) const { return mesh != o.mesh ? mesh < o.mesh : mirrored < o.mirrored; }
+    };
+
     const std::string& path_;
     const tinygltf::Model& model_;
     Scene& scene_;
+    Instancing instancing_ = Instancing::Auto;
+    std::vector<char> instanced_;                    // per mesh: placed by instances
+    std::map<SharedKey, std::uint32_t> shared_;      // -> index into scene_.sharedMeshes
     std::vector<std::optional<LocalMesh>> meshes_;  // decoded on first use
     std::vector<std::string> skipped_;              // LocalMesh::skipped of each decoded mesh
     bool usesDefault_ = false;
@@ -472,6 +546,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     }
     gltf::warnTextureFallbacks(path, model, scene.materials);
     SceneBuilder builder(path, model, scene);
+    builder.setInstancing(options.instancing);
     builder.walk(sceneIndex);
     const std::string skipped = builder.skippedPrimitives();
     if (scene.triangles.empty() && !skipped.empty()) fail(path, "no triangles to render: skipped " + skipped);

@@ -72,6 +72,26 @@ std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygl
 std::vector<glm::mat4> readMatrices(const std::string& path, const tinygltf::Model& model, int index,
                                     const std::string& use);
 
+// T * R * S from a translation, a quaternion (x, y, z, w) of any non-zero
+// length (normalised here) and a scale.
+glm::dmat4 trs(const glm::dvec3& t, glm::dvec4 q, const glm::dvec3& s);
+
+// EXT_mesh_gpu_instancing of one node: each attribute's values (empty when
+// the file leaves it out) and the instance count.
+struct GpuInstances {
+    std::vector<glm::vec3> translation;
+    std::vector<glm::vec4> rotation;
+    std::vector<glm::vec3> scale;
+    std::size_t count = 0;
+    glm::dmat4 local(std::size_t i) const;  // instance i's T * R * S
+};
+
+// The node's instances (count 0 without the extension). Throws a one-line
+// strata::Error for a node without a mesh, no attribute, counts that differ,
+// or a value that is not finite or a rotation of length 0.
+GpuInstances readGpuInstances(const std::string& path, const tinygltf::Model& model, int node,
+                              const std::string& nodeLabel);
+
 // The glTF transform of node `node` alone: `matrix`, or T * R * S.
 glm::dmat4 nodeTransform(const std::string& path, const tinygltf::Model& model, int node);
 

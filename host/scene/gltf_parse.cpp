@@ -26,7 +26,7 @@ namespace {
 // Extensions strata reads; others named in extensionsUsed are ignored with a
 // warning, and in extensionsRequired are an error.
 constexpr std::string_view kSupportedExtensions[] = {
-    "EXT_meshopt_compression", "KHR_draco_mesh_compression",
+    "EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "KHR_draco_mesh_compression",
     "KHR_lights_punctual", "KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_ior",
     "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_variants",

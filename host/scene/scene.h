@@ -1,4 +1,5 @@
-// The scene as the host sees it after loading: flat arrays in world space.
+// The scene as the host sees it after loading: flat arrays in world space,
+// and with instancing the meshes stored once and their placements.
 #pragma once
 #include <cstddef>
 #include <array>
@@ -194,9 +195,31 @@ struct Environment {
     std::vector<float> rgb;      // linear RGB, 3 floats per texel, row 0 at the top
 };
 
+// A mesh stored once in its own space and placed by instances
+// (kFeatureInstancing): triangles [first, first + count) of Scene::triangles.
+struct SharedMesh {
+    std::size_t first = 0;
+    std::size_t count = 0;
+    std::string name;  // "mesh 3 (\"Tree\")", for --stats
+};
+
+// One placement of a SharedMesh: world = toWorld * object (affine; a
+// mirroring placement has its own SharedMesh with the winding reversed, so
+// det > 0 here).
+struct MeshInstance {
+    std::uint32_t mesh = 0;  // index into Scene::sharedMeshes
+    glm::mat4 toWorld{1.0f};
+};
+
 struct Scene {
     std::string path;                 // file it was loaded from (for messages)
+    // World space, except with instancing: triangles [0, worldTriangles())
+    // are in world space and each SharedMesh's range after them in its own.
     std::vector<Triangle> triangles;
+    std::vector<SharedMesh> sharedMeshes;
+    std::vector<MeshInstance> instances;
+    std::size_t worldTriangles() const { return sharedMeshes.empty() ? triangles.size() : sharedMeshes.front().first; }
+    bool instanced() const { return !instances.empty(); }
     // The file's materials in file order, then the glTF default material
     // (spec defaults, name "default") when a primitive has none or the file
     // has no materials: never empty.
@@ -227,6 +250,7 @@ struct Scene {
 // materials, cameras, lights and the other small members stay.
 inline void releaseGeometry(Scene& scene) {
     std::vector<Triangle>().swap(scene.triangles);
+    std::vector<MeshInstance>().swap(scene.instances);
     std::vector<TriangleUv>().swap(scene.texcoords);
     std::vector<TriangleTangents>().swap(scene.tangents);
     std::vector<TriangleColors>().swap(scene.colors);
@@ -255,6 +279,15 @@ inline bool isEmitter(const Scene& scene, const Triangle& t) {
 // Environment::source of the light a scene without any gets.
 inline constexpr const char* kDefaultEnvironment = "default (no light in the scene)";
 
+// Whether a mesh placed more than once is stored once and placed by
+// instances (a two-level BVH) or flattened into world-space triangles.
+// Auto: instanced when its placements hold more than kInstancingMinTriangles
+// triangles together (flattening is faster below: docs/benchmarks.md);
+// On: every mesh placed twice or more; Off: everything flattened. Meshes that
+// emit, are skinned or have morph targets are always flattened.
+enum class Instancing { Auto, On, Off };
+inline constexpr std::size_t kInstancingMinTriangles = std::size_t(1) << 20;
+
 struct LoadOptions {
     // A scene where nothing emits or was meant to (no emissive material on a
     // triangle, no punctual light) and no externalLight gets a uniform white
@@ -268,6 +301,7 @@ struct LoadOptions {
     // KHR_materials_variants: the variant whose materials the primitives get
     // (--variant); empty for their own. A name the file lacks is an error.
     std::string variant;
+    Instancing instancing = Instancing::Auto;
 };
 
 // Loads .gltf or .glb (binary when the file starts with the 'glTF' magic).

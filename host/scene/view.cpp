@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "util/error.h"
 
@@ -23,14 +24,30 @@ std::string pointText(glm::vec3 p) {
 }  // namespace
 
 Camera frameScene(const Scene& scene, float aspect, float yfov) {
+    // The world triangles' vertices, and an instanced mesh's placements by
+    // the corners of its box.
+    const std::size_t world = scene.worldTriangles();
+    std::vector<glm::dvec3> corners;
+    for (const MeshInstance& inst : scene.instances) {
+        const SharedMesh& m = scene.sharedMeshes[inst.mesh];
+        glm::dvec3 a(std::numeric_limits<double>::max()), b(-std::numeric_limits<double>::max());
+        for (std::size_t i = m.first; i < m.first + m.count; ++i)
+            for (const glm::vec3& v : scene.triangles[i].v) a = glm::min(a, glm::dvec3(v)), b = glm::max(b, glm::dvec3(v));
+        if (m.count == 0) continue;
+        const glm::dmat4 toWorld(inst.toWorld);
+        for (int c = 0; c < 8; ++c)
+            corners.push_back(glm::dvec3(toWorld * glm::dvec4((c & 1) ? b.x : a.x, (c & 2) ? b.y : a.y, (c & 4) ? b.z : a.z, 1.0)));
+    }
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-    for (const Triangle& t : scene.triangles)
-        for (const glm::vec3& v : t.v) lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
-    if (scene.triangles.empty()) lo = hi = glm::dvec3(0.0);
+    for (std::size_t i = 0; i < world; ++i)
+        for (const glm::vec3& v : scene.triangles[i].v) lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
+    for (const glm::dvec3& c : corners) lo = glm::min(lo, c), hi = glm::max(hi, c);
+    if (world == 0 && corners.empty()) lo = hi = glm::dvec3(0.0);
     const glm::dvec3 centre = (lo + hi) * 0.5;
     double radius = 0.0;
-    for (const Triangle& t : scene.triangles)
-        for (const glm::vec3& v : t.v) radius = std::max(radius, glm::length(glm::dvec3(v) - centre));
+    for (std::size_t i = 0; i < world; ++i)
+        for (const glm::vec3& v : scene.triangles[i].v) radius = std::max(radius, glm::length(glm::dvec3(v) - centre));
+    for (const glm::dvec3& c : corners) radius = std::max(radius, glm::length(c - centre));
     // All geometry in one point: a unit sphere about it, scaled to its distance from the origin.
     if (!(radius > 0.0)) radius = std::max(1.0, glm::length(centre)) * 1e-3;
     // A sphere of radius r whose centre lies on the view axis at distance d

@@ -28,6 +28,7 @@ std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
     const std::uint64_t nodes = wide ? s.wide.size() * sizeof(gpu::BvhNode4) : s.nodes.size() * sizeof(gpu::BvhNode);
     return {{"BVH nodes", nodes, true, kTexel, true},
             {"triangle vertices", s.tris.size() * sizeof(gpu::TriVerts), true, kTexel, true},
+            {"instances", s.instances.size() * sizeof(glm::uvec4), true, kTexel, true},
             {"triangle shading data", s.shading.size() * sizeof(gpu::TriShading), true, kTexel},
             {"texture coordinates", s.texcoords.size() * sizeof(gpu::TriTexcoords), true, kTexel},
             {"tangents", s.tangents.size() * sizeof(gpu::TriTangents), true, kTexel},
@@ -104,6 +105,7 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
     put(d.texcoords, scene.texcoords);
     put(d.tangents, scene.tangents);
     put(d.colors, scene.colors);
+    put(d.instances, scene.instances);
     d.emitters = uploadArray(ctx, scene.emitters, limits);
     d.materials = uploadArray(ctx, scene.materials, limits);
     d.textureRefs = uploadArray(ctx, scene.textureRefs, limits);
@@ -112,8 +114,8 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
     release(scene.texels);
     uploadEnvironment(ctx, scene, d, limits);
     release(scene.envTexels);
-    for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.colors, &d.emitters, &d.materials,
-                                  &d.textureRefs, &d.envTables})
+    for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.colors, &d.instances,
+                                  &d.emitters, &d.materials, &d.textureRefs, &d.envTables})
         d.deviceBytes += a->buffer.allocationSize();
     for (const vk::Buffer* b : {&d.texels, &d.envTexels})
         d.deviceBytes += b->allocationSize();

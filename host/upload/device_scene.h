@@ -75,7 +75,7 @@ DeviceArray uploadArray(const vk::Context& ctx, const std::vector<T>& v, const S
 }
 
 struct DeviceScene {
-    DeviceArray nodes, tris, shading, texcoords, tangents, colors, emitters, materials, textureRefs;
+    DeviceArray nodes, tris, shading, texcoords, tangents, colors, instances, emitters, materials, textureRefs;
     // Texturing inputs; a 16-byte zero buffer each when the scene has none
     // (every binding the shaders declare stays valid for the validation layers).
     vk::Buffer texels;

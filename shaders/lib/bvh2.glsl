@@ -16,23 +16,18 @@ bool bvhIsEmpty(BvhNode root) {
     return root.count == 0u && root.leftOrFirst == 0u;
 }
 
-// Closest (anyHit false) or any hit with tmin < t < tmax on the BVH2;
-// `anyHit` must be a literal (the call is inlined and folded). Returns
-// whether a hit was found; `hit` is the closest one, or for a miss, and
-// always with anyHit, hit.t = -1 and hit.triangle = kNoHit.
-bool bvhTrace2(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
-    hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
-    BvhRay r = bvhMakeRay(origin, dir);
-    uint index = 0u;
-    BvhNode node = bvhFetchNode(0u);
+// Closest (anyHit false) or any hit with tmin < t < tmax on the BVH2 from
+// node `root` (0, or a bottom level's root: lib/bvh.glsl), updating the
+// closest hit so far (bestT starts at tmax and stays tmax for anyHit); true
+// when anyHit found one. `anyHit` must be a literal (the call is inlined and
+// folded).
+bool bvhTrace2(BvhRay r, uint root, float tmin, float tmax, uint rayHash, const bool anyHit,
+               inout float bestT, inout uint bestTri, inout float bestU, inout float bestV) {
+    uint index = root;
+    BvhNode node = bvhFetchNode(root);
     float tEntry;
-    if (bvhIsEmpty(node) || !bvhSlab(r, node, tmin, tmax, tEntry)) return false;
+    if (bvhIsEmpty(node) || !bvhSlab(r, node, tmin, bestT, tEntry)) return false;
 
-    uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
-    float bestT = tmax;  // stays tmax for anyHit
-    uint bestTri = kNoHit;
-    float bestU = 0.0;
-    float bestV = 0.0;
     uint stack[kBvhStackSize];
     uint sp = 0u;
     for (;;) {
@@ -66,7 +61,7 @@ bool bvhTrace2(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
         index = stack[--sp];
         node = bvhFetchNode(index);
     }
-    return bvhSetHit(bestT, bestTri, bestU, bestV, hit);
+    return false;
 }
 
 #endif

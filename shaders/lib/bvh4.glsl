@@ -72,15 +72,12 @@ uint bvhVisit4(BvhRay r, uint ref, float tmin, float tmax, out uint next, out ui
 }
 
 // Closest (anyHit false) or any hit on the four-wide BVH with the register
-// stack; `anyHit` must be a literal (the call is inlined and folded).
-bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
-    hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
-    BvhRay r = bvhMakeRay(origin, dir);
-    uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
-    float bestT = tmax;  // stays tmax for anyHit
-    uint bestTri = kNoHit;
-    float bestU = 0.0;
-    float bestV = 0.0;
+// stack, from wide node `root` (0, or a bottom level's root: lib/bvh.glsl),
+// updating the closest hit so far (bestT starts at tmax and stays tmax for
+// anyHit); true when anyHit found one. `anyHit` must be a literal (the call
+// is inlined and folded).
+bool bvhTrace4(BvhRay r, uint root, float tmin, float tmax, uint rayHash, const bool anyHit,
+               inout float bestT, inout uint bestTri, inout float bestU, inout float bestV) {
     BVH_STACK_DECL;
     // An iteration makes two node passes, then tests the leaf (at most one)
     // that they entered. lavapipe runs every statement of the loop for all 8
@@ -92,7 +89,7 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
     // that meets a second leaf, the node goes back on the stack with it
     // (re-tested after the first). Popped entries are always wide nodes
     // (leaves are never pushed).
-    uint ref = 15u;  // the next node entry to visit, the root first; 0: pop one
+    uint ref = (root << 4) | 15u;  // the next node entry to visit, the root first; 0: pop one
     for (;;) {
         gBvhTicks += 2u;
         uint next, slot;
@@ -125,7 +122,7 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
             BVH_POP(ref);
         }
     }
-    return bvhSetHit(bestT, bestTri, bestU, bestV, hit);
+    return false;
 }
 
 #ifdef STRATA_BVH4_MEMSTACK
@@ -140,17 +137,12 @@ bool bvhTrace4(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit,
 // push or pop is one local-memory access where bvhTrace4 shifts 16-32
 // registers; on lavapipe an indexed array is a per-lane scalar loop, so CPU
 // devices take bvhTrace4 (docs/experiments.md has the figures of both).
-bool bvhTrace4Sorted(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
-    hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
-    BvhRay r = bvhMakeRay(origin, dir);
-    uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
-    float bestT = tmax;
-    uint bestTri = kNoHit;
-    float bestU = 0.0;
-    float bestV = 0.0;
+// The arguments and result are bvhTrace4's.
+bool bvhTrace4Sorted(BvhRay r, uint root, float tmin, float tmax, uint rayHash, const bool anyHit,
+                     inout float bestT, inout uint bestTri, inout float bestU, inout float bestV) {
     uint stk[3u * kBvhMaxWideDepth];
     uint sp = 0u;
-    uint ref = 0u;  // the root
+    uint ref = root;
     const float inf = uintBitsToFloat(0x7f800000u);
     for (;;) {
         gBvhTicks += 2u;
@@ -179,7 +171,7 @@ bool bvhTrace4Sorted(vec3 origin, vec3 dir, float tmin, float tmax, const bool a
         if (sp == 0u) break;
         ref = stk[--sp];
     }
-    return bvhSetHit(bestT, bestTri, bestU, bestV, hit);
+    return false;
 }
 #endif
 

@@ -69,10 +69,10 @@ vec4 materialTexture(uint ref, vec4 uvs) {
 vec3 normalMapped(uint tex, float scale, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3 nsInterpolated) {
     vec3 m = materialTexture(tex, uvs).xyz * 2.0 - 1.0;
     m.xy *= scale;
-    TriVerts tv = bvhFetchTri(triangle);
+    TriVerts tv = shadeTri(triangle);
     float side = dot(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz), n) >= 0.0 ? 1.0 : -1.0;
     vec3 N = side * nsInterpolated;
-    TriTangents tg = sceneTangents(triangle);
+    TriTangents tg = shadeTangents(triangle);
     vec4 t4 = (1.0 - bary.x - bary.y) * tg.t0 + bary.x * tg.t1 + bary.y * tg.t2;
     vec3 T = t4.xyz - N * dot(N, t4.xyz);
     vec3 B;
@@ -204,6 +204,9 @@ vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 
     if (!hasFeature(kFeatureClearcoat)) return le;
     Material mat = sceneMaterial(materialIndex);
     if ((mat.flags & kMaterialClearcoat) == 0u) return le;
+    // Emitters are never instanced: their triangles are stored in world space.
+    uint shaded = gInstance;
+    gInstance = kNoInstance;
     TriVerts tv = bvhFetchTri(triangle);
     vec3 n = normalize(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz));
     if (dot(n, toViewer) < 0.0) n = -n;
@@ -212,6 +215,7 @@ vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 
     if (dot(ns, n) < 0.0) ns = -ns;
     vec3 coatNormal;
     float clearcoat = min(coatAt(mat, triangle, bary, n, ns, coatNormal), 1.0);
+    gInstance = shaded;
     float m = 1.0 - min(abs(dot(toViewer, coatNormal)), 1.0);
     float m2 = m * m;
     return le * (1.0 - clearcoat * (0.04 + 0.96 * (m2 * m2 * m)));

@@ -78,11 +78,17 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     o.shadowOpen = false;
     o.alive = false;
 
-    TriVerts tv = bvhFetchTri(hit.triangle);
+    // An instance's triangle is shaded in world space (lib/scene.glsl, shadeTri).
+    vec3 spawnErr = vec3(0.0);
+    if (hasFeature(kFeatureInstancing)) {
+        gInstance = gHitInstance;
+        spawnErr = shadeSpawnError(bvhFetchTri(hit.triangle));
+    }
+    TriVerts tv = shadeTri(hit.triangle);
     vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
     vec3 ng = normalize(cross(e1, e2));
     bool front = dot(dir, ng) < 0.0;
-    TriShading sh = sceneShading(hit.triangle);
+    TriShading sh = shadeShading(hit.triangle);
     Material mat = sceneMaterial(sh.material);
 
     // KHR_materials_volume: a ray that reaches a back face of a volume has
@@ -151,7 +157,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 float bsdfPdf;
                 vec3 f = evalBsdf(bsdf, woL, wiL, bsdfPdf);
                 if (any(greaterThan(f, vec3(0.0)))) {
-                    vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n);
+                    vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n, spawnErr);
                     o.shadowTried = true;
                     vec3 shadowDir = ls.wi;
                     float shadowMax = kRayMax;
@@ -190,7 +196,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 if (u < q) o.alive = false;
                 else v.beta /= 1.0 - q;
             }
-            if (o.alive) o.next = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n), 0.0, wi, kRayMax);
+            if (o.alive) o.next = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n, spawnErr), 0.0, wi, kRayMax);
         }
     }
     return o;

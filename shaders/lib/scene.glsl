@@ -26,6 +26,8 @@ layout(std430, set = 0, binding = BINDING_TANGENTS) readonly buffer TangentBuffe
 layout(set = 0, binding = BINDING_TANGENTS_TEXEL) uniform usamplerBuffer tangentsTexel;
 layout(std430, set = 0, binding = BINDING_COLORS) readonly buffer ColorBuffer { TriColors colors[]; };
 layout(set = 0, binding = BINDING_COLORS_TEXEL) uniform usamplerBuffer colorsTexel;
+layout(std430, set = 0, binding = BINDING_INSTANCES) readonly buffer InstanceBuffer { uvec4 instanceWords[]; };
+layout(set = 0, binding = BINDING_INSTANCES_TEXEL) uniform usamplerBuffer instancesTexel;
 
 uvec4 bvhNodeWord(uint index) {
     return kTexelBvh ? texelFetch(nodesTexel, int(index)) : nodeWords[index];
@@ -57,6 +59,38 @@ TriVerts bvhFetchTri(uint index) {
     }
     return tris[index];
 }
+
+// The instances array (kFeatureInstancing; shared/types.h, Instance): the
+// top-level BVH2's nodes, then the records.
+uvec4 instanceWord(uint index) {
+    return kTexelBvh ? texelFetch(instancesTexel, int(index)) : instanceWords[index];
+}
+
+BvhNode bvhFetchTopNode(uint index) {
+    uint base = kBvhNodeTexels * index;
+    uvec4 t[kBvhNodeTexels] = uvec4[](instanceWord(base), instanceWord(base + 1u));
+    return BvhNode(TEXEL_VEC3(t, kBvhNodeWordBmin), TEXEL_UINT(t, kBvhNodeWordLeftOrFirst),
+                   TEXEL_VEC3(t, kBvhNodeWordBmax), TEXEL_UINT(t, kBvhNodeWordCount));
+}
+
+// The record starting at texel `first`: the two transforms' rows and the roots.
+vec4 instanceRow(uint first, uint row) { return uintBitsToFloat(instanceWord(first + row)); }
+uint instanceRoot(uint first) {
+    uvec4 t = instanceWord(first + kInstanceWordRoot4 / kTexelWords);
+#ifdef STRATA_BVH2
+    return t[kInstanceWordRoot2 % kTexelWords];
+#else
+    return t[kInstanceWordRoot4 % kTexelWords];
+#endif
+}
+vec3 rowsPoint(vec4 r0, vec4 r1, vec4 r2, vec3 p) {
+    return vec3(dot(r0.xyz, p) + r0.w, dot(r1.xyz, p) + r1.w, dot(r2.xyz, p) + r2.w);
+}
+vec3 rowsVector(vec4 r0, vec4 r1, vec4 r2, vec3 v) { return vec3(dot(r0.xyz, v), dot(r1.xyz, v), dot(r2.xyz, v)); }
+
+// The instance of the hit being shaded (its record's first texel), or
+// kNoInstance: the shading reads below give its triangle in world space.
+uint gInstance = kNoInstance;
 
 // Per-triangle arrays in BVH order, through texel views with kTexelAll.
 TriShading sceneShading(uint triangle) {
@@ -128,6 +162,54 @@ Material sceneMaterial(uint i) {
 }
 
 #include "lib/sampling.glsl"
+
+// Triangle `triangle` of the hit being shaded in world space: its vertices
+// (by objectToWorld), vertex normals (by the inverse transpose: worldToObject's
+// rows as columns) and tangents (by objectToWorld's linear part). Without
+// kFeatureInstancing, or for no instance, the arrays as stored.
+TriVerts shadeTri(uint triangle) {
+    TriVerts tv = bvhFetchTri(triangle);
+    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return tv;
+    vec4 r0 = instanceRow(gInstance, 3u), r1 = instanceRow(gInstance, 4u), r2 = instanceRow(gInstance, 5u);
+    return TriVerts(vec4(rowsPoint(r0, r1, r2, tv.v0.xyz), 0.0), vec4(rowsPoint(r0, r1, r2, tv.v1.xyz), 0.0),
+                    vec4(rowsPoint(r0, r1, r2, tv.v2.xyz), 0.0));
+}
+
+TriShading shadeShading(uint triangle) {
+    TriShading sh = sceneShading(triangle);
+    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return sh;
+    // The normal matrix is worldToObject's linear part transposed: its rows
+    // as columns, which is what mat3() takes.
+    mat3 normalMatrix = mat3(instanceRow(gInstance, 0u).xyz, instanceRow(gInstance, 1u).xyz,
+                             instanceRow(gInstance, 2u).xyz);
+    sh.n0 = normalize(normalMatrix * sh.n0);
+    sh.n1 = normalize(normalMatrix * sh.n1);
+    sh.n2 = normalize(normalMatrix * sh.n2);
+    return sh;
+}
+
+TriTangents shadeTangents(uint triangle) {
+    TriTangents tg = sceneTangents(triangle);
+    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return tg;
+    vec4 r0 = instanceRow(gInstance, 3u), r1 = instanceRow(gInstance, 4u), r2 = instanceRow(gInstance, 5u);
+    tg.t0.xyz = rowsVector(r0, r1, r2, tg.t0.xyz);
+    tg.t1.xyz = rowsVector(r0, r1, r2, tg.t1.xyz);
+    tg.t2.xyz = rowsVector(r0, r1, r2, tg.t2.xyz);
+    return tg;
+}
+
+// What an instance's transforms add to the rounding error of a point on its
+// triangle (spawnOrigin): the vertices' rounding to world space and a ray's
+// origin's rounding back to object space, each gamma(3) of the terms'
+// magnitudes, counted with a margin.
+vec3 shadeSpawnError(TriVerts objectTri) {
+    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return vec3(0.0);
+    vec4 r0 = instanceRow(gInstance, 3u), r1 = instanceRow(gInstance, 4u), r2 = instanceRow(gInstance, 5u);
+    vec3 m = max(abs(objectTri.v0.xyz), max(abs(objectTri.v1.xyz), abs(objectTri.v2.xyz)));
+    vec3 mag = vec3(dot(abs(r0.xyz), m) + abs(r0.w), dot(abs(r1.xyz), m) + abs(r1.w), dot(abs(r2.xyz), m) + abs(r2.w));
+    return 4.0 * kGamma7 * mag;
+}
+
 #include "lib/material.glsl"
 
 // The alpha test of lib/bvh.glsl (compiled in when kFeatureAlphaTest is set).

@@ -50,7 +50,8 @@ STRATA_BINDING(BINDING_WAVE_NEXT_LIVE, 35);    // storage uint[]: the path of ea
 STRATA_BINDING(BINDING_WAVE_SHADOW_SLOTS, 36); // storage uint[]: the path of each shadow ray
 STRATA_BINDING(BINDING_WAVE_COUNTS, 37);       // storage uint[2]: next rays, shadow rays appended
 STRATA_BINDING(BINDING_WAVE_SHADOW_HITS, 38);  // storage TraceHit[]: the shadow rays' results
-// 39 and 40 are instancing's (another branch).
+STRATA_BINDING(BINDING_INSTANCES, 39);        // storage uvec4[]: top-level nodes, then Instance records
+STRATA_BINDING(BINDING_INSTANCES_TEXEL, 40);  // usamplerBuffer over BINDING_INSTANCES (RGBA32UI)
 STRATA_BINDING(BINDING_COLORS, 41);        // storage TriColors[]: COLOR_0 per triangle (BVH order)
 STRATA_BINDING(BINDING_COLORS_TEXEL, 42);  // usamplerBuffer over BINDING_COLORS (RGBA32UI)
 STRATA_BINDING(BINDING_COUNT, 43);

@@ -24,6 +24,9 @@ STRATA_CONST(uint, kBvhNodeWordLeftOrFirst, 3u);
 STRATA_CONST(uint, kBvhNodeWordBmax, 4u);
 STRATA_CONST(uint, kBvhNodeWordCount, 7u);
 
+STRATA_CONST(uint, kInstanceTexels, 7u);
+STRATA_CONST(uint, kInstanceWordRoot4, 24u);
+STRATA_CONST(uint, kInstanceWordRoot2, 25u);
 STRATA_CONST(uint, kBvhNode4Texels, 7u);
 STRATA_CONST(uint, kBvhNode4WordMinX, 0u);
 STRATA_CONST(uint, kBvhNode4WordMaxX, 4u);
@@ -135,6 +138,10 @@ STRATA_TEXEL_WORD(BvhNode, bmin, kBvhNodeWordBmin);
 STRATA_WORD(BvhNode, leftOrFirst, kBvhNodeWordLeftOrFirst);
 STRATA_TEXEL_WORD(BvhNode, bmax, kBvhNodeWordBmax);
 STRATA_WORD(BvhNode, count, kBvhNodeWordCount);
+
+STRATA_TEXELS(Instance, kInstanceTexels);
+STRATA_WORD(Instance, root4, kInstanceWordRoot4);
+STRATA_WORD(Instance, root2, kInstanceWordRoot2);
 
 STRATA_TEXELS(BvhNode4, kBvhNode4Texels);
 STRATA_TEXEL_WORD(BvhNode4, minX, kBvhNode4WordMinX);

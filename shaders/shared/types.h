@@ -74,6 +74,23 @@ struct TriShading {
 
 STRATA_CONST(uint, kNoLight, 0xffffffffu);
 
+// One placement of a bottom-level BVH (kFeatureInstancing): a mesh used by
+// several nodes, or by EXT_mesh_gpu_instancing, is stored and built once in
+// its own space and placed by affine transforms (rows of the 3x4 matrices).
+// The instances array (BINDING_INSTANCES) holds the top-level BVH2's nodes
+// (kBvhNodeTexels texels each, node 0 the root), then the records: a top
+// leaf has count 1 and leftOrFirst the first texel of its Instance.
+struct Instance {
+    vec4 worldToObject[3];
+    vec4 objectToWorld[3];
+    uint root4;   // the bottom level's root among the four-wide nodes
+    uint root2;   // ... among the BVH2 nodes
+    uint pad0;
+    uint pad1;
+};
+
+STRATA_CONST(uint, kNoInstance, 0xffffffffu);
+
 // How the shaders read the scene's arrays (SPEC_TEXEL_FETCH). Every array
 // that has a texel view is bound both ways; the storage descriptor or the
 // view the shader does not read covers only what the device allows.
@@ -105,7 +122,7 @@ STRATA_CONST(uint, kFeatureEnvMap, 128u);      // the environment is an image
 STRATA_CONST(uint, kFeatureUnlit, 256u);       // KHR_materials_unlit
 STRATA_CONST(uint, kFeatureVolume, 512u);      // KHR_materials_volume with attenuation
 STRATA_CONST(uint, kFeatureVertexColor, 2048u);  // COLOR_0 vertex colours (TriColors)
-// 1024u is taken (instancing).
+STRATA_CONST(uint, kFeatureInstancing, 1024u);  // instances: a top-level BVH over placed bottom levels
 STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the coat lobe
 STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
 STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular colour or textures
@@ -456,6 +473,7 @@ static_assert(sizeof(DispatchParams) == 32);
 static_assert(sizeof(RenderCounters) == 32);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
+static_assert(sizeof(Instance) == 112);
 static_assert(sizeof(TraceParams) == 16);
 static_assert(sizeof(PathState) == 48);
 static_assert(sizeof(WaveParams) == 32);
