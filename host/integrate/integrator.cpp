@@ -11,8 +11,8 @@ std::unique_ptr<Integrator> makeIntegrator(const vk::Context& ctx, const DeviceS
                                            const FilmBuffers& film) {
     // The wavefront's hit lists carry no instance (lib/bvh.glsl, gHitInstance).
     if (s.integrator == IntegratorKind::Wavefront && (dev.features.bits & gpu::kFeatureInstancing) != 0u)
-        throw Error("--integrator wavefront does not render instanced meshes yet; --instancing off flattens them, "
-                    "or use the megakernel");
+        fail("strata", "--integrator wavefront does not render instanced meshes yet; --instancing off flattens them, "
+             "or use the megakernel");
     if (s.integrator == IntegratorKind::Wavefront)
         return std::make_unique<WavefrontIntegrator>(ctx, dev, s, t, maxTilePixels, film);
     return makeMegakernel(ctx, dev, s, t, film);

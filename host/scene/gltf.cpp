@@ -163,8 +163,8 @@ public:
         for (std::size_t k = 0; k < visits.size(); ++k) {
             const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
             const int mesh = node.mesh;
-            if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshCount) continue;  // visit reports it
             gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeLabel(model_, visits[k].node));
+            if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshCount) continue;  // visit reports it
             placements[std::size_t(mesh)] += gpu[k].count > 0 ? gpu[k].count : 1;
             if (node.skin >= 0) eligible[std::size_t(mesh)] = 0;
         }

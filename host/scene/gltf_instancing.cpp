@@ -37,15 +37,16 @@ GpuInstances readGpuInstances(const std::string& path, const tinygltf::Model& mo
     if (it == n.extensions.end()) return out;
     const std::string where = nodeLabel + ": EXT_mesh_gpu_instancing";
     if (n.mesh < 0) fail(path, where + " on a node without a mesh");
-    if (!it->second.IsObject() || !it->second.Has("attributes") || !it->second.Get("attributes").IsObject())
-        fail(path, where + " has no attributes object");
-    const tinygltf::Value& attributes = it->second.Get("attributes");
+    // A missing or empty attributes object names no attribute (the check below).
+    const tinygltf::Value none;
+    const bool hasAttributes = it->second.IsObject() && it->second.Has("attributes");
+    const tinygltf::Value& attributes = hasAttributes ? it->second.Get("attributes") : none;
     // TRANSLATION and SCALE FLOAT VEC3; ROTATION a FLOAT or normalized
     // BYTE/SHORT VEC4 quaternion (the extension's table).
     static const AccessorFormat kVec3{TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, false};
     static const AccessorFormat kQuat{TINYGLTF_TYPE_VEC4, {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT}, true};
     auto accessor = [&](const char* name) -> int {
-        if (!attributes.Has(name)) return -1;
+        if (!attributes.IsObject() || !attributes.Has(name)) return -1;
         const tinygltf::Value& v = attributes.Get(name);
         if (!v.IsInt()) fail(path, where + " " + name + " is not an accessor index");
         return v.GetNumberAsInt();
