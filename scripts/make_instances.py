@@ -110,7 +110,10 @@ def add_instances(w, translations, rotations=None, scales=None):
 def instances_scene():
     w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
     roots, sphere = base_scene(w, 4.0, 3.0, (0.0, 2.4, 5.5))
-    gloss = w.add_material("Gloss", base_color=[0.2, 0.3, 0.8, 1.0], metallic=0.0, roughness=0.15)
+    # Clearcoated: the layered path tracer's instanced variant.
+    gloss = w.add_material("Gloss", base_color=[0.2, 0.3, 0.8, 1.0], metallic=0.0, roughness=0.6,
+                           extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0,
+                                                                   "clearcoatRoughnessFactor": 0.1}})
     pos, nrm, idx = icosphere(2)
     glossy = w.add_triangles("GlossySphere", pos, normals=nrm, indices=idx, material=gloss)
     # Nine nodes: a grid, turned and scaled; node 4 mirrored, node 7 uneven.
@@ -133,7 +136,8 @@ def instances_scene():
     for k, x in enumerate((-1.0, 1.0)):
         roots.append(w.add_node("Glossy%d" % k, mesh=glossy, translation=[x, 0.45, 2.4], scale=[0.45, 0.45, 0.45]))
     w.set_scene(roots, name="Instances")
-    w.use_extensions(["KHR_materials_emissive_strength", "KHR_materials_specular", EXTENSION])
+    w.use_extensions(["KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_specular",
+                      EXTENSION])
     return w
 
 

@@ -34,13 +34,19 @@ void traceOne(uint i) {
         bvhTraceClosest(r.origin, r.dir, r.tmin, r.tmax, h);
         TraceHit h2 = TraceHit(-1.0, kNoHit, 0.0, 0.0);
         if (h.triangle != kNoHit) {
-            if (hasFeature(kFeatureInstancing)) gInstance = gHitInstance;
+#ifdef STRATA_INSTANCING
+            gInstance = gHitInstance;
+#endif
             TriVerts tv = shadeTri(h.triangle);  // world space (an instance's triangle too)
             vec3 ng = cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz);
             vec3 dir2 = rays[i + 1u].dir;
             vec3 side = normalize(dot(dir2, ng) > 0.0 ? ng : -ng);
-            bvhTraceClosest(spawnOrigin(tv, h.u, h.v, side, shadeSpawnError(bvhFetchTri(h.triangle))), dir2, 0.0,
-                            rays[i + 1u].tmax, h2);
+#ifdef STRATA_INSTANCING
+            vec3 from = spawnOrigin(tv, h.u, h.v, side, shadeSpawnError(bvhFetchTri(h.triangle)));
+#else
+            vec3 from = spawnOrigin(tv, h.u, h.v, side);
+#endif
+            bvhTraceClosest(from, dir2, 0.0, rays[i + 1u].tmax, h2);
         }
         hits[i + 1u] = h2;
     } else {

@@ -10,18 +10,21 @@ namespace strata {
 
 std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace) {
     using Span = std::span<const std::uint32_t>;
-    if (pathtrace && (scene.features.bits & gpu::kFeaturesLayers) != 0u) {
-        if (!scene.wide) return Span(kSpirvPtr_pathtrace_bvh2_layers, kSpirvSize_pathtrace_bvh2_layers / 4);
-        if (scene.memoryStack) return Span(kSpirvPtr_pathtrace_bvh4m_layers, kSpirvSize_pathtrace_bvh4m_layers / 4);
-        return Span(kSpirvPtr_pathtrace_layers, kSpirvSize_pathtrace_layers / 4);
-    }
-    if (!scene.wide)
-        return pathtrace ? Span(kSpirvPtr_pathtrace_bvh2, kSpirvSize_pathtrace_bvh2 / 4)
-                         : Span(kSpirvPtr_trace_bvh2, kSpirvSize_trace_bvh2 / 4);
-    if (scene.memoryStack)
-        return pathtrace ? Span(kSpirvPtr_pathtrace_bvh4m, kSpirvSize_pathtrace_bvh4m / 4)
-                         : Span(kSpirvPtr_trace_bvh4m, kSpirvSize_trace_bvh4m / 4);
-    return pathtrace ? Span(kSpirvPtr_pathtrace, kSpirvSize_pathtrace / 4) : Span(kSpirvPtr_trace, kSpirvSize_trace / 4);
+#define STRATA_SPIRV(name) Span(kSpirvPtr_##name, kSpirvSize_##name / 4)
+    const bool layers = pathtrace && (scene.features.bits & gpu::kFeaturesLayers) != 0u;
+    const bool inst = (scene.features.bits & gpu::kFeatureInstancing) != 0u;
+    // [instancing][layers][traversal: bvh4 registers, bvh2, bvh4 memory]
+    const Span path[2][2][3] = {
+        {{STRATA_SPIRV(pathtrace), STRATA_SPIRV(pathtrace_bvh2), STRATA_SPIRV(pathtrace_bvh4m)},
+         {STRATA_SPIRV(pathtrace_layers), STRATA_SPIRV(pathtrace_bvh2_layers), STRATA_SPIRV(pathtrace_bvh4m_layers)}},
+        {{STRATA_SPIRV(pathtrace_inst), STRATA_SPIRV(pathtrace_bvh2_inst), STRATA_SPIRV(pathtrace_bvh4m_inst)},
+         {STRATA_SPIRV(pathtrace_layers_inst), STRATA_SPIRV(pathtrace_bvh2_layers_inst),
+          STRATA_SPIRV(pathtrace_bvh4m_layers_inst)}}};
+    const Span trace[2][3] = {{STRATA_SPIRV(trace), STRATA_SPIRV(trace_bvh2), STRATA_SPIRV(trace_bvh4m)},
+                              {STRATA_SPIRV(trace_inst), STRATA_SPIRV(trace_bvh2_inst), STRATA_SPIRV(trace_bvh4m_inst)}};
+#undef STRATA_SPIRV
+    const int traversal = !scene.wide ? 1 : scene.memoryStack ? 2 : 0;
+    return pathtrace ? path[inst][layers][traversal] : trace[inst][traversal];
 }
 
 std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene) {

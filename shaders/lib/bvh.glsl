@@ -40,57 +40,58 @@
 // same builder, whose leaves stay at depth < 64 (host/bvh/bvh.h).
 const uint kTopStackSize = 64u;
 
-// The instance of the last closest hit (its record's first texel, lib/scene.glsl),
-// kNoInstance without kFeatureInstancing.
+#ifdef STRATA_INSTANCING
+// The instance of the last closest hit (its record's first texel, lib/scene.glsl).
 uint gHitInstance = kNoInstance;
+#endif
 
 // Closest (anyHit false) or any hit: the bottom-level traversal chosen by
-// define, called once. Without kFeatureInstancing the scene is one BVH, the
-// loop below runs once from root 0 and the top-level code folds away. With
-// it, the top level (a BVH2 over the instances' world boxes, lib/scene.glsl)
-// hands out the instances the ray enters within the closest hit so far, and
-// each is traversed with the ray taken to its space by worldToObject: the
-// direction is not renormalised, so t is the same in both spaces. Ties
-// between instances keep the first found.
+// define, called once. Without STRATA_INSTANCING the scene is one BVH,
+// traversed from root 0. With it (the *_inst shader variants, for scenes
+// with kFeatureInstancing), the top level (a BVH2 over the placements' world
+// boxes, lib/scene.glsl) hands out the instances the ray enters within the
+// closest hit so far, and each is traversed with the ray taken to its space
+// by worldToObject: the direction is not renormalised, so t is the same in
+// both spaces. Ties between instances keep the first found.
 bool bvhTrace(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, out TraceHit hit) {
     hit = TraceHit(-1.0, kNoHit, 0.0, 0.0);
-    bool instanced = hasFeature(kFeatureInstancing);
-    BvhRay world = bvhMakeRay(origin, dir);
-    BvhRay r = world;
+    BvhRay r = bvhMakeRay(origin, dir);
     uint rayHash = (kFeatures & kFeatureAlphaTest) != 0u ? bvhRayHash(origin, dir) : 0u;
     float bestT = tmax;  // stays tmax for anyHit
     uint bestTri = kNoHit;
     float bestU = 0.0;
     float bestV = 0.0;
-    uint root = 0u;
+#ifdef STRATA_INSTANCING
+    BvhRay world = r;
     uint record = kNoInstance, bestRecord = kNoInstance;
     const uint kTopDone = 0xffffffffu;
     uint top = 0u;  // the next top-level node to test; kTopDone: none left
     uint topStack[kTopStackSize];
     uint topSp = 0u;
     for (;;) {
-        if (instanced) {
-            record = kNoInstance;
-            while (record == kNoInstance && top != kTopDone) {
-                gBvhTicks += 2u;
-                BvhNode n = bvhFetchTopNode(top);
-                float tEntry;
-                bool entered = bvhSlab(world, n, tmin, bestT, tEntry);
-                if (entered && n.count == 0u) {
-                    if (topSp < kTopStackSize) topStack[topSp++] = n.leftOrFirst;  // the right child, later
-                    top = top + 1u;
-                } else {
-                    if (entered) record = n.leftOrFirst;
-                    top = topSp > 0u ? topStack[--topSp] : kTopDone;
-                }
+        record = kNoInstance;
+        while (record == kNoInstance && top != kTopDone) {
+            gBvhTicks += 2u;
+            BvhNode n = bvhFetchTopNode(top);
+            float tEntry;
+            bool entered = bvhSlab(world, n, tmin, bestT, tEntry);
+            if (entered && n.count == 0u) {
+                if (topSp < kTopStackSize) topStack[topSp++] = n.leftOrFirst;  // the right child, later
+                top = top + 1u;
+            } else {
+                if (entered) record = n.leftOrFirst;
+                top = topSp > 0u ? topStack[--topSp] : kTopDone;
             }
-            if (record == kNoInstance) break;
-            vec4 r0 = instanceRow(record, 0u), r1 = instanceRow(record, 1u), r2 = instanceRow(record, 2u);
-            r = bvhMakeRay(rowsPoint(r0, r1, r2, origin), rowsVector(r0, r1, r2, dir));
-            root = instanceRoot(record);
         }
+        if (record == kNoInstance) break;
+        vec4 r0 = instanceRow(record, 0u), r1 = instanceRow(record, 1u), r2 = instanceRow(record, 2u);
+        r = bvhMakeRay(rowsPoint(r0, r1, r2, origin), rowsVector(r0, r1, r2, dir));
+        uint root = instanceRoot(record);
         float lastT = bestT;
         uint lastTri = bestTri;
+#else
+        const uint root = 0u;
+#endif
 #ifdef STRATA_BVH2
         bool found = bvhTrace2(r, root, tmin, tmax, rayHash, anyHit, bestT, bestTri, bestU, bestV);
 #elif defined(STRATA_BVH4_MEMSTACK)
@@ -98,19 +99,22 @@ bool bvhTrace(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, 
 #else
         bool found = bvhTrace4(r, root, tmin, tmax, rayHash, anyHit, bestT, bestTri, bestU, bestV);
 #endif
+#ifdef STRATA_INSTANCING
         if (found) {
             gHitInstance = record;
             return true;
         }
-        if (!instanced) break;
         if (bestT != lastT || bestTri != lastTri) bestRecord = record;
     }
     gHitInstance = bestRecord;
+#else
+        if (found) return true;
+#endif
     return bvhSetHit(bestT, bestTri, bestU, bestV, hit);
 }
 
 // Closest hit with tmin < t < tmax. On a miss hit.t = -1 and
-// hit.triangle = kNoHit. gHitInstance is the hit's instance.
+// hit.triangle = kNoHit. With STRATA_INSTANCING gHitInstance is the hit's instance.
 bool bvhTraceClosest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
     return bvhTrace(origin, dir, tmin, tmax, false, hit);
 }

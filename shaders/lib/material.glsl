@@ -204,9 +204,11 @@ vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 
     if (!hasFeature(kFeatureClearcoat)) return le;
     Material mat = sceneMaterial(materialIndex);
     if ((mat.flags & kMaterialClearcoat) == 0u) return le;
+#ifdef STRATA_INSTANCING
     // Emitters are never instanced: their triangles are stored in world space.
     uint shaded = gInstance;
     gInstance = kNoInstance;
+#endif
     TriVerts tv = bvhFetchTri(triangle);
     vec3 n = normalize(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz));
     if (dot(n, toViewer) < 0.0) n = -n;
@@ -215,7 +217,9 @@ vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 
     if (dot(ns, n) < 0.0) ns = -ns;
     vec3 coatNormal;
     float clearcoat = min(coatAt(mat, triangle, bary, n, ns, coatNormal), 1.0);
+#ifdef STRATA_INSTANCING
     gInstance = shaded;
+#endif
     float m = 1.0 - min(abs(dot(toViewer, coatNormal)), 1.0);
     float m2 = m * m;
     return le * (1.0 - clearcoat * (0.04 + 0.96 * (m2 * m2 * m)));

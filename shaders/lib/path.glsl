@@ -79,11 +79,13 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     o.alive = false;
 
     // An instance's triangle is shaded in world space (lib/scene.glsl, shadeTri).
-    vec3 spawnErr = vec3(0.0);
-    if (hasFeature(kFeatureInstancing)) {
-        gInstance = gHitInstance;
-        spawnErr = shadeSpawnError(bvhFetchTri(hit.triangle));
-    }
+#ifdef STRATA_INSTANCING
+    gInstance = gHitInstance;
+    vec3 spawnErr = shadeSpawnError(bvhFetchTri(hit.triangle));
+#define PATH_SPAWN(side) spawnOrigin(tv, hit.u, hit.v, side, spawnErr)
+#else
+#define PATH_SPAWN(side) spawnOrigin(tv, hit.u, hit.v, side)
+#endif
     TriVerts tv = shadeTri(hit.triangle);
     vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
     vec3 ng = normalize(cross(e1, e2));
@@ -157,7 +159,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 float bsdfPdf;
                 vec3 f = evalBsdf(bsdf, woL, wiL, bsdfPdf);
                 if (any(greaterThan(f, vec3(0.0)))) {
-                    vec3 from = spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n, spawnErr);
+                    vec3 from = PATH_SPAWN(geoSide > 0.0 ? n : -n);
                     o.shadowTried = true;
                     vec3 shadowDir = ls.wi;
                     float shadowMax = kRayMax;
@@ -196,10 +198,11 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 if (u < q) o.alive = false;
                 else v.beta /= 1.0 - q;
             }
-            if (o.alive) o.next = TraceRay(spawnOrigin(tv, hit.u, hit.v, geoSide > 0.0 ? n : -n, spawnErr), 0.0, wi, kRayMax);
+            if (o.alive) o.next = TraceRay(PATH_SPAWN(geoSide > 0.0 ? n : -n), 0.0, wi, kRayMax);
         }
     }
     return o;
 }
+#undef PATH_SPAWN
 
 #endif

@@ -78,15 +78,24 @@ vec3 offsetRayOrigin(vec3 p, vec3 err, vec3 n) {
 // tv into the side of unit geometric normal `side`. The point is the
 // barycentric sum; its error is bounded by gamma(7) times the sum of the
 // terms' magnitudes, plus one ulp of the largest vertex for the rounding of
-// b0 = 1 - u - v, plus `extraErr` (an instance's transforms: shadeSpawnError).
-vec3 spawnOrigin(TriVerts tv, float u, float v, vec3 side, vec3 extraErr) {
+// b0 = 1 - u - v.
+vec3 spawnOrigin(TriVerts tv, float u, float v, vec3 side) {
     float b0 = 1.0 - u - v;
     precise vec3 p = b0 * tv.v0.xyz + u * tv.v1.xyz + v * tv.v2.xyz;
     vec3 err = kGamma7 * (abs(b0 * tv.v0.xyz) + abs(u * tv.v1.xyz) + abs(v * tv.v2.xyz)) +
                kUlp * max(abs(tv.v0.xyz), max(abs(tv.v1.xyz), abs(tv.v2.xyz)));
-    err += extraErr;
     return offsetRayOrigin(p, err, side);
 }
+
+#ifdef STRATA_INSTANCING
+// The same, the point's error widened by `extraErr` (an instance's
+// transforms: shadeSpawnError). offsetRayOrigin moves p by the error
+// along `side`, so the two offsets add.
+vec3 spawnOrigin(TriVerts tv, float u, float v, vec3 side, vec3 extraErr) {
+    vec3 p = spawnOrigin(tv, u, v, side);
+    return offsetRayOrigin(p, extraErr, side);
+}
+#endif
 
 // The same for a point v0 + b1 e1 + b2 e2 sampled on an emitter stored as a
 // vertex and two edges (the edges were rounded on the host: counted once more).

@@ -26,8 +26,10 @@ layout(std430, set = 0, binding = BINDING_TANGENTS) readonly buffer TangentBuffe
 layout(set = 0, binding = BINDING_TANGENTS_TEXEL) uniform usamplerBuffer tangentsTexel;
 layout(std430, set = 0, binding = BINDING_COLORS) readonly buffer ColorBuffer { TriColors colors[]; };
 layout(set = 0, binding = BINDING_COLORS_TEXEL) uniform usamplerBuffer colorsTexel;
+#ifdef STRATA_INSTANCING
 layout(std430, set = 0, binding = BINDING_INSTANCES) readonly buffer InstanceBuffer { uvec4 instanceWords[]; };
 layout(set = 0, binding = BINDING_INSTANCES_TEXEL) uniform usamplerBuffer instancesTexel;
+#endif
 
 uvec4 bvhNodeWord(uint index) {
     return kTexelBvh ? texelFetch(nodesTexel, int(index)) : nodeWords[index];
@@ -60,6 +62,7 @@ TriVerts bvhFetchTri(uint index) {
     return tris[index];
 }
 
+#ifdef STRATA_INSTANCING
 // The instances array (kFeatureInstancing; shared/types.h, Instance): the
 // top-level BVH2's nodes, then the records.
 uvec4 instanceWord(uint index) {
@@ -91,6 +94,8 @@ vec3 rowsVector(vec4 r0, vec4 r1, vec4 r2, vec3 v) { return vec3(dot(r0.xyz, v),
 // The instance of the hit being shaded (its record's first texel), or
 // kNoInstance: the shading reads below give its triangle in world space.
 uint gInstance = kNoInstance;
+
+#endif
 
 // Per-triangle arrays in BVH order, through texel views with kTexelAll.
 TriShading sceneShading(uint triangle) {
@@ -163,13 +168,14 @@ Material sceneMaterial(uint i) {
 
 #include "lib/sampling.glsl"
 
+#ifdef STRATA_INSTANCING
 // Triangle `triangle` of the hit being shaded in world space: its vertices
 // (by objectToWorld), vertex normals (by the inverse transpose: worldToObject's
-// rows as columns) and tangents (by objectToWorld's linear part). Without
-// kFeatureInstancing, or for no instance, the arrays as stored.
+// rows as columns) and tangents (by objectToWorld's linear part); for no
+// instance (kNoInstance), the arrays as stored.
 TriVerts shadeTri(uint triangle) {
     TriVerts tv = bvhFetchTri(triangle);
-    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return tv;
+    if (gInstance == kNoInstance) return tv;
     vec4 r0 = instanceRow(gInstance, 3u), r1 = instanceRow(gInstance, 4u), r2 = instanceRow(gInstance, 5u);
     return TriVerts(vec4(rowsPoint(r0, r1, r2, tv.v0.xyz), 0.0), vec4(rowsPoint(r0, r1, r2, tv.v1.xyz), 0.0),
                     vec4(rowsPoint(r0, r1, r2, tv.v2.xyz), 0.0));
@@ -177,7 +183,7 @@ TriVerts shadeTri(uint triangle) {
 
 TriShading shadeShading(uint triangle) {
     TriShading sh = sceneShading(triangle);
-    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return sh;
+    if (gInstance == kNoInstance) return sh;
     // The normal matrix is worldToObject's linear part transposed: its rows
     // as columns, which is what mat3() takes.
     mat3 normalMatrix = mat3(instanceRow(gInstance, 0u).xyz, instanceRow(gInstance, 1u).xyz,
@@ -190,7 +196,7 @@ TriShading shadeShading(uint triangle) {
 
 TriTangents shadeTangents(uint triangle) {
     TriTangents tg = sceneTangents(triangle);
-    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return tg;
+    if (gInstance == kNoInstance) return tg;
     vec4 r0 = instanceRow(gInstance, 3u), r1 = instanceRow(gInstance, 4u), r2 = instanceRow(gInstance, 5u);
     tg.t0.xyz = rowsVector(r0, r1, r2, tg.t0.xyz);
     tg.t1.xyz = rowsVector(r0, r1, r2, tg.t1.xyz);
@@ -203,12 +209,18 @@ TriTangents shadeTangents(uint triangle) {
 // origin's rounding back to object space, each gamma(3) of the terms'
 // magnitudes, counted with a margin.
 vec3 shadeSpawnError(TriVerts objectTri) {
-    if (!hasFeature(kFeatureInstancing) || gInstance == kNoInstance) return vec3(0.0);
+    if (gInstance == kNoInstance) return vec3(0.0);
     vec4 r0 = instanceRow(gInstance, 3u), r1 = instanceRow(gInstance, 4u), r2 = instanceRow(gInstance, 5u);
     vec3 m = max(abs(objectTri.v0.xyz), max(abs(objectTri.v1.xyz), abs(objectTri.v2.xyz)));
     vec3 mag = vec3(dot(abs(r0.xyz), m) + abs(r0.w), dot(abs(r1.xyz), m) + abs(r1.w), dot(abs(r2.xyz), m) + abs(r2.w));
     return 4.0 * kGamma7 * mag;
 }
+#else
+// Without instancing every triangle is stored in world space.
+#define shadeTri bvhFetchTri
+#define shadeShading sceneShading
+#define shadeTangents sceneTangents
+#endif
 
 #include "lib/material.glsl"
 
