@@ -15,6 +15,9 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 layout(std430, set = 0, binding = BINDING_RAYS) readonly buffer RayBuffer { TraceRay rays[]; };
 layout(std430, set = 0, binding = BINDING_HITS) writeonly buffer HitBuffer { TraceHit hits[]; };
+#ifdef STRATA_INSTANCING
+layout(std430, set = 0, binding = BINDING_HIT_INSTANCES) writeonly buffer HitInstanceBuffer { uint hitInstances[]; };
+#endif
 layout(push_constant) uniform Push { TraceParams params; };
 // A constant, not a push constant: lavapipe runs both sides of every branch,
 // uniform or not, so with a mode chosen at run time every ray would pay for
@@ -51,6 +54,9 @@ void traceOne(uint i) {
         hits[i + 1u] = h2;
     } else {
         bvhTraceClosest(r.origin, r.dir, r.tmin, r.tmax, h);
+#ifdef STRATA_INSTANCING
+        hitInstances[i] = gHitInstance;
+#endif
     }
     hits[i] = h;
 }

@@ -36,6 +36,9 @@ layout(std430, set = 0, binding = BINDING_WAVE_NEXT_LIVE) writeonly buffer NextL
 layout(std430, set = 0, binding = BINDING_WAVE_SHADOW_SLOTS) buffer ShadowSlotBuffer { uint shadowSlot[]; };
 layout(std430, set = 0, binding = BINDING_WAVE_COUNTS) buffer CountBuffer { uint counts[]; };  // next rays, shadow rays
 layout(std430, set = 0, binding = BINDING_WAVE_SHADOW_HITS) readonly buffer ShadowHitBuffer { TraceHit shadowHits[]; };
+#ifdef STRATA_INSTANCING
+layout(std430, set = 0, binding = BINDING_HIT_INSTANCES) readonly buffer HitInstanceBuffer { uint hitInstances[]; };
+#endif
 
 // This lane's place in a list that the subgroup's wanting lanes append to
 // together: one atomic per subgroup.
@@ -77,6 +80,9 @@ void shadeStage(uint k) {
     o.shadowOpen = false;
     o.alive = false;
     TraceHit hit = hits[k];
+#ifdef STRATA_INSTANCING
+    gHitInstance = hitInstances[k];  // the trace kernel's, for pathShadeHit
+#endif
     if (hit.triangle == kNoHit) pathEscaped(v, dir);
     else o = pathShadeHit(v, smp, dir, hit, depth);
     state[slot] = PathState(vec4(v.beta, v.prevBsdfPdf), vec4(v.L, v.prevDelta ? 1.0 : 0.0),

@@ -1,8 +1,8 @@
 // Instances stored once (--instancing, Scene::sharedMeshes, kFeatureInstancing):
 // the loader places the same triangles, in world space, as flattening does;
 // the two-level traversal renders what the flattened scene renders, with every
-// BVH variant; EXT_mesh_gpu_instancing's bad data is one error line; --stats
-// reports the placements. Data: tests/data/instancing (scripts/make_instances.py):
+// BVH variant and both integrators; EXT_mesh_gpu_instancing's bad data is one
+// error line; --stats reports the placements. Data: tests/data/instancing (scripts/make_instances.py):
 // a sphere placed by nine nodes (node 4 mirrored, node 7 scaled unevenly)
 // and by a node with nine EXT_mesh_gpu_instancing instances under a turned
 // parent, a finer sphere placed twice, and a floor and a lamp placed once.
@@ -37,7 +37,7 @@ Scene loadWith(Instancing mode) {
 
 TEST_SUITE_BEGIN("unit");
 
-TEST_CASE("instancing: a mesh placed twice or more is stored once per winding; auto flattens a small scene") {
+TEST_CASE("instancing: a mesh placed twice or more is stored once per winding, and auto flattens a small scene") {
     const Scene on = loadWith(Instancing::On);
     CHECK(on.worldTriangles() == kWorld);
     REQUIRE(on.sharedMeshes.size() == 3);  // the sphere, its mirrored copy, the fine sphere
@@ -140,7 +140,7 @@ TEST_CASE("instancing: the two-level traversal renders what the flattened scene 
     CHECK(sameImage(uploadAndRender(gpuOn, on.cameras.at(0), memory).film, onResult.film));
 }
 
-TEST_CASE("instancing: --stats reports the placements; the wavefront integrator refuses an instanced scene") {
+TEST_CASE("instancing: --stats reports the placements") {
     TempDir out;
     const Run r = run("render " + kFile + " --instancing on --stats --stats-json " + out / "s.json" + " -o " +
                       out / "a.exr" + " --spp 1 --width 8 --height 8 --quiet");
@@ -154,8 +154,18 @@ TEST_CASE("instancing: --stats reports the placements; the wavefront integrator 
     CHECK(j["instancing"]["placed_triangles"] == kWorld + 18 * kSphere + 2 * kFineSphere);
     const Run flat = run("render " + kFile + " --stats -o " + out / "b.exr" + " --spp 1 --width 8 --height 8 --quiet");
     CHECK(flat.output.find("instances  ") == std::string::npos);
-    expectError("render " + kFile + " --instancing on --integrator wavefront",
-                "strata: error: --integrator wavefront does not render instanced meshes yet");
+}
+
+TEST_CASE("instancing: the wavefront integrator renders an instanced scene as the megakernel does, bit for bit") {
+    RenderSettings s;
+    s.width = 48;
+    s.height = 36;
+    s.spp = 4;
+    const Scene on = loadWith(Instancing::On);
+    const GpuScene gpu = buildAndPack(on);
+    const RenderResult mega = uploadAndRender(gpu, on.cameras.at(0), s);
+    s.integrator = IntegratorKind::Wavefront;
+    CHECK(sameImage(uploadAndRender(gpu, on.cameras.at(0), s).film, mega.film));
 }
 
 TEST_SUITE_END();

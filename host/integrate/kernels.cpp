@@ -28,8 +28,11 @@ std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pa
 }
 
 std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene) {
-    if ((scene.features.bits & gpu::kFeaturesLayers) != 0u)
-        return {kSpirvPtr_wavefront_layers, kSpirvSize_wavefront_layers / 4};
+    const bool layers = (scene.features.bits & gpu::kFeaturesLayers) != 0u;
+    if ((scene.features.bits & gpu::kFeatureInstancing) != 0u)
+        return layers ? std::span<const std::uint32_t>(kSpirvPtr_wavefront_layers_inst, kSpirvSize_wavefront_layers_inst / 4)
+                      : std::span<const std::uint32_t>(kSpirvPtr_wavefront_inst, kSpirvSize_wavefront_inst / 4);
+    if (layers) return {kSpirvPtr_wavefront_layers, kSpirvSize_wavefront_layers / 4};
     return {kSpirvPtr_wavefront, kSpirvSize_wavefront / 4};
 }
 
@@ -128,6 +131,7 @@ std::unique_ptr<vk::Kernel> makeTraceKernel(const vk::Context& ctx, const Device
     std::vector<vk::BindingDesc> bindings = sceneBindings();
     bindings.insert(bindings.end(), {{BINDING_RAYS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                      {BINDING_HITS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                                     {BINDING_HIT_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                      {BINDING_WORK, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}});
     auto k = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, false), std::move(bindings), sizeof(TraceParams),
                                           spec, reuse);

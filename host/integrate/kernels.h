@@ -63,7 +63,8 @@ std::vector<std::uint32_t> pathSpec(const DeviceScene& dev, const RenderSettings
 bool useWorkQueue(const vk::Context& ctx, WorkQueue mode = WorkQueue::Auto);
 
 // The trace kernel (shaders/trace.comp) for `dev` in `mode` (gpu::kTrace*),
-// with the scene bound; the caller binds BINDING_RAYS, BINDING_HITS and
+// with the scene bound; the caller binds BINDING_RAYS, BINDING_HITS,
+// BINDING_HIT_INSTANCES (written for an instanced scene's closest hits) and
 // BINDING_WORK. `queue`: SPEC_WORK_QUEUE (useWorkQueue).
 std::unique_ptr<vk::Kernel> makeTraceKernel(const vk::Context& ctx, const DeviceScene& dev, std::uint32_t mode,
                                             bool queue, bool reuse = false);

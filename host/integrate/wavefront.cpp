@@ -33,7 +33,7 @@ void barrier(VkCommandBuffer cmd) {
 struct WavefrontIntegrator::Impl {
     const vk::Context& ctx;
     bool queue;
-    vk::Buffer state, hits, shadowRays, contrib, shadowSlots, shadowHits, work, counts;
+    vk::Buffer state, hits, hitInstances, shadowRays, contrib, shadowSlots, shadowHits, work, counts;
     vk::Buffer rays[2], live[2];  // each bounce's list and the next one's, in turn
     std::unique_ptr<vk::Kernel> closest, anyHit, stages[4];  // stages by kStage*
     vk::OneShot submit;
@@ -63,6 +63,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     auto list = [&](VkDeviceSize bytes) { return vk::Buffer(ctx, n * bytes, kListUsage, vk::MemoryUse::Device); };
     m.state = list(sizeof(PathState));
     m.hits = list(sizeof(TraceHit));
+    m.hitInstances = list(4);  // read only by the *_inst shaders
     m.shadowRays = list(sizeof(TraceRay));
     m.contrib = list(16);
     m.shadowSlots = list(4);
@@ -84,9 +85,11 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     };
     m.closest = trace(kTraceClosest);
     m.closest->bind(BINDING_HITS, m.hits);
+    m.closest->bind(BINDING_HIT_INSTANCES, m.hitInstances);
     m.anyHit = trace(kTraceAny);
     m.anyHit->bind(BINDING_RAYS, m.shadowRays);
     m.anyHit->bind(BINDING_HITS, m.shadowHits);
+    m.anyHit->bind(BINDING_HIT_INSTANCES, m.hitInstances);  // not written by any-hit
 
     for (std::uint32_t stage = kStageCamera; stage <= kStageAccumulate; ++stage) {
         std::vector<std::uint32_t> spec = pathSpec(dev, s);
@@ -95,6 +98,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
         std::vector<vk::BindingDesc> b = pathBindings();
         for (std::uint32_t i = BINDING_WAVE_STATE; i <= BINDING_WAVE_SHADOW_HITS; ++i)
             b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+        b.push_back({BINDING_HIT_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         auto k = std::make_unique<vk::Kernel>(
             ctx, wavefrontShader(dev), std::move(b),
             sizeof(WaveParams), spec, t.reusePipeline);
@@ -106,6 +110,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
         k->bind(BINDING_WAVE_SHADOW_SLOTS, m.shadowSlots);
         k->bind(BINDING_WAVE_COUNTS, m.counts);
         k->bind(BINDING_WAVE_SHADOW_HITS, m.shadowHits);
+        k->bind(BINDING_HIT_INSTANCES, m.hitInstances);
         m.stages[stage] = std::move(k);
     }
 }

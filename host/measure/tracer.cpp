@@ -43,6 +43,10 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
     vk::Kernel& kern = kernel(mode);
     kern.bind(BINDING_RAYS, rayBuf);
     kern.bind(BINDING_HITS, hitBuf);
+    // Each closest hit's instance (instanced scenes; not read back here).
+    vk::Buffer instanceBuf(ctx_, std::max<std::size_t>(16, rays.size() * sizeof(std::uint32_t)),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device);
+    kern.bind(BINDING_HIT_INSTANCES, instanceBuf);
     kern.bind(BINDING_WORK, workBuf);
 
     vk::OneShot submit(ctx_);

@@ -54,7 +54,9 @@ STRATA_BINDING(BINDING_INSTANCES, 39);        // storage uvec4[]: top-level node
 STRATA_BINDING(BINDING_INSTANCES_TEXEL, 40);  // usamplerBuffer over BINDING_INSTANCES (RGBA32UI)
 STRATA_BINDING(BINDING_COLORS, 41);        // storage TriColors[]: COLOR_0 per triangle (BVH order)
 STRATA_BINDING(BINDING_COLORS_TEXEL, 42);  // usamplerBuffer over BINDING_COLORS (RGBA32UI)
-STRATA_BINDING(BINDING_COUNT, 43);
+STRATA_BINDING(BINDING_HIT_INSTANCES, 43);  // storage uint[]: each closest hit's instance (STRATA_INSTANCING: the
+                                            // trace kernel writes it, the wavefront's shade stage reads it)
+STRATA_BINDING(BINDING_COUNT, 44);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views
