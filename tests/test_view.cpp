@@ -82,6 +82,37 @@ TEST_CASE("view: the default view keeps every vertex inside the image at any asp
                 }
 }
 
+TEST_CASE("view: the default view of an instanced scene keeps every placed vertex inside the image") {
+    // Two clouds, one in world space and one stored once and placed three
+    // times (turned, scaled, moved far off), framed without flattening.
+    std::mt19937 rng(11);
+    Scene s = cloud(rng, {0, 0, 0}, {1, 1, 1}, 50);
+    const Scene shared = cloud(rng, {0.5f, 0, 0}, {0.5f, 2, 0.5f}, 50);
+    s.sharedMeshes.push_back({s.triangles.size(), shared.triangles.size(), "mesh 1"});
+    s.triangles.insert(s.triangles.end(), shared.triangles.begin(), shared.triangles.end());
+    const glm::mat4 placements[] = {
+        glm::mat4(1.0f),
+        glm::mat4(glm::vec4(0, 0, -2, 0), glm::vec4(0, 2, 0, 0), glm::vec4(2, 0, 0, 0), glm::vec4(20, 1, -5, 1)),
+        glm::mat4(glm::vec4(0.5f, 0, 0, 0), glm::vec4(0, 0.5f, 0, 0), glm::vec4(0, 0, 0.5f, 0), glm::vec4(-30, 4, 8, 1))};
+    for (const glm::mat4& m : placements) s.instances.push_back({0, m});
+    const float aspect = 1.5f;
+    const Camera cam = frameScene(s, aspect, radians(kFrameYfovDegrees));
+    double farthest = 0.0;
+    auto inside = [&](glm::vec3 v) {
+        const Projected p = project(cam, aspect, v);
+        REQUIRE(p.depth > 0.0);
+        CHECK(std::abs(p.x) < 1.0);
+        CHECK(std::abs(p.y) < 1.0);
+        farthest = std::max(farthest, std::abs(p.x));
+    };
+    for (std::size_t i = 0; i < s.worldTriangles(); ++i)
+        for (const glm::vec3& v : s.triangles[i].v) inside(v);
+    for (const MeshInstance& inst : s.instances)
+        for (const Triangle& t : shared.triangles)
+            for (const glm::vec3& v : t.v) inside(glm::vec3(inst.toWorld * glm::vec4(v, 1.0f)));
+    CHECK(farthest > 0.5);  // the placements far off widen the view: framed, not only the world cloud
+}
+
 TEST_CASE("view: the default view looks at the bounds' centre from the front and 20 degrees above") {
     std::mt19937 rng(3);
     const Scene s = cloud(rng, glm::vec3(1, 2, -3), glm::vec3(2, 1, 0.5f), 50);
