@@ -65,7 +65,10 @@ bool bvhTrace(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, 
     BvhRay world = r;
     uint record = kNoInstance, bestRecord = kNoInstance;
     const uint kTopDone = 0xffffffffu;
-    uint top = 0u;  // the next top-level node to test; kTopDone: none left
+    // The next top-level node the ray enters (its box tested already);
+    // kTopDone: none left. The nearer entered child first, the other pushed.
+    float tRoot;
+    uint top = bvhSlab(world, bvhFetchTopNode(0u), tmin, bestT, tRoot) ? 0u : kTopDone;
     uint topStack[kTopStackSize];
     uint topSp = 0u;
     for (;;) {
@@ -73,15 +76,19 @@ bool bvhTrace(vec3 origin, vec3 dir, float tmin, float tmax, const bool anyHit, 
         while (record == kNoInstance && top != kTopDone) {
             gBvhTicks += 2u;
             BvhNode n = bvhFetchTopNode(top);
-            float tEntry;
-            bool entered = bvhSlab(world, n, tmin, bestT, tEntry);
-            if (entered && n.count == 0u) {
-                if (topSp < kTopStackSize) topStack[topSp++] = n.leftOrFirst;  // the right child, later
-                top = top + 1u;
+            uint next = kTopDone;
+            if (n.count != 0u) {
+                record = n.leftOrFirst;
             } else {
-                if (entered) record = n.leftOrFirst;
-                top = topSp > 0u ? topStack[--topSp] : kTopDone;
+                uint left = top + 1u, right = n.leftOrFirst;
+                float tl, tr;
+                bool hl = bvhSlab(world, bvhFetchTopNode(left), tmin, bestT, tl);
+                bool hr = bvhSlab(world, bvhFetchTopNode(right), tmin, bestT, tr);
+                bool rightFirst = hr && (!hl || tr < tl);
+                if (hl && hr && topSp < kTopStackSize) topStack[topSp++] = rightFirst ? left : right;
+                if (hl || hr) next = rightFirst ? right : left;
             }
+            top = next != kTopDone ? next : (topSp > 0u ? topStack[--topSp] : kTopDone);
         }
         if (record == kNoInstance) break;
         vec4 r0 = instanceRow(record, 0u), r1 = instanceRow(record, 1u), r2 = instanceRow(record, 2u);
