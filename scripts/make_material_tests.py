@@ -227,6 +227,28 @@ def specular_plate(view_degrees, fov_degrees):
     return plate_scene(material, view_degrees, fov_degrees, ["KHR_materials_specular"])
 
 
+# KHR_materials_iridescence plates (tests/test_material_layers.cpp mirrors these).
+FILM_IOR = 1.3
+FILM_METAL_COLOR = (0.9, 0.6, 0.3)
+FILM_METAL_THICKNESS = 250.0
+
+
+def film_plate(metal, view_degrees, fov_degrees):
+    """A smooth plate under a thin film of index FILM_IOR: a black dielectric
+    (ior 1.5, the film's default thickness 400 nm), or a metal of base colour
+    FILM_METAL_COLOR under FILM_METAL_THICKNESS nm."""
+    def material(w):
+        if metal:
+            film = {"iridescenceFactor": 1.0, "iridescenceIor": FILM_IOR,
+                    "iridescenceThicknessMaximum": FILM_METAL_THICKNESS}
+            return w.add_material("FilmMetal", base_color=list(FILM_METAL_COLOR) + [1.0], metallic=1.0,
+                                  roughness=0.0, extensions={"KHR_materials_iridescence": film})
+        film = {"iridescenceFactor": 1.0, "iridescenceIor": FILM_IOR}
+        return w.add_material("FilmDielectric", base_color=(0, 0, 0, 1), metallic=0.0, roughness=0.0,
+                              extensions={"KHR_materials_iridescence": film})
+    return plate_scene(material, view_degrees, fov_degrees, ["KHR_materials_iridescence"])
+
+
 def specular_textured(path):
     """The same from textures: colour factor SPECULAR_TEXTURED_COLOR x the
     sRGB texel SPECULAR_TEXEL, specular factor 1 x its A; seen at 60 degrees."""
@@ -368,6 +390,14 @@ BROKEN = {
         "specularColorTexture": {"index": 9}}}},
     "sheen-color-two-numbers.gltf":
         lambda tex: {"name": "Bad", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1]}}},
+    "iridescence-factor-above-1.gltf":
+        lambda tex: {"name": "Bad", "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1.5}}},
+    "iridescence-ior-below-1.gltf":
+        lambda tex: {"name": "Bad", "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1.0,
+                                                                                 "iridescenceIor": 0.5}}},
+    "iridescence-thickness-negative.gltf":
+        lambda tex: {"name": "Bad", "extensions": {"KHR_materials_iridescence": {
+            "iridescenceFactor": 1.0, "iridescenceThicknessMaximum": -10.0}}},
 }
 
 
@@ -455,6 +485,9 @@ def main():
         "sheen-white.gltf": sheen_plate(1.0),
         "specular-color-0.gltf": specular_plate(0.0, 2.0),
         "specular-color-60.gltf": specular_plate(60.0, 30.0),
+        "iridescence-0.gltf": film_plate(False, 0.0, 2.0),
+        "iridescence-60.gltf": film_plate(False, 60.0, 30.0),
+        "iridescence-metal.gltf": film_plate(True, 45.0, 30.0),
         "layer-spheres.gltf": layer_spheres(),
         "coat-lamp.gltf": coat_lamp(),
     }

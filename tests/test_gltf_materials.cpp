@@ -148,6 +148,21 @@ TEST_CASE("gltf materials: scenes without the layer extensions have none of thei
     }
 }
 
+TEST_CASE("gltf materials: KHR_materials_iridescence's factors, with the extension's defaults") {
+    const Scene scene = loadGltf(dataPath("materials/iridescence-metal.gltf"), LoadOptions{false, false});
+    REQUIRE(scene.materials.size() >= 1);
+    const MaterialDesc& m = scene.materials[0];
+    CHECK(m.iridescent());
+    CHECK(m.iridescence == 1.0f);
+    CHECK(m.iridescenceIor == doctest::Approx(1.3));
+    CHECK(m.iridescenceThicknessMin == 100.0f);  // the default
+    CHECK(m.iridescenceThicknessMax == 250.0f);
+    CHECK_FALSE(m.iridescenceTexture.used());
+    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
+    CHECK((gpu.features.bits & gpu::kFeatureIridescence) != 0u);
+    CHECK((gpu.materials[0].flags & gpu::kMaterialIridescence) != 0u);
+}
+
 TEST_CASE("gltf materials: every broken layer value is one error line naming file, material and value") {
     struct Case {
         const char* file;
@@ -167,6 +182,11 @@ TEST_CASE("gltf materials: every broken layer value is one error line naming fil
         {"specular-texture-missing.gltf", "material 0 (\"Bad\") specularColorTexture: texture 9 does not exist (2 textures)"},
         {"sheen-roughness-negative.gltf",
          "material 0 (\"Bad\"): KHR_materials_sheen.sheenRoughnessFactor -0.1 is not in [0, 1]"},
+        {"iridescence-factor-above-1.gltf",
+         "material 0 (\"Bad\"): KHR_materials_iridescence.iridescenceFactor 1.5 is not in [0, 1]"},
+        {"iridescence-ior-below-1.gltf", "material 0 (\"Bad\"): KHR_materials_iridescence.iridescenceIor 0.5 is below 1"},
+        {"iridescence-thickness-negative.gltf",
+         "material 0 (\"Bad\"): KHR_materials_iridescence.iridescenceThicknessMaximum -10 is not a finite number >= 0"},
     };
     std::size_t files = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dataPath("materials/broken")))

@@ -11,15 +11,22 @@ namespace strata {
 std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace) {
     using Span = std::span<const std::uint32_t>;
 #define STRATA_SPIRV(name) Span(kSpirvPtr_##name, kSpirvSize_##name / 4)
-    const bool layers = pathtrace && (scene.features.bits & gpu::kFeaturesLayers) != 0u;
+    // 0: no layers, 1: the layers, 2: the layers with the thin film.
+    const int layers = !pathtrace ? 0
+                       : (scene.features.bits & gpu::kFeatureIridescence) != 0u ? 2
+                       : (scene.features.bits & gpu::kFeaturesLayers) != 0u     ? 1
+                                                                                : 0;
     const bool inst = (scene.features.bits & gpu::kFeatureInstancing) != 0u;
     // [instancing][layers][traversal: bvh4 registers, bvh2, bvh4 memory]
-    const Span path[2][2][3] = {
+    const Span path[2][3][3] = {
         {{STRATA_SPIRV(pathtrace), STRATA_SPIRV(pathtrace_bvh2), STRATA_SPIRV(pathtrace_bvh4m)},
-         {STRATA_SPIRV(pathtrace_layers), STRATA_SPIRV(pathtrace_bvh2_layers), STRATA_SPIRV(pathtrace_bvh4m_layers)}},
+         {STRATA_SPIRV(pathtrace_layers), STRATA_SPIRV(pathtrace_bvh2_layers), STRATA_SPIRV(pathtrace_bvh4m_layers)},
+         {STRATA_SPIRV(pathtrace_film), STRATA_SPIRV(pathtrace_bvh2_film), STRATA_SPIRV(pathtrace_bvh4m_film)}},
         {{STRATA_SPIRV(pathtrace_inst), STRATA_SPIRV(pathtrace_bvh2_inst), STRATA_SPIRV(pathtrace_bvh4m_inst)},
          {STRATA_SPIRV(pathtrace_layers_inst), STRATA_SPIRV(pathtrace_bvh2_layers_inst),
-          STRATA_SPIRV(pathtrace_bvh4m_layers_inst)}}};
+          STRATA_SPIRV(pathtrace_bvh4m_layers_inst)},
+         {STRATA_SPIRV(pathtrace_film_inst), STRATA_SPIRV(pathtrace_bvh2_film_inst),
+          STRATA_SPIRV(pathtrace_bvh4m_film_inst)}}};
     const Span trace[2][3] = {{STRATA_SPIRV(trace), STRATA_SPIRV(trace_bvh2), STRATA_SPIRV(trace_bvh4m)},
                               {STRATA_SPIRV(trace_inst), STRATA_SPIRV(trace_bvh2_inst), STRATA_SPIRV(trace_bvh4m_inst)}};
 #undef STRATA_SPIRV
@@ -28,12 +35,16 @@ std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pa
 }
 
 std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene) {
-    const bool layers = (scene.features.bits & gpu::kFeaturesLayers) != 0u;
-    if ((scene.features.bits & gpu::kFeatureInstancing) != 0u)
-        return layers ? std::span<const std::uint32_t>(kSpirvPtr_wavefront_layers_inst, kSpirvSize_wavefront_layers_inst / 4)
-                      : std::span<const std::uint32_t>(kSpirvPtr_wavefront_inst, kSpirvSize_wavefront_inst / 4);
-    if (layers) return {kSpirvPtr_wavefront_layers, kSpirvSize_wavefront_layers / 4};
-    return {kSpirvPtr_wavefront, kSpirvSize_wavefront / 4};
+    using Span = std::span<const std::uint32_t>;
+    const bool inst = (scene.features.bits & gpu::kFeatureInstancing) != 0u;
+    if ((scene.features.bits & gpu::kFeatureIridescence) != 0u)
+        return inst ? Span(kSpirvPtr_wavefront_film_inst, kSpirvSize_wavefront_film_inst / 4)
+                    : Span(kSpirvPtr_wavefront_film, kSpirvSize_wavefront_film / 4);
+    if ((scene.features.bits & gpu::kFeaturesLayers) != 0u)
+        return inst ? Span(kSpirvPtr_wavefront_layers_inst, kSpirvSize_wavefront_layers_inst / 4)
+                    : Span(kSpirvPtr_wavefront_layers, kSpirvSize_wavefront_layers / 4);
+    return inst ? Span(kSpirvPtr_wavefront_inst, kSpirvSize_wavefront_inst / 4)
+                : Span(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4);
 }
 
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {

@@ -28,7 +28,7 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"},
         {gpu::kFeatureVertexColor, "vertex-colors"}, {gpu::kFeatureClearcoat, "clearcoat"},
         {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"},
-        {gpu::kFeatureInstancing, "instancing"}};
+        {gpu::kFeatureInstancing, "instancing"},   {gpu::kFeatureIridescence, "iridescence"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -206,9 +206,11 @@ std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used)
                                                  m.clearcoatNormalTexture.used());
         const bool sheenTextures = m.sheened() && (m.sheenColorTexture.used() || m.sheenRoughnessTexture.used());
         const bool specularTextures = m.tinted() && (m.specularTexture.used() || m.specularColorTexture.used());
+        const bool filmTextures =
+            m.iridescent() && (m.iridescenceTexture.used() || m.iridescenceThicknessTexture.used());
         if (m.baseColorTexture.used() || m.metallicRoughnessTexture.used() || m.normalTexture.used() ||
             m.emissiveTexture.used() || m.transmissionTexture.used() || coatTextures || sheenTextures ||
-            specularTextures)
+            specularTextures || filmTextures)
             bits |= gpu::kFeatureTextures;
         if (m.normalTexture.used() || (m.coated() && m.clearcoatNormalTexture.used()))
             bits |= gpu::kFeatureNormalMap;
@@ -346,6 +348,13 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
             gm.flags |= gpu::kMaterialSpecularColor;
             gm.specularColor = m.specularColor;
         }
+        if (m.iridescent()) {
+            gm.flags |= gpu::kMaterialIridescence;
+            gm.iridescence = m.iridescence;
+            gm.iridescenceIor = m.iridescenceIor;
+            gm.iridescenceThicknessMin = m.iridescenceThicknessMin;
+            gm.iridescenceThicknessMax = m.iridescenceThicknessMax;
+        }
         if (m.sheened()) {
             gm.flags |= gpu::kMaterialSheen;
             gm.sheenColor = m.sheenColor;
@@ -353,7 +362,8 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         }
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex = gm.transmissionTex =
             gm.clearcoatTex = gm.clearcoatRoughnessTex = gm.clearcoatNormalTex = gm.sheenColorTex =
-                gm.sheenRoughnessTex = gm.specularColorTex = gm.specularTex = gpu::kNoTexture;
+                gm.sheenRoughnessTex = gm.specularColorTex = gm.specularTex = gm.iridescenceTex =
+                    gm.iridescenceThicknessTex = gpu::kNoTexture;
         g.materials.push_back(gm);
     }
     std::vector<bool> used(g.materials.size(), false);
@@ -476,6 +486,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         if ((m.flags & gpu::kMaterialClearcoat) != 0u) g.features.bits |= gpu::kFeatureClearcoat;
         if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
         if ((m.flags & gpu::kMaterialSpecularColor) != 0u) g.features.bits |= gpu::kFeatureSpecularColor;
+        if ((m.flags & gpu::kMaterialIridescence) != 0u) g.features.bits |= gpu::kFeatureIridescence;
     }
     if constexpr (consume) releaseGeometry(scene);
     return g;

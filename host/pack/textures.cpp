@@ -140,6 +140,11 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
             g.sheenColorTex = addRef(m, m.sheenColorTexture, true);
             g.sheenRoughnessTex = addRef(m, m.sheenRoughnessTexture, false);
         }
+        g.iridescenceTex = g.iridescenceThicknessTex = gpu::kNoTexture;
+        if (m.iridescent()) {
+            g.iridescenceTex = addRef(m, m.iridescenceTexture, false);
+            g.iridescenceThicknessTex = addRef(m, m.iridescenceThicknessTexture, false);
+        }
     }
     return out;
 }

@@ -228,6 +228,21 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.sheenRoughnessTexture = extensionSlot(path, model, label, src, sheen, "sheenRoughnessTexture");
     m.specularTexture = extensionSlot(path, model, label, src, "KHR_materials_specular", "specularTexture");
     m.specularColorTexture = extensionSlot(path, model, label, src, "KHR_materials_specular", "specularColorTexture");
+    const char* film = "KHR_materials_iridescence";
+    m.iridescence = unitFactor(film, "iridescenceFactor", 0.0);
+    auto nonNegative = [&](const char* key, double fallback) {
+        const double v = extensionNumber(path, label, src, film, key, fallback);
+        if (!(v >= 0.0) || !std::isfinite(v))
+            fail(path, label + ": " + film + "." + key + " " + formatNumber(v) + " is not a finite number >= 0");
+        return static_cast<float>(v);
+    };
+    m.iridescenceIor = nonNegative("iridescenceIor", 1.3);
+    if (!(m.iridescenceIor >= 1.0f))
+        fail(path, label + ": " + film + ".iridescenceIor " + formatNumber(m.iridescenceIor) + " is below 1");
+    m.iridescenceThicknessMin = nonNegative("iridescenceThicknessMinimum", 100.0);
+    m.iridescenceThicknessMax = nonNegative("iridescenceThicknessMaximum", 400.0);
+    m.iridescenceTexture = extensionSlot(path, model, label, src, film, "iridescenceTexture");
+    m.iridescenceThicknessTexture = extensionSlot(path, model, label, src, film, "iridescenceThicknessTexture");
     m.uvSets = uvSets(path, label, m);
     return m;
 }

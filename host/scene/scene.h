@@ -86,6 +86,16 @@ struct MaterialDesc {
     float sheenRoughness = 0.0f;           // sheenRoughnessFactor
     TextureSlot sheenColorTexture;         // sRGB RGB
     TextureSlot sheenRoughnessTexture;     // linear A
+    // KHR_materials_iridescence: a thin film over the base's specular
+    // reflection (iridescence 0: none). Thickness in nanometres: without a
+    // thickness texture the maximum, with one mix(min, max, G).
+    float iridescence = 0.0f;              // iridescenceFactor
+    float iridescenceIor = 1.3f;           // the film's index
+    float iridescenceThicknessMin = 100.0f;
+    float iridescenceThicknessMax = 400.0f;
+    TextureSlot iridescenceTexture;        // linear R: scales iridescence
+    TextureSlot iridescenceThicknessTexture;  // linear G
+    bool iridescent() const { return iridescence > 0.0f && !unlit; }
     // KHR_materials_specular's colour or textures change the dielectric's Fresnel.
     bool tinted() const {
         return (specularColor != glm::vec3(1.0f) || specularTexture.used() || specularColorTexture.used()) &&
@@ -105,7 +115,7 @@ struct MaterialDesc {
         const TextureSlot* slot;
         const char* name;
     };
-    std::array<NamedSlot, 12> textureSlots() const {
+    std::array<NamedSlot, 14> textureSlots() const {
         return {{{&baseColorTexture, "baseColorTexture"},
                  {&metallicRoughnessTexture, "metallicRoughnessTexture"},
                  {&normalTexture, "normalTexture"},
@@ -117,7 +127,9 @@ struct MaterialDesc {
                  {&sheenColorTexture, "sheenColorTexture"},
                  {&sheenRoughnessTexture, "sheenRoughnessTexture"},
                  {&specularTexture, "specularTexture"},
-                 {&specularColorTexture, "specularColorTexture"}}};
+                 {&specularColorTexture, "specularColorTexture"},
+                 {&iridescenceTexture, "iridescenceTexture"},
+                 {&iridescenceThicknessTexture, "iridescenceThicknessTexture"}}};
     }
 };
 

@@ -39,7 +39,10 @@
 //
 // The layers and the specular colour are compiled only with STRATA_LAYERS
 // (the *_layers shader variants, lib/features.glsl), and then each under its
-// feature bit.
+// feature bit; KHR_materials_iridescence's thin film (kFeatureIridescence)
+// only with STRATA_IRIDESCENCE as well (the *_film variants), which mixes
+// the film's Fresnel (thinFilmFresnel) into the dielectric's and the metal's
+// by its factor.
 //
 // All directions are in the local shading frame: z is the shading normal on
 // the side the ray came from, so wo.z > 0; reflection has wi.z > 0 and
@@ -86,6 +89,12 @@ struct Bsdf {
     float sheenLambdaO;  // the visibility fit's Lambda(wo.z)
     float baseScale;     // what the layers leave the base: (1 - coatF) sheenScale
     float pCoat, pSheen; // probabilities of the layers' strategies
+#ifdef STRATA_IRIDESCENCE
+    // KHR_materials_iridescence (kFeatureIridescence; film 0 without one).
+    float film;          // iridescence factor x texture, in [0, 1]
+    float filmIor;
+    float filmThickness; // nanometres
+#endif
 #endif
 };
 
@@ -98,9 +107,20 @@ struct BsdfLayers {
     vec3 coatNormal;      // unit, in the shading frame
     vec3 sheenColor;      // KHR_materials_sheen: linear, factor x texture (0: none)
     float sheenRoughness;
+#ifdef STRATA_IRIDESCENCE
+    float iridescence;    // KHR_materials_iridescence: factor x texture (0: none)
+    float iridescenceIor;
+    float iridescenceThickness;  // nanometres
+#endif
 };
 
-BsdfLayers noLayers() { return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0); }
+BsdfLayers noLayers() {
+#ifdef STRATA_IRIDESCENCE
+    return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, 0.0, 1.3, 0.0);
+#else
+    return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0);
+#endif
+}
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -132,13 +152,99 @@ vec3 dielectricFresnel(Bsdf b, float c) {
     float w = clamp((fresnelDielectric(c, b.etap) - b.f0) / (1.0 - b.f0), 0.0, 1.0);
     return b.specular * mix(b.f0Tint, vec3(1.0), w);
 }
+
+#ifdef STRATA_IRIDESCENCE
+// KHR_materials_iridescence: the reflectance of a thin film of index
+// filmIor and thickness d (nanometres) between air and a base whose
+// normal-incidence reflectance is baseF0, at cosine cosI, as the extension
+// specifies after Belcour & Barla 2017 ("A Practical Extension to
+// Microfacet Theory for the Modeling of Varying Iridescence"): the Airy
+// series of the film's multiple reflections to its second order, each
+// order's interference term integrated against the CIE 1931 XYZ matching
+// functions in closed form (filmSpectralTerm), then converted to linear
+// Rec. 709. Each interface's reflectance is Schlick's of its F0; the base's
+// index is the dielectric one its F0 implies, and a reflection off a
+// denser side shifts the phase by pi.
+vec3 filmSpectralTerm(float opd, vec3 phaseShift) {
+    // Fourier transforms of Gaussian fits to the XYZ matching functions
+    // (the paper's supplemental): amplitude, centre and variance per channel,
+    // and a second Gaussian for X's blue lobe; opd in nanometres.
+    float phase = 2.0 * kPi * opd * 1.0e-9;
+    const vec3 amp = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13);
+    const vec3 centre = vec3(1.6810e6, 1.7953e6, 2.2084e6);
+    const vec3 var = vec3(4.3278e9, 9.3046e9, 6.6121e9);
+    vec3 xyz = amp * sqrt(2.0 * kPi * var) * cos(centre * phase + phaseShift) * exp(-phase * phase * var);
+    xyz.x += 9.7470e-14 * sqrt(2.0 * kPi * 4.5282e9) * cos(2.2399e6 * phase + phaseShift.x) *
+             exp(-4.5282e9 * phase * phase);
+    xyz /= 1.0685e-7;  // normalised so that the integral of Y is 1
+    const mat3 xyzToRec709 = mat3(3.2404542, -0.9692660, 0.0556434, -1.5371385, 1.8760108, -0.2040259,
+                                  -0.4985314, 0.0415560, 1.0572252);
+    return xyzToRec709 * xyz;
+}
+
+vec3 thinFilmFresnel(float filmIor, float cosI, float d, vec3 baseF0) {
+    // No film at thickness 0: its index fades to the outside's (the extension's smoothstep).
+    float n2 = mix(1.0, filmIor, smoothstep(0.0, 0.03, d));
+    cosI = clamp(cosI, 0.0, 1.0);
+    float cosT = sqrt(max(1.0 - (1.0 - cosI * cosI) / (n2 * n2), 0.0));
+    float f12 = (n2 - 1.0) * (n2 - 1.0) / ((n2 + 1.0) * (n2 + 1.0));
+    float r12 = fresnelSchlick(vec3(f12), cosI).x;  // air | film, R12 = R21
+    float t121 = 1.0 - r12;
+    vec3 s = sqrt(clamp(baseF0, 0.0, 0.9999));
+    vec3 n3 = (1.0 + s) / (1.0 - s);  // the base's index
+    vec3 f23 = (n3 - n2) * (n3 - n2) / ((n3 + n2) * (n3 + n2));
+    vec3 r23 = fresnelSchlick(f23, cosT);  // film | base
+    float phi21 = n2 < 1.0 ? 0.0 : kPi;    // reflection inside the film off air
+    vec3 phi23 = mix(vec3(0.0), vec3(kPi), lessThan(n3, vec3(n2)));
+    vec3 phi = vec3(phi21) + phi23;
+    float opd = 2.0 * n2 * d * cosT;       // optical path difference of one round trip
+    vec3 r123 = clamp(r12 * r23, 1.0e-5, 0.9999);
+    vec3 rs = t121 * t121 * r23 / (1.0 - r123);
+    vec3 result = r12 + rs;                // the orders' mean (no interference)
+    vec3 cm = rs - t121;
+    for (int m = 1; m <= 2; ++m) {
+        cm *= sqrt(r123);
+        result += cm * 2.0 * filmSpectralTerm(float(m) * opd, float(m) * phi);
+    }
+    return max(result, vec3(0.0));
+}
+
+#endif
+
+// The dielectric's and the metal's Fresnel with the layers that change
+// them: the specular colour, and the film mixed in by its factor (on the
+// outside of a dielectric only: a ray leaving a volume sees the bare
+// interface; the dielectric's film sits on F0 = the tinted F0, the metal's
+// on its base colour).
+vec3 dielectricRGB(Bsdf b, float c) {
+#ifdef STRATA_IRIDESCENCE
+    vec3 f = hasFeature(kFeatureSpecularColor) ? dielectricFresnel(b, c)
+                                               : vec3(b.specular * fresnelDielectric(c, b.etap));
+    if (hasFeature(kFeatureIridescence) && b.film > 0.0 && b.etap >= 1.0)
+        f = mix(f, b.specular * thinFilmFresnel(b.filmIor, c, b.filmThickness, b.f0Tint), b.film);
+    return f;
+#else
+    return dielectricFresnel(b, c);
+#endif
+}
+
+vec3 metalFresnel(Bsdf b, float c) {
+#ifdef STRATA_IRIDESCENCE
+    vec3 f = fresnelSchlick(b.baseColor, c);
+    if (hasFeature(kFeatureIridescence) && b.film > 0.0)
+        f = mix(f, thinFilmFresnel(b.filmIor, c, b.filmThickness, b.baseColor), b.film);
+    return f;
+#else
+    return fresnelSchlick(b.baseColor, c);
+#endif
+}
 #endif
 
 // max(Fd) at wo.h = c: what the dielectric's reflection takes from the
-// lobes beneath (Fd itself without a specular colour).
+// lobes beneath (Fd itself without a specular colour or film).
 float dielectricMax(Bsdf b, float c) {
 #ifdef STRATA_LAYERS
-    if (hasFeature(kFeatureSpecularColor)) return max3(dielectricFresnel(b, c));
+    if (hasFeature(kFeatureSpecularColor | kFeatureIridescence)) return max3(dielectricRGB(b, c));
 #endif
     return b.specular * fresnelDielectric(c, b.etap);
 }
@@ -146,8 +252,8 @@ float dielectricMax(Bsdf b, float c) {
 // Reflectance of the mirror lobe, metal and dielectric together, at wo.h = c.
 vec3 reflectance(Bsdf b, float c) {
 #ifdef STRATA_LAYERS
-    if (hasFeature(kFeatureSpecularColor))
-        return b.metallic * fresnelSchlick(b.baseColor, c) + (1.0 - b.metallic) * dielectricFresnel(b, c);
+    if (hasFeature(kFeatureSpecularColor | kFeatureIridescence))
+        return b.metallic * metalFresnel(b, c) + (1.0 - b.metallic) * dielectricRGB(b, c);
 #endif
     return b.metallic * fresnelSchlick(b.baseColor, c) +
            vec3((1.0 - b.metallic) * b.specular * fresnelDielectric(c, b.etap));
@@ -179,6 +285,11 @@ void clearLayers(inout Bsdf b) {
     b.baseScale = 1.0;
     b.pCoat = 0.0;
     b.pSheen = 0.0;
+#ifdef STRATA_IRIDESCENCE
+    b.film = 0.0;
+    b.filmIor = 1.3;
+    b.filmThickness = 0.0;
+#endif
 }
 
 // The layers over the base (makeBsdf's last step): their weights, the base's
@@ -239,10 +350,23 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     b.etap = entering ? eta : 1.0 / eta;
     b.specular = clamp(specular, 0.0, 1.0);
 #ifdef STRATA_LAYERS
+#ifndef STRATA_IRIDESCENCE
     if (hasFeature(kFeatureSpecularColor)) {
         b.f0 = (eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0));
         b.f0Tint = min(b.f0 * max(layers.specularColor, vec3(0.0)), vec3(1.0));
     }
+#else
+    if (hasFeature(kFeatureSpecularColor | kFeatureIridescence)) {
+        b.f0 = (eta - 1.0) * (eta - 1.0) / ((eta + 1.0) * (eta + 1.0));
+        b.f0Tint = hasFeature(kFeatureSpecularColor) ? min(b.f0 * max(layers.specularColor, vec3(0.0)), vec3(1.0))
+                                                     : vec3(b.f0);
+    }
+    if (hasFeature(kFeatureIridescence)) {
+        b.film = clamp(layers.iridescence, 0.0, 1.0);
+        b.filmIor = max(layers.iridescenceIor, 1.0);
+        b.filmThickness = max(layers.iridescenceThickness, 0.0);
+    }
+#endif
 #endif
     // Strategy weights: the lobes' albedos estimated at the macro normal.
     // The floors keep every lobe that can be non-zero at some microfacet

@@ -35,6 +35,12 @@ struct SurfacePoint {
     vec3 sheenColor;           // linear
     float sheenRoughness;
     vec3 specularColor;        // KHR_materials_specular (kFeatureSpecularColor; 1 otherwise)
+#ifdef STRATA_IRIDESCENCE
+    // KHR_materials_iridescence (kFeatureIridescence; iridescence 0 otherwise)
+    float iridescence;
+    float iridescenceIor;
+    float iridescenceThickness;  // nanometres
+#endif
 #endif
 };
 
@@ -145,6 +151,17 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     sp.specularColor = vec3(1.0);
     bool tinted = hasFeature(kFeatureSpecularColor) && (mat.flags & kMaterialSpecularColor) != 0u;
     if (tinted) sp.specularColor = mat.specularColor;
+#ifdef STRATA_IRIDESCENCE
+    sp.iridescence = 0.0;
+    sp.iridescenceIor = 1.3;
+    sp.iridescenceThickness = 0.0;
+    bool film = hasFeature(kFeatureIridescence) && (mat.flags & kMaterialIridescence) != 0u;
+    if (film) {
+        sp.iridescence = mat.iridescence;
+        sp.iridescenceIor = mat.iridescenceIor;
+        sp.iridescenceThickness = mat.iridescenceThicknessMax;
+    }
+#endif
 #endif
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
@@ -173,6 +190,14 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
         if (mat.specularColorTex != kNoTexture) sp.specularColor *= materialTexture(mat.specularColorTex, uvs).rgb;
         if (mat.specularTex != kNoTexture) sp.specular *= materialTexture(mat.specularTex, uvs).a;
     }
+#ifdef STRATA_IRIDESCENCE
+    if (film) {
+        if (mat.iridescenceTex != kNoTexture) sp.iridescence *= materialTexture(mat.iridescenceTex, uvs).r;
+        if (mat.iridescenceThicknessTex != kNoTexture)
+            sp.iridescenceThickness = mix(mat.iridescenceThicknessMin, mat.iridescenceThicknessMax,
+                                          materialTexture(mat.iridescenceThicknessTex, uvs).g);
+    }
+#endif
 #endif
     return sp;
 }

@@ -141,6 +141,13 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 layers.sheenRoughness = sp.sheenRoughness;
             }
             if (hasFeature(kFeatureSpecularColor)) layers.specularColor = sp.specularColor;
+#ifdef STRATA_IRIDESCENCE
+            if (hasFeature(kFeatureIridescence)) {
+                layers.iridescence = sp.iridescence;
+                layers.iridescenceIor = sp.iridescenceIor;
+                layers.iridescenceThickness = sp.iridescenceThickness;
+            }
+#endif
 #endif
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
                             sp.specular, layers, front, woL);

@@ -137,7 +137,8 @@ Material sceneMaterial(uint i) {
     if (!kTexelAll) return materials[i];
     // The texels of an extension only when a material of the scene has it
     // (volume: the sixth; clearcoat: the seventh and eighth; sheen: the
-    // eighth and ninth; specular colour: the tenth and eleventh).
+    // eighth and ninth; specular colour: the tenth and eleventh; iridescence:
+    // the eleventh and twelfth).
     int base = int(kMaterialTexels * i);
     uvec4 t[kMaterialTexels] = uvec4[kMaterialTexels](
         texelFetch(materialsTexel, base), texelFetch(materialsTexel, base + 1), texelFetch(materialsTexel, base + 2),
@@ -147,7 +148,8 @@ Material sceneMaterial(uint i) {
         hasFeature(kFeatureClearcoat | kFeatureSheen) ? texelFetch(materialsTexel, base + 7) : uvec4(0u),
         hasFeature(kFeatureSheen) ? texelFetch(materialsTexel, base + 8) : uvec4(0u),
         hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 9) : uvec4(0u),
-        hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 10) : uvec4(0u));
+        hasFeature(kFeatureSpecularColor | kFeatureIridescence) ? texelFetch(materialsTexel, base + 10) : uvec4(0u),
+        hasFeature(kFeatureIridescence) ? texelFetch(materialsTexel, base + 11) : uvec4(0u));
     return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
                     TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
                     TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
@@ -163,7 +165,10 @@ Material sceneMaterial(uint i) {
                     TEXEL_UINT(t, kMaterialWordSheenRoughnessTex), TEXEL_VEC3(t, kMaterialWordSheenColor),
                     TEXEL_UINT(t, kMaterialWordSheenColorTex), TEXEL_VEC3(t, kMaterialWordSpecularColor),
                     TEXEL_UINT(t, kMaterialWordSpecularColorTex), TEXEL_UINT(t, kMaterialWordSpecularTex),
-                    TEXEL_UINT(t, kMaterialWordPad0), TEXEL_UINT(t, kMaterialWordPad1), TEXEL_UINT(t, kMaterialWordPad2));
+                    TEXEL_FLOAT(t, kMaterialWordIridescence), TEXEL_FLOAT(t, kMaterialWordIridescenceIor),
+                    TEXEL_UINT(t, kMaterialWordIridescenceTex), TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMin),
+                    TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMax),
+                    TEXEL_UINT(t, kMaterialWordIridescenceThicknessTex), TEXEL_UINT(t, kMaterialWordPad0));
 }
 
 #include "lib/sampling.glsl"

@@ -126,9 +126,11 @@ STRATA_CONST(uint, kFeatureInstancing, 1024u);  // instances: a top-level BVH ov
 STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the coat lobe
 STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
 STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular colour or textures
+STRATA_CONST(uint, kFeatureIridescence, 32768u);    // KHR_materials_iridescence: a thin film on the Fresnel
 // The material layers: compiled only into the *_layers shader variants
 // (STRATA_LAYERS, lib/features.glsl).
-STRATA_CONST(uint, kFeaturesLayers, kFeatureClearcoat | kFeatureSheen | kFeatureSpecularColor);
+STRATA_CONST(uint, kFeaturesLayers,
+             kFeatureClearcoat | kFeatureSheen | kFeatureSpecularColor | kFeatureIridescence);
 
 // Combination of the two techniques that find lights (SPEC_MIS): both by
 // the power heuristic, or one alone (Veach's comparison; not for production).
@@ -146,6 +148,7 @@ STRATA_CONST(uint, kMaterialVolume, 16u);      // KHR_materials_volume: attenuat
 STRATA_CONST(uint, kMaterialClearcoat, 32u);   // KHR_materials_clearcoat: clearcoat > 0
 STRATA_CONST(uint, kMaterialSheen, 64u);       // KHR_materials_sheen: sheenColorFactor > 0
 STRATA_CONST(uint, kMaterialSpecularColor, 128u);  // KHR_materials_specular: a colour or texture
+STRATA_CONST(uint, kMaterialIridescence, 256u);    // KHR_materials_iridescence: iridescenceFactor > 0
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -192,9 +195,15 @@ struct Material {
     vec3 specularColor;           // specularColorFactor, linear (may exceed 1)
     uint specularColorTex;        // specularColorTexture: sRGB RGB scales specularColor
     uint specularTex;             // specularTexture: A scales specular
+    // KHR_materials_iridescence (kMaterialIridescence; the rest of the
+    // eleventh texel and the twelfth, read under kFeatureIridescence).
+    float iridescence;            // iridescenceFactor
+    float iridescenceIor;         // the film's index
+    uint iridescenceTex;          // iridescenceTexture: R scales iridescence
+    float iridescenceThicknessMin;  // nanometres
+    float iridescenceThicknessMax;
+    uint iridescenceThicknessTex;   // iridescenceThicknessTexture: G mixes min to max
     uint pad0;
-    uint pad1;
-    uint pad2;
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_a.xy,
@@ -462,7 +471,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 176);
+static_assert(sizeof(Material) == 192);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
