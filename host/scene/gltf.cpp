@@ -165,6 +165,7 @@ public:
             const int mesh = node.mesh;
             gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeLabel(model_, visits[k].node));
             if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshCount) continue;  // visit reports it
+            decodedMesh(mesh);  // in the order the meshes are reached (skippedPrimitives)
             placements[std::size_t(mesh)] += gpu[k].count > 0 ? gpu[k].count : 1;
             if (node.skin >= 0) eligible[std::size_t(mesh)] = 0;
         }
