@@ -5,7 +5,8 @@
         writes tests/data/instancing/: instances.gltf (a mesh placed by nine
         nodes, one of them mirrored and one scaled unevenly, and by a node
         with EXT_mesh_gpu_instancing; a glossy mesh placed twice; a floor and
-        a lamp that are not instanced) and broken/*.gltf (one defect each)
+        a lamp that are not instanced), normal-mapped.gltf (a normal-mapped
+        quad placed three times) and broken/*.gltf (one defect each)
     python3 scripts/make_instances.py --grid N OUT.glb
         a floor, a lamp and N x N instances of a small sphere on one node's
         EXT_mesh_gpu_instancing (N = 1000: a million instances), for
@@ -26,6 +27,7 @@ sys.dont_write_bytecode = True  # keep the tree free of __pycache__
 sys.path.insert(0, HERE)
 
 from gltf_writer import FLOAT, GltfWriter  # noqa: E402
+from make_texture_scenes import data_uri, png  # noqa: E402
 
 GENERATOR = "strata scripts/make_instances.py"
 COPYRIGHT = "CC0 1.0 (public domain), the strata authors"
@@ -141,6 +143,38 @@ def instances_scene():
     return w
 
 
+def normal_map_scene():
+    """A normal-mapped quad (a 4 x 4 map of four tilts, tangents generated)
+    placed three times: turned, mirrored, scaled unevenly; no lamp, so the
+    default white environment lights it (the light samples do not depend on
+    how the triangles are ordered)."""
+    w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
+    roots, _ = base_scene(w, 4.0, 3.0, (0.0, 2.4, 5.5))
+    roots = [r for r in roots if w.doc["nodes"][r]["name"] != "Lamp"]
+    tilts = [(191, 128, 221, 255), (64, 128, 221, 255), (128, 191, 221, 255), (128, 64, 221, 255)]
+    rows = [[tilts[(x // 2 + 2 * (y // 2)) % 4] for x in range(4)] for y in range(4)]
+    w.doc["images"] = [{"uri": data_uri(png(rows))}]
+    w.doc["samplers"] = [{"magFilter": 9728, "minFilter": 9728}]
+    w.doc["textures"] = [{"source": 0, "sampler": 0}]
+    bumpy = w.add_material("Bumpy", base_color=[0.7, 0.7, 0.7, 1.0], metallic=0.0, roughness=0.4)
+    w.doc["materials"][bumpy]["normalTexture"] = {"index": 0}
+    p = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)]
+    pos = w.add_vec3([(x, y + 0.01, z) for x, y, z in p])
+    nrm = w.add_vec3([(0, 1, 0)] * 4, with_bounds=False)
+    uv = w.add_accessor(w.add_view(struct.pack("<8f", 0, 0, 1, 0, 1, 1, 0, 1)), FLOAT, 4, "VEC2")
+    idx = w.add_indices([0, 2, 1, 0, 3, 2])
+    quad = w.add_mesh("BumpyQuad", [w.primitive(pos, nrm, idx, bumpy, attributes={"TEXCOORD_0": uv})])
+    roots.append(w.add_node("Bumpy0", mesh=quad, translation=[-2.0, 0.0, 0.0],
+                            rotation=rotation((0.0, 1.0, 0.0), 30.0)))
+    roots.append(w.add_node("Bumpy1", mesh=quad, translation=[0.5, 1.0, -1.0], scale=[-1.0, 1.0, 1.0],
+                            rotation=rotation((1.0, 0.0, 0.0), 50.0)))
+    roots.append(w.add_node("Bumpy2", mesh=quad, translation=[2.2, 0.3, 0.5], scale=[0.7, 1.0, 1.4],
+                            rotation=rotation((0.0, 0.0, 1.0), -20.0)))
+    w.set_scene(roots, name="NormalMapped")
+    w.use_extensions(["KHR_materials_emissive_strength", "KHR_materials_specular"])
+    return w
+
+
 def broken(defect):
     """instances_scene's Row node with one defect."""
     w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
@@ -201,6 +235,9 @@ def main():
     os.makedirs(os.path.join(OUT, "broken"), exist_ok=True)
     path = os.path.join(OUT, "instances.gltf")
     instances_scene().write_gltf(path)
+    print("wrote", path)
+    path = os.path.join(OUT, "normal-mapped.gltf")
+    normal_map_scene().write_gltf(path)
     print("wrote", path)
     for defect in ("count-mismatch", "nan-translation", "no-attributes", "no-mesh"):
         path = os.path.join(OUT, "broken", defect + ".gltf")
