@@ -78,8 +78,11 @@ def rotation(axis, degrees):
     return [axis[0] * s, axis[1] * s, axis[2] * s, math.cos(h)]
 
 
-def base_scene(w, extent, lamp_height, camera_from):
-    """Floor, lamp and camera; returns their nodes and the sphere's mesh."""
+def base_scene(w, extent, lamp_height, camera_from, lamp_triangle=False):
+    """Floor, lamp and camera; returns their nodes and the sphere's mesh.
+    lamp_triangle: a lamp of one triangle, so that the emitter list has one
+    order however the BVH orders the triangles (the instanced and the
+    flattened scene then pick the same light for the same random numbers)."""
     floor_mat = w.add_material("Floor", base_color=[0.6, 0.6, 0.6, 1.0], metallic=0.0, roughness=1.0, specular=0.0)
     lamp_mat = w.add_material("Lamp", base_color=[0.0, 0.0, 0.0, 1.0], metallic=0.0, roughness=1.0, specular=0.0,
                               emissive=[1.0, 1.0, 1.0], strength=8.0)
@@ -87,6 +90,8 @@ def base_scene(w, extent, lamp_height, camera_from):
     floor = quad(w, "Floor", (-extent, 0.0, extent), (2 * extent, 0.0, 0.0), (0.0, 0.0, -2 * extent), floor_mat)
     half = extent / 4
     lamp = quad(w, "Lamp", (-half, lamp_height, -half), (2 * half, 0.0, 0.0), (0.0, 0.0, 2 * half), lamp_mat)
+    if lamp_triangle:
+        w.doc["accessors"][w.doc["meshes"][lamp]["primitives"][0]["indices"]]["count"] = 3
     pos, nrm, idx = icosphere(1)
     sphere = w.add_triangles("Sphere", pos, normals=nrm, indices=idx, material=rock)
     cam = w.add_perspective("Camera", math.radians(40.0), znear=0.01, aspect_ratio=4.0 / 3.0)
@@ -111,7 +116,7 @@ def add_instances(w, translations, rotations=None, scales=None):
 
 def instances_scene():
     w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
-    roots, sphere = base_scene(w, 4.0, 3.0, (0.0, 2.4, 5.5))
+    roots, sphere = base_scene(w, 4.0, 3.0, (0.0, 2.4, 5.5), lamp_triangle=True)
     # Clearcoated: the layered path tracer's instanced variant.
     gloss = w.add_material("Gloss", base_color=[0.2, 0.3, 0.8, 1.0], metallic=0.0, roughness=0.6,
                            extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0,

@@ -26,7 +26,7 @@ using namespace strata;
 using namespace strata::test;
 
 const std::string kFile = dataPath("instancing/instances.gltf");
-constexpr std::size_t kSphere = 80, kFineSphere = 320, kWorld = 4;
+constexpr std::size_t kSphere = 80, kFineSphere = 320, kWorld = 3;  // the floor (2) and a one-triangle lamp
 
 Scene loadWith(Instancing mode) {
     LoadOptions options;
@@ -123,12 +123,14 @@ TEST_CASE("instancing: the two-level traversal renders what the flattened scene 
     const RenderResult flatResult = uploadAndRender(gpuFlat, flat.cameras.at(0), s);
     const RenderResult onResult = uploadAndRender(gpuOn, on.cameras.at(0), s);
     CHECK(onResult.nonFinite == 0);
-    // The same samples: paths part only where the transforms' float rounding
-    // turns a decision (a hit at a silhouette, a roulette threshold), so the
-    // images agree far below the noise of 8 spp (relMSE about 1e-1).
+    // The same samples and the same light choices (the lamp is one triangle,
+    // so the emitter list has one order however the triangles are ordered):
+    // paths part only where the transforms' float rounding turns a decision,
+    // so the images agree far below the noise of 8 spp (relMSE about 1e-1;
+    // measured between them: 6e-11).
     const std::vector<float> a = onResult.film.mean(), b = flatResult.film.mean();
     const ErrorMetrics m = compareImages(a.data(), b.data(), a.size());
-    CHECK(m.relMse < 1e-4);
+    CHECK(m.relMse < 1e-6);
     const ImageMean ma = imageMean(onResult.film), mb = imageMean(flatResult.film);
     CHECK(std::abs(ma.mean - mb.mean) < 1e-3 * mb.mean);
     // The BVH2 and the four-wide tree with its stack in memory find the same
