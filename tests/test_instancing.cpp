@@ -143,6 +143,26 @@ TEST_CASE("instancing: the two-level traversal renders what the flattened scene 
     CHECK(sameImage(uploadAndRender(gpuOn, on.cameras.at(0), memory).film, onResult.film));
 }
 
+TEST_CASE("instancing: bench traces the same ray sets instanced and flattened (an instance's normal for the secondary rays)") {
+    TempDir out;
+    nlohmann::json j[2];
+    const char* modes[2] = {"on", "off"};
+    for (int k = 0; k < 2; ++k) {
+        const Run r = run("bench " + kFile + " --instancing " + modes[k] + " --quick --only traversal --width 64 --height 48" +
+                          " --json " + out / (std::string(modes[k]) + ".json"));
+        CAPTURE(r.output);
+        REQUIRE(r.status == 0);
+        std::ifstream in(out / (std::string(modes[k]) + ".json"));
+        j[k] = nlohmann::json::parse(in)["traversal"]["rays"];
+    }
+    for (const char* set : {"primary", "diffuse", "occlusion"}) {
+        CAPTURE(set);
+        CHECK(j[0][set]["rays"] == j[1][set]["rays"]);
+    }
+    CHECK(j[0]["diffuse"]["hits"] == j[1]["diffuse"]["hits"]);
+    CHECK(j[0]["occlusion"]["occluded"] == j[1]["occlusion"]["occluded"]);
+}
+
 TEST_CASE("instancing: --stats reports the placements") {
     TempDir out;
     const Run r = run("render " + kFile + " --instancing on --stats --stats-json " + out / "s.json" + " -o " +

@@ -110,7 +110,8 @@ nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& 
             primary.push_back(makeRay(cam.position, glm::normalize(cam.forward + sx * right + sy * up), 1e30f));
         }
     double primarySeconds = 0.0;
-    const auto primaryHits = tracer.trace(primary, gpu::kTraceClosest, cmd.reps, &primarySeconds);
+    std::vector<std::uint32_t> primaryInstances;
+    const auto primaryHits = tracer.trace(primary, gpu::kTraceClosest, cmd.reps, &primarySeconds, &primaryInstances);
 
     std::vector<gpu::TraceRay> diffuse, occlusion;
     std::size_t primaryHitCount = 0;
@@ -120,6 +121,14 @@ nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& 
         ++primaryHitCount;
         const gpu::TriVerts& t = gpu.tris[h.triangle];
         glm::vec3 n = glm::normalize(glm::cross(glm::vec3(t.v1 - t.v0), glm::vec3(t.v2 - t.v0)));
+        if (primaryInstances[i] != gpu::kNoInstance) {
+            // An instance's triangle: its normal by the inverse transpose,
+            // worldToObject's rows (the record's first texels) as columns.
+            const std::size_t r = primaryInstances[i];
+            glm::mat3 normalMatrix;
+            for (int k = 0; k < 3; ++k) normalMatrix[k] = glm::vec3(glm::uintBitsToFloat(gpu.instances[r + k]));
+            n = glm::normalize(normalMatrix * n);
+        }
         if (glm::dot(n, primary[i].dir) > 0.0f) n = -n;
         const glm::vec3 o = primary[i].origin + primary[i].dir * h.t + n * eps;
         std::uint32_t seed = 0x9E3779B9u ^ static_cast<std::uint32_t>(i);

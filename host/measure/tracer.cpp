@@ -27,7 +27,7 @@ vk::Kernel& DeviceTracer::kernel(std::uint32_t mode) {
 DeviceTracer::~DeviceTracer() = default;
 
 std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>& rays, std::uint32_t mode,
-                                               int reps, double* medianSeconds) {
+                                               int reps, double* medianSeconds, std::vector<std::uint32_t>* instances) {
     using namespace gpu;
     vk::Buffer rayBuf = vk::uploadVector(ctx_, rays, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const VkDeviceSize hitBytes = std::max<std::size_t>(16, rays.size() * sizeof(TraceHit));
@@ -43,10 +43,13 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
     vk::Kernel& kern = kernel(mode);
     kern.bind(BINDING_RAYS, rayBuf);
     kern.bind(BINDING_HITS, hitBuf);
-    // Each closest hit's instance (instanced scenes; not read back here).
-    vk::Buffer instanceBuf(ctx_, std::max<std::size_t>(16, rays.size() * sizeof(std::uint32_t)),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Device);
+    // Each closest hit's instance (written by the instanced shaders only).
+    const VkDeviceSize instanceBytes = std::max<std::size_t>(16, rays.size() * sizeof(std::uint32_t));
+    vk::Buffer instanceBuf(ctx_, instanceBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                           vk::MemoryUse::Device);
+    vk::Buffer instanceBack(ctx_, instanceBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
     kern.bind(BINDING_HIT_INSTANCES, instanceBuf);
+    const bool instanced = (scene_.features.bits & kFeatureInstancing) != 0u;
     kern.bind(BINDING_WORK, workBuf);
 
     vk::OneShot submit(ctx_);
@@ -58,6 +61,7 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
         recordTrace(cmd, ctx_, kern, workBuf, rays.size(), workQueue_);
         timer.end(cmd);
         vk::recordReadback(cmd, hitBuf, back, hitBytes);
+        if (instances && instanced) vk::recordReadback(cmd, instanceBuf, instanceBack, instanceBytes);
         submit.submitAndWait();
         times.push_back(timer.seconds());
     }
@@ -68,6 +72,13 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
     back.invalidate();
     std::vector<TraceHit> hits(rays.size());
     std::memcpy(hits.data(), back.mapped(), rays.size() * sizeof(TraceHit));
+    if (instances) {
+        instances->assign(rays.size(), kNoInstance);
+        if (instanced) {
+            instanceBack.invalidate();
+            std::memcpy(instances->data(), instanceBack.mapped(), rays.size() * sizeof(std::uint32_t));
+        }
+    }
     return hits;
 }
 

@@ -25,9 +25,12 @@ public:
 
     // `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h). Runs
     // the rays `reps` times; `medianSeconds` receives the median device time
-    // of one pass (Vulkan timestamps around the dispatches).
+    // of one pass (Vulkan timestamps around the dispatches). `instances`,
+    // when given, receives each closest hit's instance (its record's first
+    // texel in GpuScene::instances; gpu::kNoInstance for a scene without
+    // instances, and undefined for a miss).
     std::vector<gpu::TraceHit> trace(const std::vector<gpu::TraceRay>& rays, std::uint32_t mode, int reps = 1,
-                                     double* medianSeconds = nullptr);
+                                     double* medianSeconds = nullptr, std::vector<std::uint32_t>* instances = nullptr);
     bool texel() const { return scene_.texel(); }
     const DeviceScene& deviceScene() const { return scene_; }
     int bvhWidth() const { return scene_.wide ? 4 : 2; }
