@@ -215,9 +215,9 @@ struct SharedMesh {
     std::string name;  // "mesh 3 (\"Tree\")", for --stats
 };
 
-// One placement of a SharedMesh: world = toWorld * object (affine; a
-// mirroring placement has its own SharedMesh with the winding reversed, so
-// det > 0 here).
+// One placement of a SharedMesh: world = toWorld * object (affine). A
+// mirroring placement (det < 0) places the mesh's copy whose winding is
+// reversed, so its front faces stay front faces.
 struct MeshInstance {
     std::uint32_t mesh = 0;  // index into Scene::sharedMeshes
     glm::mat4 toWorld{1.0f};
@@ -294,7 +294,8 @@ inline constexpr const char* kDefaultEnvironment = "default (no light in the sce
 // Whether a mesh placed more than once is stored once and placed by
 // instances (a two-level BVH) or flattened into world-space triangles.
 // Auto: instanced when its placements hold more than kInstancingMinTriangles
-// triangles together (flattening is faster below: docs/benchmarks.md);
+// triangles together (flattened scenes render faster; above that line their
+// memory decides: docs/benchmarks.md);
 // On: every mesh placed twice or more; Off: everything flattened. Meshes that
 // emit, are skinned or have morph targets are always flattened.
 enum class Instancing { Auto, On, Off };
