@@ -11,6 +11,8 @@
         a floor, a lamp and N x N instances of a small sphere on one node's
         EXT_mesh_gpu_instancing (N = 1000: a million instances), for
         `strata render --stats` and `strata bench`
+    python3 scripts/make_instances.py --showcase OUT.gltf
+        the README picture: 45 spheres under thin films, by instancing
     python3 scripts/make_instances.py --nodes N OUT.glb
         the same N x N sphere placements, one node each (no extension), for
         the line between flattening and instancing (docs/benchmarks.md)
@@ -180,6 +182,34 @@ def normal_map_scene():
     return w
 
 
+def showcase_scene():
+    """The README picture: a 9 x 5 grid of spheres placed by one node's
+    EXT_mesh_gpu_instancing, each a metal or a dark dielectric under a thin
+    film whose thickness grows along the rows (two meshes, one material each
+    thickness), over a floor; no lamp (render it with --env)."""
+    w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
+    roots, _ = base_scene(w, 8.0, 5.0, (0.0, 2.6, 6.0))
+    roots = [r for r in roots if w.doc["nodes"][r]["name"] != "Lamp"]
+    pos, nrm, idx = icosphere(3)
+    for row, thickness in enumerate((200.0, 300.0, 400.0, 500.0, 650.0)):
+        film = {"iridescenceFactor": 1.0, "iridescenceIor": 1.35, "iridescenceThicknessMaximum": thickness}
+        metal = w.add_material("FilmMetal%d" % row, base_color=[0.3, 0.3, 0.3, 1.0], metallic=1.0, roughness=0.1,
+                               extensions={"KHR_materials_iridescence": film})
+        dark = w.add_material("FilmDark%d" % row, base_color=[0.02, 0.02, 0.03, 1.0], metallic=0.0,
+                              roughness=0.05, extensions={"KHR_materials_iridescence": film})
+        for kind, material in (("Metal", metal), ("Dark", dark)):
+            mesh = w.add_triangles("%sSphere%d" % (kind, row), pos, normals=nrm, indices=idx, material=material)
+            cols = [c for c in range(9) if (c % 2 == 0) == (kind == "Metal")]
+            t = [(-4.4 + 1.1 * c, 0.45, -3.0 + 1.2 * row) for c in cols]
+            node = w.add_node("%s%d" % (kind, row), mesh=mesh)
+            w.doc["nodes"][node]["extensions"] = add_instances(w, t, scales=[(0.45, 0.45, 0.45)] * len(t))
+            roots.append(node)
+    w.set_scene(roots, name="Showcase")
+    w.use_extensions(["KHR_materials_emissive_strength", "KHR_materials_specular", "KHR_materials_iridescence",
+                      EXTENSION])
+    return w
+
+
 def broken(defect):
     """instances_scene's Row node with one defect."""
     w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
@@ -234,6 +264,9 @@ def write_glb(w, path):
 
 
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--showcase":
+        showcase_scene().write_gltf(sys.argv[2])
+        return
     if len(sys.argv) == 4 and sys.argv[1] in ("--grid", "--nodes"):
         write_glb(grid_scene(int(sys.argv[2]), sys.argv[1] == "--grid"), sys.argv[3])
         return
