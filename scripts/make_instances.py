@@ -28,7 +28,10 @@ ROOT = os.path.dirname(HERE)
 sys.dont_write_bytecode = True  # keep the tree free of __pycache__
 sys.path.insert(0, HERE)
 
+sys.path.insert(0, os.path.join(ROOT, "tests", "data"))
+
 from gltf_writer import FLOAT, GltfWriter  # noqa: E402
+from make_lights import icosphere  # noqa: E402
 from make_texture_scenes import data_uri, png  # noqa: E402
 
 GENERATOR = "strata scripts/make_instances.py"
@@ -37,30 +40,9 @@ EXTENSION = "EXT_mesh_gpu_instancing"
 OUT = os.path.join(ROOT, "tests", "data", "instancing")
 
 
-def icosphere(subdivisions):
-    """Unit sphere: (positions, normals, indices), counter-clockwise outside."""
-    t = (1.0 + math.sqrt(5.0)) / 2.0
-    verts = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
-             (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    verts = [tuple(c / math.sqrt(sum(x * x for x in v)) for c in v) for v in verts]
-    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
-             (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
-             (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    for _ in range(subdivisions):
-        cache, out = {}, []
-
-        def mid(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in cache:
-                m = [(verts[a][k] + verts[b][k]) / 2 for k in range(3)]
-                n = math.sqrt(sum(x * x for x in m))
-                verts.append(tuple(x / n for x in m))
-                cache[key] = len(verts) - 1
-            return cache[key]
-        for a, b, c in faces:
-            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
-            out += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        faces = out
+def sphere_mesh(level):
+    """Unit icosphere (tests/data/make_lights.py) as (positions, normals, indices)."""
+    verts, faces = icosphere(level)
     return verts, list(verts), [i for f in faces for i in f]
 
 
@@ -94,7 +76,7 @@ def base_scene(w, extent, lamp_height, camera_from, lamp_triangle=False):
     lamp = quad(w, "Lamp", (-half, lamp_height, -half), (2 * half, 0.0, 0.0), (0.0, 0.0, 2 * half), lamp_mat)
     if lamp_triangle:
         w.doc["accessors"][w.doc["meshes"][lamp]["primitives"][0]["indices"]]["count"] = 3
-    pos, nrm, idx = icosphere(1)
+    pos, nrm, idx = sphere_mesh(1)
     sphere = w.add_triangles("Sphere", pos, normals=nrm, indices=idx, material=rock)
     cam = w.add_perspective("Camera", math.radians(40.0), znear=0.01, aspect_ratio=4.0 / 3.0)
     x, y, z = camera_from
@@ -123,7 +105,7 @@ def instances_scene():
     gloss = w.add_material("Gloss", base_color=[0.2, 0.3, 0.8, 1.0], metallic=0.0, roughness=0.6,
                            extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0,
                                                                    "clearcoatRoughnessFactor": 0.1}})
-    pos, nrm, idx = icosphere(2)
+    pos, nrm, idx = sphere_mesh(2)
     glossy = w.add_triangles("GlossySphere", pos, normals=nrm, indices=idx, material=gloss)
     # Nine nodes: a grid, turned and scaled; node 4 mirrored, node 7 uneven.
     for i in range(9):
@@ -190,7 +172,7 @@ def showcase_scene():
     w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
     roots, _ = base_scene(w, 8.0, 5.0, (0.0, 2.6, 6.0))
     roots = [r for r in roots if w.doc["nodes"][r]["name"] != "Lamp"]
-    pos, nrm, idx = icosphere(3)
+    pos, nrm, idx = sphere_mesh(3)
     for row, thickness in enumerate((200.0, 300.0, 400.0, 500.0, 650.0)):
         film = {"iridescenceFactor": 1.0, "iridescenceIor": 1.35, "iridescenceThicknessMaximum": thickness}
         metal = w.add_material("FilmMetal%d" % row, base_color=[0.3, 0.3, 0.3, 1.0], metallic=1.0, roughness=0.1,
