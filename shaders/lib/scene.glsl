@@ -36,11 +36,15 @@ uvec4 bvhNodeWord(uint index) {
 }
 
 // The decoders below read fields at the words of shared/texel_layout.h.
-BvhNode bvhFetchNode(uint index) {
-    uint base = kBvhNodeTexels * index;
-    uvec4 t[kBvhNodeTexels] = uvec4[](bvhNodeWord(base), bvhNodeWord(base + 1u));
+// A BvhNode from its two texels (the scene's BVH2 and the top level).
+BvhNode bvhNodeFromTexels(uvec4 t[kBvhNodeTexels]) {
     return BvhNode(TEXEL_VEC3(t, kBvhNodeWordBmin), TEXEL_UINT(t, kBvhNodeWordLeftOrFirst),
                    TEXEL_VEC3(t, kBvhNodeWordBmax), TEXEL_UINT(t, kBvhNodeWordCount));
+}
+
+BvhNode bvhFetchNode(uint index) {
+    uint base = kBvhNodeTexels * index;
+    return bvhNodeFromTexels(uvec4[](bvhNodeWord(base), bvhNodeWord(base + 1u)));
 }
 
 BvhNode4 bvhFetchNode4(uint index) {
@@ -71,9 +75,7 @@ uvec4 instanceWord(uint index) {
 
 BvhNode bvhFetchTopNode(uint index) {
     uint base = kBvhNodeTexels * index;
-    uvec4 t[kBvhNodeTexels] = uvec4[](instanceWord(base), instanceWord(base + 1u));
-    return BvhNode(TEXEL_VEC3(t, kBvhNodeWordBmin), TEXEL_UINT(t, kBvhNodeWordLeftOrFirst),
-                   TEXEL_VEC3(t, kBvhNodeWordBmax), TEXEL_UINT(t, kBvhNodeWordCount));
+    return bvhNodeFromTexels(uvec4[](instanceWord(base), instanceWord(base + 1u)));
 }
 
 // The record starting at texel `first`: the two transforms' rows and the roots.
