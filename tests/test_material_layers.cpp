@@ -320,7 +320,7 @@ TEST_CASE("specular colour: specularColorTexture (sRGB RGB) scales the colour an
 
 namespace {
 
-// KHR_materials_iridescence's thin-film reflectance (lib/bsdf.glsl,
+// KHR_materials_iridescence's thin-film reflectance (lib/thin_film.glsl,
 // thinFilmFresnel) in double: air | film of index n2 and thickness d nm |
 // a base of normal-incidence reflectance f0, at cosine mu, channel c.
 double filmSchlick(double f0, double mu) { return f0 + (1.0 - f0) * std::pow(1.0 - mu, 5.0); }
