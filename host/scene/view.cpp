@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "util/error.h"
@@ -27,13 +28,17 @@ Camera frameScene(const Scene& scene, float aspect, float yfov) {
     // The world triangles' vertices, and an instanced mesh's placements by
     // the corners of its box.
     const std::size_t world = scene.worldTriangles();
-    std::vector<glm::dvec3> corners;
-    for (const MeshInstance& inst : scene.instances) {
-        const SharedMesh& m = scene.sharedMeshes[inst.mesh];
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> boxes;  // each shared mesh's, once
+    for (const SharedMesh& m : scene.sharedMeshes) {
         glm::dvec3 a(std::numeric_limits<double>::max()), b(-std::numeric_limits<double>::max());
         for (std::size_t i = m.first; i < m.first + m.count; ++i)
             for (const glm::vec3& v : scene.triangles[i].v) a = glm::min(a, glm::dvec3(v)), b = glm::max(b, glm::dvec3(v));
-        if (m.count == 0) continue;
+        boxes.emplace_back(a, b);
+    }
+    std::vector<glm::dvec3> corners;
+    for (const MeshInstance& inst : scene.instances) {
+        if (scene.sharedMeshes[inst.mesh].count == 0) continue;
+        const auto& [a, b] = boxes[inst.mesh];
         const glm::dmat4 toWorld(inst.toWorld);
         for (int c = 0; c < 8; ++c)
             corners.push_back(glm::dvec3(toWorld * glm::dvec4((c & 1) ? b.x : a.x, (c & 2) ? b.y : a.y, (c & 4) ? b.z : a.z, 1.0)));
