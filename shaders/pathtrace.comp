@@ -34,6 +34,7 @@ uint gShadowRays = 0u;
 
 vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     PathVertex v = pathStart();
+    if (kAov != 0u) aovStart();
     for (uint depth = 0u;; ++depth) {
         TraceHit hit;
         if (kCountRays != 0u) ++gClosestRays;
@@ -63,7 +64,9 @@ void shadePixel(uvec2 local) {
     Sampler smp;
     vec3 dir;
     cameraSample(pixel, params.sampleIndex, smp, dir);
-    accumulateSample(pixel.y * frame.image.x + pixel.x, tracePath(smp, frame.camOrigin.xyz, dir));
+    vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
+    accumulateSample(pixel.y * frame.image.x + pixel.x, L);
+    if (kAov != 0u) accumulateAov(pixel.y * frame.image.x + pixel.x, params.sampleIndex, L);
 }
 
 void main() {

@@ -221,6 +221,14 @@ std::vector<Flag<RenderCommand>> renderFlags() {
             toggle<C>("--stats", "print the device, scene, BVH, start-up, render and memory figures",
                       [](C& c) { c.stats = true; }),
             text<C>("--stats-json", "FILE", "write the --stats figures to FILE as JSON", STRATA_FIELD(statsJson)),
+            toggle<C>("--aov",
+                      "EXR outputs get the AOV layers: variance, halfA, halfB, albedo, normal (camera space), "
+                      "depth, emitter (docs/denoising.md)",
+                      [](C& c) { c.settings.aov = true; }),
+            toggle<C>("--denoise",
+                      "denoise the image (with the AOVs): R, G, B denoised, noisy.R/G/B the image as rendered; "
+                      "'--denoise fast' for the edge-aware a-trous filter instead of the regression",
+                      [](C& c) { c.denoise = true, c.settings.aov = true; }),
         },
         pathFlags<C>(settings),
         traceFlags<C>(settings),
@@ -251,9 +259,16 @@ const CommandSpec<RenderCommand>& renderSpec(const std::string& name) {
 }
 
 // Parses a render-like command's flags and positional scene.
-RenderCommand parseRenderLike(const std::string& name, const std::vector<std::string>& args, Parsed& parsed) {
+RenderCommand parseRenderLike(const std::string& name, const std::vector<std::string>& given, Parsed& parsed) {
     const CommandSpec<RenderCommand>& spec = renderSpec(name);
     RenderCommand cmd = spec.init;
+    // --denoise takes an optional method: '--denoise fast' (or nfor).
+    std::vector<std::string> args;
+    for (std::size_t i = 0; i < given.size(); ++i) {
+        args.push_back(given[i]);
+        if (given[i] == "--denoise" && i + 1 < given.size() && (given[i + 1] == "fast" || given[i + 1] == "nfor"))
+            cmd.denoiseFast = given[++i] == "fast";
+    }
     parsed = parseFlags(spec, args, cmd);
     if (parsed.positional.size() > 1)
         badFlag("unexpected argument '" + parsed.positional[1] + "' (one scene per " + name + ")");

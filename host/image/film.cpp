@@ -4,11 +4,14 @@
 
 namespace strata {
 
-Film::Film(int w, int h)
-    : width(w), height(h), sum(pixels() * 3, 0.0), sumSq(pixels() * 3, 0.0), count(pixels(), 0) {}
+Film::Film(int w, int h, bool withAov)
+    : width(w), height(h), sum(pixels() * 3, 0.0), sumSq(pixels() * 3, 0.0), count(pixels(), 0), aov(withAov) {
+    if (aov) aovSum.assign(pixels() * kAovSums, 0.0);
+}
 
 void Film::fold(const float* batch) {
     const std::size_t n = pixels();
+    const float* aovBatch = batch + n * 8;
     for (std::size_t i = 0; i < n; ++i) {
         const float* p = batch + i * 8;
         if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
@@ -20,6 +23,8 @@ void Film::fold(const float* batch) {
             sumSq[i * 3 + c] += p[4 + c];
         }
         count[i] += static_cast<std::uint64_t>(p[3]);
+        if (aov)
+            for (int k = 0; k < kAovSums; ++k) aovSum[i * kAovSums + k] += aovBatch[i * kAovSums + k];
     }
 }
 

@@ -17,13 +17,20 @@ struct Film {
     // Samples of batches whose float32 sum overflowed (each sample finite,
     // their sum not): left out, like non-finite samples.
     std::uint64_t overflowed = 0;
+    // With AOVs (RenderSettings::aov): kAovSums per pixel, the device's
+    // kAovVec4PerPixel vec4 (shaders/shared/types.h) summed over the same
+    // samples as `sum`: half A's rgb and count, albedo rgb, depth, normal
+    // xyz, emitter mark, albedo squared, depth squared, normal squared, 0.
+    bool aov = false;
+    std::vector<double> aovSum;
+    static constexpr int kAovSums = 20;
 
     Film() = default;
-    Film(int w, int h);
+    Film(int w, int h, bool withAov = false);
     std::size_t pixels() const { return static_cast<std::size_t>(width) * height; }
 
     // Adds a device batch: per pixel two vec4 (sum rgb + count, sumSq rgb + 0),
-    // the layout of gpu::kAccumVec4PerPixel. A pixel whose batch sum is not
+    // the layout of gpu::kAccumVec4PerPixel, then with AOVs the AOV sums. A pixel whose batch sum is not
     // finite keeps none of that batch (counted in `overflowed`); a square sum
     // beyond float is kept, so its variance reads as infinite.
     void fold(const float* batch);

@@ -13,4 +13,22 @@ struct Image {
     std::vector<float> pixels;  // row-major, interleaved channels, row 0 at the top
 };
 
+// Channels an EXR gets after R, G, B (variance.R, albedo.R, ...): their
+// names, and their values one channel after another (channel c of pixel i
+// at c * pixels + i).
+struct ExtraChannels {
+    std::vector<std::string> names;
+    std::vector<float> planes;
+
+    // Appends channels `layer`.`suffix[k]` from an image with suffix.size()
+    // interleaved channels per pixel.
+    void add(const std::string& layer, const std::string& suffix, const std::vector<float>& interleaved) {
+        const std::size_t n = suffix.size(), pixels = interleaved.size() / n;
+        for (std::size_t k = 0; k < n; ++k) {
+            names.push_back(layer + "." + suffix[k]);
+            for (std::size_t i = 0; i < pixels; ++i) planes.push_back(interleaved[i * n + k]);
+        }
+    }
+};
+
 }  // namespace strata

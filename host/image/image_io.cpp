@@ -68,11 +68,11 @@ const oiio::Api* loadModule(std::string& error) {
 }
 
 void writeOne(const std::string& path, const std::string& tmp, int w, int h, const std::vector<float>& rgb,
-              const std::vector<float>* variance) {
+              const ExtraChannels& extra) {
     const oiio::Api& module = imageModule(path);
     std::string error;
     if (outputFormat(path) == ImageFormat::Exr) {
-        error = module.writeExr(path, tmp, w, h, rgb.data(), variance ? variance->data() : nullptr);
+        error = module.writeExr(path, tmp, w, h, rgb.data(), extra);
     } else {
         std::vector<std::uint8_t> bytes(rgb.size());
         for (std::size_t i = 0; i < rgb.size(); ++i)
@@ -99,7 +99,7 @@ const oiio::Api& imageModule(const std::string& path) {
 }
 
 void writeImages(const std::vector<std::string>& paths, int width, int height,
-                 const std::vector<float>& rgb, const std::vector<float>* variance) {
+                 const std::vector<float>& rgb, const ExtraChannels& extra) {
     std::vector<std::string> temps;
     auto cleanup = [&] {
         std::error_code ec;
@@ -114,7 +114,7 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
             name += p.extension().string();
             const fs::path tmp = p.parent_path() / name;
             temps.push_back(tmp.string());
-            writeOne(path, tmp.string(), width, height, rgb, variance);
+            writeOne(path, tmp.string(), width, height, rgb, extra);
         }
         for (std::size_t i = 0; i < paths.size(); ++i) {
             std::error_code ec;

@@ -22,10 +22,10 @@ ImageFormat outputFormat(const std::string& path);
 
 // Writes all `paths` from one linear RGB image (3 floats per pixel). Either
 // every file is written or none is (temporaries are removed on failure).
-// With `variance` (3 floats per pixel: the variance of each pixel's mean),
-// EXR files get three more channels, variance.R/G/B; PNG files ignore it.
+// EXR files get the `extra` channels after R, G, B (variance.R/G/B, the
+// AOVs); PNG files ignore them.
 void writeImages(const std::vector<std::string>& paths, int width, int height,
-                 const std::vector<float>& rgb, const std::vector<float>* variance = nullptr);
+                 const std::vector<float>& rgb, const ExtraChannels& extra = {});
 
 // An RGB image and, when the file has variance.R/G/B channels, the variance
 // of each pixel's mean (as `strata reference` writes it).

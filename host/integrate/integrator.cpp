@@ -2,14 +2,19 @@
 
 #include "integrate/megakernel.h"
 #include "integrate/wavefront.h"
+#include "util/error.h"
 
 namespace strata {
 
 std::unique_ptr<Integrator> makeIntegrator(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s,
                                            const RenderTuning& t, std::uint32_t maxTilePixels,
                                            const FilmBuffers& film) {
-    if (s.integrator == IntegratorKind::Wavefront)
+    if (s.integrator == IntegratorKind::Wavefront) {
+        if (s.aov)
+            throw Error("strata: error: --aov and --denoise need the megakernel integrator (--integrator megakernel); "
+                        "the wavefront integrator keeps no AOVs");
         return std::make_unique<WavefrontIntegrator>(ctx, dev, s, t, maxTilePixels, film);
+    }
     return makeMegakernel(ctx, dev, s, t, film);
 }
 

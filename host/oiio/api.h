@@ -16,14 +16,14 @@
 
 namespace strata::oiio {
 
-inline constexpr int kApiVersion = 1;
+inline constexpr int kApiVersion = 2;
 
 struct Api {
     int version = kApiVersion;
-    // Linear float RGB (and variance.R/G/B when `variance` is not null),
-    // zip-compressed, written to `tmp` in the format `path` names (EXR).
+    // Linear float RGB and the `extra` channels after them, zip-compressed,
+    // written to `tmp` in the format `path` names (EXR).
     std::string (*writeExr)(const std::string& path, const std::string& tmp, int width, int height,
-                            const float* rgb, const float* variance);
+                            const float* rgb, const ExtraChannels& extra);
     // sRGB-encoded 8-bit RGB written to `tmp` in the format `path` names (PNG).
     std::string (*writePng)(const std::string& path, const std::string& tmp, int width, int height,
                             const std::uint8_t* rgb);

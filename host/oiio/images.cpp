@@ -25,22 +25,19 @@ std::string write(const std::string& path, const std::string& tmp, const OIIO::I
 }
 
 std::string writeExr(const std::string& path, const std::string& tmp, int w, int h, const float* rgb,
-                     const float* variance) {
-    if (variance) {
-        OIIO::ImageSpec spec(w, h, 6, OIIO::TypeDesc::FLOAT);
-        spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-        spec.attribute("compression", "zip");
-        std::vector<float> six(static_cast<std::size_t>(w) * h * 6);
-        for (std::size_t i = 0; i < six.size() / 6; ++i)
-            for (int c = 0; c < 3; ++c) {
-                six[i * 6 + c] = rgb[i * 3 + c];
-                six[i * 6 + 3 + c] = variance[i * 3 + c];
-            }
-        return write(path, tmp, spec, OIIO::TypeDesc::FLOAT, six.data());
-    }
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
+                     const ExtraChannels& extra) {
+    const std::size_t pixels = static_cast<std::size_t>(w) * h, channels = 3 + extra.names.size();
+    OIIO::ImageSpec spec(w, h, static_cast<int>(channels), OIIO::TypeDesc::FLOAT);
+    spec.channelnames = {"R", "G", "B"};
+    spec.channelnames.insert(spec.channelnames.end(), extra.names.begin(), extra.names.end());
     spec.attribute("compression", "zip");
-    return write(path, tmp, spec, OIIO::TypeDesc::FLOAT, rgb);
+    if (extra.names.empty()) return write(path, tmp, spec, OIIO::TypeDesc::FLOAT, rgb);
+    std::vector<float> all(pixels * channels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        for (int c = 0; c < 3; ++c) all[i * channels + c] = rgb[i * 3 + c];
+        for (std::size_t c = 0; c < extra.names.size(); ++c) all[i * channels + 3 + c] = extra.planes[c * pixels + i];
+    }
+    return write(path, tmp, spec, OIIO::TypeDesc::FLOAT, all.data());
 }
 
 std::string writePng(const std::string& path, const std::string& tmp, int w, int h, const std::uint8_t* rgb) {

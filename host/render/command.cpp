@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "image/aov.h"
 #include "image/image_io.h"
 #include "bvh/scene_bvh.h"
 #include "pack/gpu_scene.h"
@@ -71,9 +72,13 @@ int runRender(const RenderCommand& cmd) {
     // outputs or none.
     if (!cmd.statsJson.empty()) writeTextAtomically(cmd.statsJson, stats.dump(2) + "\n");
     try {
-        if (cmd.variance) {
-            const std::vector<float> var = result.film.varianceOfMean();
-            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), &var);
+        if (cmd.settings.aov) {
+            const AovImages aov = aovImages(result.film);
+            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, aov.color, aovChannels(aov));
+        } else if (cmd.variance) {
+            ExtraChannels var;
+            var.add("variance", "RGB", result.film.varianceOfMean());
+            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), var);
         } else {
             writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
         }

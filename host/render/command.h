@@ -27,6 +27,8 @@ struct RenderCommand {
     std::string statsJson;
     bool validation = false;
     bool variance = false;              // EXR outputs get variance.R/G/B channels
+    bool denoise = false;               // --denoise: R, G, B denoised (settings.aov is set too)
+    bool denoiseFast = false;           // '--denoise fast': the a-trous filter, not the regression
 };
 
 // The BVH and packing stages as the commands run them, consuming the scene

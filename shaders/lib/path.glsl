@@ -63,6 +63,7 @@ void pathEscaped(inout PathVertex v, vec3 dir) {
         float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, v.prevDelta ? 0.0 : lightPdfEnvironment(dir));
         v.L += v.beta * w * environmentRadiance(dir);
     }
+    if (kAov != 0u && !gAov.done) aovRecord(vec3(1.0), vec3(0.0), 1.0);
 }
 
 // The ray along `dir` hit `hit` at bounce `depth` (maxDepth counts
@@ -92,6 +93,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     bool front = dot(dir, ng) < 0.0;
     TriShading sh = shadeShading(hit.triangle);
     Material mat = sceneMaterial(sh.material);
+    if (kAov != 0u && depth == 0u) gAov.depth = hit.t;
 
     // KHR_materials_volume: a ray that reaches a back face of a volume has
     // travelled hit.t inside it (volumes closed and not nested): Beer-Lambert.
@@ -106,11 +108,14 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             vec2 bary = vec2(hit.u, hit.v);
             vec3 le = emissionAt(sh.material, hit.triangle, bary);
             v.L += v.beta * w * coatedEmission(sh.material, hit.triangle, bary, le, -dir);
+            if (kAov != 0u && !gAov.done) aovRecord(vec3(1.0), front ? ng : -ng, 1.0);
         }
     }
     // KHR_materials_unlit: the surface's colour, seen from either side, and no scattering.
     if (hasFeature(kFeatureUnlit) && (mat.flags & kMaterialUnlit) != 0u) {
         v.L += v.beta * unlitColor(mat, hit.triangle, vec2(hit.u, hit.v));
+        if (kAov != 0u && !gAov.done)
+            aovRecord(unlitColor(mat, hit.triangle, vec2(hit.u, hit.v)), front ? ng : -ng, 1.0);
         return o;
     }
     if (depth < maxDepth) {
@@ -151,6 +156,13 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
 #endif
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
                             sp.specular, layers, front, woL);
+        }
+        // The AOVs' vertex: the first whose lobes are not all deltas (a
+        // smooth metal or a smooth fully transmitting dielectric is followed).
+        bool aovFollow = false;
+        if (kAov != 0u && !gAov.done) {
+            aovFollow = !kLambertOnly && bsdf.delta && (sp.metallic >= 1.0 || sp.transmission >= 1.0);
+            if (!aovFollow) aovRecord(sp.baseColor, ns, 0.0);
         }
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
@@ -194,6 +206,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         float geoSide = dot(n, wi);
         if (bs.valid && !(geoSide == 0.0 || (geoSide > 0.0) != (bs.wi.z > 0.0))) {
             v.beta *= bs.weight;
+            if (aovFollow) gAov.tint *= bs.weight;
             v.prevBsdfPdf = bs.pdf;
             v.prevDelta = bs.delta;
 
