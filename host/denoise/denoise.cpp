@@ -1,0 +1,358 @@
+#include "denoise/denoise.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <span>
+#include <string>
+
+#include <strata_spirv.h>
+
+#include "../../shaders/shared/denoise.h"
+#include "util/error.h"
+#include "vk/buffer.h"
+#include "vk/kernel.h"
+#include "vk/timer.h"
+
+namespace strata {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Spirv = std::span<const std::uint32_t>;
+#define STRATA_DENOISE_SPIRV(name) Spirv(kSpirvPtr_##name, kSpirvSize_##name / 4)
+
+// Below this albedo a channel is not demodulated (its factor is 1).
+constexpr float kDarkAlbedo = 0.01f;
+// NFOR: the regression window's radius, the two NL-means bandwidths k, the
+// ridge on the feature terms (relative to the weight sum) and the radius of
+// the box over which the selection averages each candidate's error.
+constexpr int kNforRadius = 7;
+constexpr float kNforK1 = 0.5f, kNforK2 = 1.0f;
+constexpr float kNforRidge = 1e-3f;
+constexpr int kSelectRadius = 3;
+// The feature prefilter's window radius and 1 / k^2.
+constexpr int kFeatureRadius = 3;
+constexpr float kFeatureInvK2 = 1.0f;
+// Fast: a-trous iterations (steps 1, 2, 4, ...) and the luminance edge-stop scale.
+constexpr int kAtrousIterations = 5;
+constexpr float kAtrousSigmaLum = 4.0f;
+
+using Rgba = std::vector<float>;  // 4 floats per pixel
+
+void checkLayer(const std::vector<float>& v, const char* name, const DenoiseInput& in, int channels, bool optional) {
+    if (optional && v.empty()) return;
+    const std::size_t want = std::size_t(in.width) * std::size_t(in.height) * std::size_t(channels);
+    if (v.size() != want)
+        throw Error("strata: error: denoise: layer '" + std::string(name) + "' has " + std::to_string(v.size()) +
+                    " floats, expected " + std::to_string(want) + " (" + std::to_string(channels) + " per pixel, " +
+                    std::to_string(in.width) + "x" + std::to_string(in.height) + ")");
+}
+
+void checkInput(const DenoiseInput& in) {
+    if (in.width <= 0 || in.height <= 0)
+        throw Error("strata: error: denoise: image size " + std::to_string(in.width) + "x" +
+                    std::to_string(in.height) + " is empty");
+    checkLayer(in.color, "color", in, 3, false);
+    checkLayer(in.halfA, "halfA", in, 3, false);
+    checkLayer(in.halfB, "halfB", in, 3, false);
+    checkLayer(in.variance, "variance", in, 3, false);
+    checkLayer(in.albedo, "albedo", in, 3, false);
+    checkLayer(in.normal, "normal", in, 3, false);
+    checkLayer(in.depth, "depth", in, 1, false);
+    checkLayer(in.emitter, "emitter", in, 1, false);
+    checkLayer(in.albedoVariance, "albedoVariance", in, 3, true);
+    checkLayer(in.normalVariance, "normalVariance", in, 3, true);
+    checkLayer(in.depthVariance, "depthVariance", in, 1, true);
+}
+
+float finiteOr(float v, float fallback) { return std::isfinite(v) ? v : fallback; }
+
+// The mean of each pixel's 3x3 neighbourhood (clamped at the borders), all four channels.
+Rgba box3(const Rgba& img, int w, int h) {
+    Rgba rows(img.size()), out(img.size());
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c) {
+                float s = 0.0f;
+                for (int d = -1; d <= 1; ++d) s += img[(std::size_t(y) * w + std::clamp(x + d, 0, w - 1)) * 4 + c];
+                rows[(std::size_t(y) * w + x) * 4 + c] = s;
+            }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c) {
+                float s = 0.0f;
+                for (int d = -1; d <= 1; ++d) s += rows[(std::size_t(std::clamp(y + d, 0, h - 1)) * w + x) * 4 + c];
+                out[(std::size_t(y) * w + x) * 4 + c] = s * (1.0f / 9.0f);
+            }
+    return out;
+}
+
+// The host's share: per-pixel demodulation factors and the packed RGBA
+// layers the kernels read.
+struct Prepared {
+    std::vector<float> factor;  // 3/pixel: the albedo, or 1 where it is dark
+    Rgba features;              // normal xyz, depth / the largest depth
+    Rgba featureVar;            // their variances (empty: no prefilter)
+};
+
+Prepared prepare(const DenoiseInput& in) {
+    const std::size_t n = std::size_t(in.width) * in.height;
+    Prepared p;
+    p.factor.resize(3 * n);
+    for (std::size_t i = 0; i < 3 * n; ++i) {
+        const float a = finiteOr(in.albedo[i], 0.0f);
+        p.factor[i] = a >= kDarkAlbedo ? a : 1.0f;
+    }
+    float maxDepth = 0.0f;
+    for (float d : in.depth) maxDepth = std::max(maxDepth, finiteOr(d, 0.0f));
+    const float depthScale = maxDepth > 0.0f ? 1.0f / maxDepth : 1.0f;
+    p.features.resize(4 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < 3; ++c) p.features[4 * i + c] = finiteOr(in.normal[3 * i + c], 0.0f);
+        p.features[4 * i + 3] = finiteOr(in.depth[i], 0.0f) * depthScale;
+    }
+    if (!in.normalVariance.empty() && !in.depthVariance.empty()) {
+        p.featureVar.resize(4 * n);
+        for (std::size_t i = 0; i < n; ++i) {
+            for (int c = 0; c < 3; ++c) p.featureVar[4 * i + c] = std::max(finiteOr(in.normalVariance[3 * i + c], 0.0f), 0.0f);
+            p.featureVar[4 * i + 3] = std::max(finiteOr(in.depthVariance[i], 0.0f), 0.0f) * depthScale * depthScale;
+        }
+    }
+    return p;
+}
+
+// A device image of RGBA32F texels: read through its texel view, written as vec4[].
+struct Image {
+    vk::Buffer buffer;
+    vk::TexelView view;
+};
+
+constexpr VkBufferUsageFlags kImageUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                           VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+
+Image upload(const vk::Context& ctx, const Rgba& rgba) {
+    Image img;
+    img.buffer = vk::uploadBuffer(ctx, std::as_bytes(std::span<const float>(rgba)), kImageUsage);
+    img.view = vk::TexelView(ctx, img.buffer, VK_FORMAT_R32G32B32A32_SFLOAT, rgba.size() * sizeof(float));
+    return img;
+}
+
+Image blank(const vk::Context& ctx, std::size_t pixels) {
+    Image img;
+    img.buffer = vk::Buffer(ctx, pixels * 16, kImageUsage, vk::MemoryUse::Device);
+    img.view = vk::TexelView(ctx, img.buffer, VK_FORMAT_R32G32B32A32_SFLOAT, pixels * 16);
+    return img;
+}
+
+// The kernels of one denoise() call, each with its own descriptor set; the
+// compiled programs are shared between calls (Kernel reuse).
+class Passes {
+public:
+    Passes(const vk::Context& ctx, const DenoiseInput& in) : ctx_(ctx), w_(in.width), h_(in.height) {}
+
+    // A kernel reading `inputs` through texel views and writing `outputs`.
+    vk::Kernel& add(Spirv spirv, std::initializer_list<const Image*> inputs,
+                    std::initializer_list<const Image*> outputs) {
+        const auto t0 = Clock::now();
+        std::vector<vk::BindingDesc> bindings;
+        for (std::uint32_t i = 0; i < inputs.size(); ++i)
+            bindings.push_back({gpu::DN_IN0 + i, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER});
+        for (std::uint32_t i = 0; i < outputs.size(); ++i)
+            bindings.push_back({gpu::DN_OUT0 + i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+        kernels_.push_back(std::make_unique<vk::Kernel>(ctx_, spirv, bindings, sizeof(gpu::DenoiseParams),
+                                                        std::vector<std::uint32_t>{}, true));
+        vk::Kernel& k = *kernels_.back();
+        std::uint32_t i = 0;
+        for (const Image* img : inputs) k.bind(gpu::DN_IN0 + i++, img->view);
+        i = 0;
+        for (const Image* img : outputs) k.bind(gpu::DN_OUT0 + i++, img->buffer);
+        if (!k.reusedProgram()) {
+            // lavapipe compiles a kernel's machine code at its first
+            // dispatch: one of no pixels here counts that as pipeline time.
+            gpu::DenoiseParams none{};
+            vk::OneShot shot(ctx_);
+            k.dispatch(shot.begin(), &none, 1, 1);
+            shot.submitAndWait();
+        }
+        const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        pipelineMs_ += k.reusedProgram() ? 0.0 : 1e3 * seconds;
+        setupSeconds_ += seconds;
+        return k;
+    }
+
+    gpu::DenoiseParams params() const {
+        gpu::DenoiseParams p{};
+        p.width = std::uint32_t(w_);
+        p.height = std::uint32_t(h_);
+        return p;
+    }
+
+    void dispatch(VkCommandBuffer cmd, const vk::Kernel& k, const gpu::DenoiseParams& p) const {
+        const std::uint32_t g = gpu::kDenoiseGroup;
+        k.dispatch(cmd, &p, (std::uint32_t(w_) + g - 1) / g, (std::uint32_t(h_) + g - 1) / g);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    }
+
+    double pipelineMs() const { return pipelineMs_; }
+    double setupSeconds() const { return setupSeconds_; }
+
+private:
+    const vk::Context& ctx_;
+    int w_, h_;
+    std::vector<std::unique_ptr<vk::Kernel>> kernels_;
+    double pipelineMs_ = 0.0;
+    double setupSeconds_ = 0.0;
+};
+
+// Runs the recorded passes and reads `result` back as 4 floats per pixel.
+struct Run {
+    Rgba rgba;
+    double deviceSeconds = 0.0;
+};
+
+template <class Record>
+Run submit(const vk::Context& ctx, const Image& result, std::size_t pixels, Record&& record) {
+    vk::Buffer back(ctx, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback);
+    vk::OneShot shot(ctx);
+    vk::DeviceTimer timer(ctx);
+    VkCommandBuffer cmd = shot.begin();
+    timer.begin(cmd);
+    record(cmd);
+    timer.end(cmd);
+    vk::recordReadback(cmd, result.buffer, back, pixels * 16);
+    shot.submitAndWait();
+    back.invalidate();
+    Run run;
+    run.rgba.resize(pixels * 4);
+    std::memcpy(run.rgba.data(), back.mapped(), pixels * 16);
+    run.deviceSeconds = timer.supported() ? timer.seconds() : -1.0;
+    return run;
+}
+
+struct Denoised {
+    Rgba demodulated;  // rgb of the denoised demodulated colour, 4 floats per pixel
+    double deviceSeconds = 0.0;
+};
+
+Denoised runNfor(const vk::Context& ctx, Passes& passes, const DenoiseInput& in, const Prepared& prep) {
+    const std::size_t n = std::size_t(in.width) * in.height;
+    Rgba a(4 * n), b(4 * n), varHalf(4 * n, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float e = std::clamp(finiteOr(in.emitter[i], 1.0f), 0.0f, 1.0f);
+        bool finite = true;
+        float v = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            const float f = prep.factor[3 * i + c];
+            const float ha = in.halfA[3 * i + c], hb = in.halfB[3 * i + c], vc = in.variance[3 * i + c];
+            finite = finite && std::isfinite(ha) && std::isfinite(hb) && std::isfinite(vc);
+            a[4 * i + c] = finiteOr(ha, 0.0f) / f;
+            b[4 * i + c] = finiteOr(hb, 0.0f) / f;
+            v += 2.0f * std::max(finiteOr(vc, 0.0f), 0.0f) / (f * f);
+        }
+        varHalf[4 * i] = v * (1.0f / 3.0f);
+        a[4 * i + 3] = finite ? 1.0f - e : 0.0f;
+    }
+    const Rgba varSmooth = box3(varHalf, in.width, in.height);
+    Rgba guideA = box3(a, in.width, in.height), guideB = box3(b, in.width, in.height);
+    for (std::size_t i = 0; i < n; ++i) {
+        guideA[4 * i + 3] = guideB[4 * i + 3] = varSmooth[4 * i] * (1.0f / 9.0f);
+        b[4 * i + 3] = varSmooth[4 * i];
+    }
+    const Image gA = upload(ctx, guideA), gB = upload(ctx, guideB), cA = upload(ctx, a), cB = upload(ctx, b);
+    const Image feat = upload(ctx, prep.features);
+    Image featVar, featOut;
+    const bool prefilter = !prep.featureVar.empty();
+    if (prefilter) {
+        featVar = upload(ctx, prep.featureVar);
+        featOut = blank(ctx, n);
+    }
+    const Image& features = prefilter ? featOut : feat;
+    Image fA1 = blank(ctx, n), fB1 = blank(ctx, n), fA2 = blank(ctx, n), fB2 = blank(ctx, n), out = blank(ctx, n);
+
+    vk::Kernel* pre = prefilter ? &passes.add(STRATA_DENOISE_SPIRV(denoise_features), {&feat, &featVar}, {&featOut})
+                                : nullptr;
+    vk::Kernel& nfor = passes.add(STRATA_DENOISE_SPIRV(denoise_nfor), {&gA, &gB, &cA, &cB, &features},
+                                  {&fA1, &fB1, &fA2, &fB2});
+    vk::Kernel& select = passes.add(STRATA_DENOISE_SPIRV(denoise_select), {&fA1, &fB1, &fA2, &fB2, &cA, &cB}, {&out});
+    const Run run = submit(ctx, out, n, [&](VkCommandBuffer cmd) {
+        if (pre) {
+            gpu::DenoiseParams p = passes.params();
+            p.radius = kFeatureRadius;
+            p.sigma = kFeatureInvK2;
+            passes.dispatch(cmd, *pre, p);
+        }
+        gpu::DenoiseParams p = passes.params();
+        p.radius = kNforRadius;
+        p.invK1 = 1.0f / (kNforK1 * kNforK1);
+        p.invK2 = 1.0f / (kNforK2 * kNforK2);
+        p.ridge = kNforRidge;
+        passes.dispatch(cmd, nfor, p);
+        p.radius = kSelectRadius;
+        passes.dispatch(cmd, select, p);
+    });
+    return {run.rgba, run.deviceSeconds};
+}
+
+Denoised runFast(const vk::Context& ctx, Passes& passes, const DenoiseInput& in, const Prepared& prep) {
+    const std::size_t n = std::size_t(in.width) * in.height;
+    constexpr float kLum[3] = {0.2126f, 0.7152f, 0.0722f};
+    Rgba c(4 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        float v = 0.0f;
+        for (int k = 0; k < 3; ++k) {
+            const float f = prep.factor[3 * i + k];
+            c[4 * i + k] = finiteOr(in.color[3 * i + k], 0.0f) / f;
+            v += kLum[k] * kLum[k] * std::max(finiteOr(in.variance[3 * i + k], 0.0f), 0.0f) / (f * f);
+        }
+        c[4 * i + 3] = v;
+    }
+    const Image feat = upload(ctx, prep.features);
+    Image ping = upload(ctx, c), pong = blank(ctx, n);
+    std::vector<vk::Kernel*> steps;
+    for (int it = 0; it < kAtrousIterations; ++it) {
+        const Image& src = it % 2 == 0 ? ping : pong;
+        const Image& dst = it % 2 == 0 ? pong : ping;
+        steps.push_back(&passes.add(STRATA_DENOISE_SPIRV(denoise_atrous), {&src, &feat}, {&dst}));
+    }
+    const Image& last = kAtrousIterations % 2 == 1 ? pong : ping;
+    const Run run = submit(ctx, last, n, [&](VkCommandBuffer cmd) {
+        for (int it = 0; it < kAtrousIterations; ++it) {
+            gpu::DenoiseParams p = passes.params();
+            p.step = 1u << it;
+            p.sigma = kAtrousSigmaLum;
+            passes.dispatch(cmd, *steps[std::size_t(it)], p);
+        }
+    });
+    return {run.rgba, run.deviceSeconds};
+}
+
+}  // namespace
+
+DenoiseResult denoise(const vk::Context& ctx, const DenoiseInput& in, DenoiseMethod method) {
+    checkInput(in);
+    const auto t0 = Clock::now();
+    const std::size_t n = std::size_t(in.width) * in.height;
+    const Prepared prep = prepare(in);
+    Passes passes(ctx, in);
+    const Denoised d = method == DenoiseMethod::Nfor ? runNfor(ctx, passes, in, prep) : runFast(ctx, passes, in, prep);
+    DenoiseResult r;
+    r.rgb.resize(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float e = std::clamp(finiteOr(in.emitter[i], 1.0f), 0.0f, 1.0f);
+        for (int c = 0; c < 3; ++c) {
+            const float color = in.color[3 * i + c];
+            const float den = d.demodulated[4 * i + c] * prep.factor[3 * i + c];
+            r.rgb[3 * i + c] = e >= 1.0f ? color : e * color + (1.0f - e) * den;
+        }
+    }
+    r.pipelineMs = passes.pipelineMs();
+    r.seconds = std::chrono::duration<double>(Clock::now() - t0).count() - passes.setupSeconds();
+    r.deviceSeconds = d.deviceSeconds >= 0.0 ? d.deviceSeconds : r.seconds;
+    return r;
+}
+
+}  // namespace strata
