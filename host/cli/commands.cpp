@@ -5,6 +5,7 @@
 
 #include "../../shaders/shared/types.h"
 #include "cli/flags.h"
+#include "denoise/command.h"
 #include "image/image_io.h"
 #include "measure/compare.h"
 #include "render/filter.h"
@@ -258,18 +259,25 @@ const CommandSpec<RenderCommand>& renderSpec(const std::string& name) {
     return name == "render" ? render : reference;
 }
 
-// Parses a render-like command's flags and positional scene.
-RenderCommand parseRenderLike(const std::string& name, const std::vector<std::string>& given, Parsed& parsed) {
-    const CommandSpec<RenderCommand>& spec = renderSpec(name);
-    RenderCommand cmd = spec.init;
-    // --denoise takes an optional method: '--denoise fast' (or nfor).
+// --denoise takes an optional method, '--denoise fast' (or nfor): `args`
+// without it, and whether it was fast.
+std::vector<std::string> withoutDenoiseMethod(const std::vector<std::string>& given, bool& fast) {
     std::vector<std::string> args;
     for (std::size_t i = 0; i < given.size(); ++i) {
         args.push_back(given[i]);
         if (given[i] == "--denoise" && i + 1 < given.size() && (given[i + 1] == "fast" || given[i + 1] == "nfor"))
-            cmd.denoiseFast = given[++i] == "fast";
+            fast = given[++i] == "fast";
     }
-    parsed = parseFlags(spec, args, cmd);
+    return args;
+}
+
+// Parses a render-like command's flags and positional scene.
+RenderCommand parseRenderLike(const std::string& name, const std::vector<std::string>& given, Parsed& parsed) {
+    const CommandSpec<RenderCommand>& spec = renderSpec(name);
+    RenderCommand cmd = spec.init;
+    bool fast = false;
+    parsed = parseFlags(spec, withoutDenoiseMethod(given, fast), cmd);
+    cmd.denoiseFast = fast;
     if (parsed.positional.size() > 1)
         badFlag("unexpected argument '" + parsed.positional[1] + "' (one scene per " + name + ")");
     if (parsed.positional.empty()) badFlag(name + " needs a scene file (see 'strata " + name + " --help')");
@@ -354,6 +362,10 @@ const CommandSpec<ConvergeCommand>& convergeSpec() {
                         return std::string(c.allSamplers ? "all" : samplerByKind(c.settings.sampler).name);
                     }),
                 toggle<C>("--quiet", "print no device line or progress", [](C& c) { c.quiet = true; }),
+                toggle<C>("--denoise",
+                          "also denoise each image and measure it (sampler name +nfor, or +fast with "
+                          "'--denoise fast'); its seconds include the denoiser's",
+                          [](C& c) { c.denoise = true; }),
             },
             pathFlags<C>([](auto& c) -> auto& { return c.settings; }),
             envFlags<C>(),
@@ -428,6 +440,33 @@ const CommandSpec<BenchCommand>& benchSpec() {
             traceFlags<C>(settings),
             envFlags<C>(),
             sceneFlags<C>(),
+            deviceFlags<C>(),
+        }));
+    return spec;
+}
+
+const CommandSpec<DenoiseCommand>& denoiseSpec() {
+    using C = DenoiseCommand;
+    static const auto spec = makeSpec<C>(
+        {"denoise", "IN.exr -o OUT.exr [-o OUT.png] [options]",
+         "Denoise an EXR rendered with --aov.",
+         "IN.exr needs R, G, B and the layers of 'render --aov': variance, halfA, halfB,\n"
+         "albedo, normal, depth and emitter (noisy.R/G/B, when present, is the image\n"
+         "denoised). OUT.exr gets the denoised R, G, B, the input in noisy.R/G/B and the\n"
+         "layers. The same input gives the same bits as 'render --denoise'.\n"},
+        concat<C>({
+            {
+                flag<C>("--output", "FILE", "write the denoised image to FILE: .exr or .png; may be given more than once",
+                        [](C& c, const std::string&, const std::string& v) { c.outputs.push_back(v); })
+                    .withAlias("-o"),
+                choice<C, DenoiseMethod>("--method",
+                                         "nfor: first-order regression on the AOVs, the bandwidth chosen per pixel "
+                                         "by the half-buffers' error; fast: the edge-aware a-trous filter",
+                                         {{"nfor", DenoiseMethod::Nfor}, {"fast", DenoiseMethod::Fast}},
+                                         STRATA_FIELD(method)),
+                toggle<C>("--quiet", "print no device line or names of the files written",
+                          [](C& c) { c.quiet = true; }),
+            },
             deviceFlags<C>(),
         }));
     return spec;
@@ -512,8 +551,10 @@ T parseSceneCommand(const CommandSpec<T>& spec, const std::vector<std::string>& 
     return cmd;
 }
 
-ConvergeCommand parseConverge(const std::vector<std::string>& args) {
-    ConvergeCommand cmd = parseSceneCommand(convergeSpec(), args);
+ConvergeCommand parseConverge(const std::vector<std::string>& given) {
+    bool fast = false;
+    ConvergeCommand cmd = parseSceneCommand(convergeSpec(), withoutDenoiseMethod(given, fast));
+    if (fast) cmd.method = DenoiseMethod::Fast;
     if (cmd.reference.empty()) badFlag("converge needs --reference REF.exr");
     if (cmd.report.empty()) badFlag("converge needs -o REPORT.csv or REPORT.json");
     return cmd;
@@ -528,6 +569,16 @@ EdgesCommand parseEdges(const std::vector<std::string>& args) {
 
 BenchCommand parseBench(const std::vector<std::string>& args) { return parseSceneCommand(benchSpec(), args); }
 
+DenoiseCommand parseDenoise(const std::vector<std::string>& args) {
+    DenoiseCommand cmd = denoiseSpec().init;
+    const Parsed parsed = parseFlags(denoiseSpec(), args, cmd);
+    if (parsed.positional.size() > 1) badFlag("unexpected argument '" + parsed.positional[1] + "' (one image)");
+    if (parsed.positional.empty()) badFlag("denoise needs an EXR rendered with --aov");
+    if (cmd.outputs.empty()) badFlag("denoise needs -o OUT.exr or OUT.png");
+    cmd.input = parsed.positional[0];
+    return cmd;
+}
+
 const std::vector<CommandInfo>& commands() {
     static const std::vector<CommandInfo> list = {
         command(renderSpec("render"), [](const auto& a) { return runRender(parseRender(a)); }),
@@ -540,6 +591,7 @@ const std::vector<CommandInfo>& commands() {
         command(convergeSpec(), [](const auto& a) { return runConverge(parseConverge(a)); }),
         command(edgesSpec(), [](const auto& a) { return runEdges(parseEdges(a)); }),
         command(benchSpec(), [](const auto& a) { return runBench(parseBench(a)); }),
+        command(denoiseSpec(), [](const auto& a) { return runDenoise(parseDenoise(a)); }),
         command(devicesSpec(), listDevices),
     };
     return list;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "measure/bench.h"
+#include "denoise/command.h"
 #include "measure/converge.h"
 #include "measure/edges.h"
 #include "render/command.h"
@@ -42,5 +43,6 @@ CompareArgs parseCompare(const std::vector<std::string>& args);
 ConvergeCommand parseConverge(const std::vector<std::string>& args);
 EdgesCommand parseEdges(const std::vector<std::string>& args);
 BenchCommand parseBench(const std::vector<std::string>& args);
+DenoiseCommand parseDenoise(const std::vector<std::string>& args);
 
 }  // namespace strata::cli

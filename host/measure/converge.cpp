@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "denoise/command.h"
+#include "image/aov.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "measure/plot.h"
@@ -88,56 +90,15 @@ nlohmann::json ConvergeReport::toJson() const {
     return j;
 }
 
-ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
-    if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
-    const RgbImage ref = readReference(cmd.reference);
-    LoadOptions load;
-    load.variant = cmd.variant;
-    load.instancing = cmd.instancing;
-    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
-    const Camera camera = chooseCamera(scene, cmd.view, ref.width, ref.height);
-    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
-    vk::Context ctx({cmd.device, cmd.validation});
+namespace {
 
-    RenderSettings s = cmd.settings;
-    s.width = ref.width;
-    s.height = ref.height;
-    s.spp = cmd.spp.back();
-    s.progress = false;
-    const DeviceScene dev = uploadScene(ctx, gpu, uploadOptions(s));
-    const std::size_t levels = cmd.spp.size();
-    std::vector<std::vector<ErrorMetrics>> metrics(levels);
-    std::vector<std::vector<double>> seconds(levels);
-    // Samplers whose prefixes are valid samplings (independent, Sobol) are
-    // measured at checkpoints of one render per seed; the grid samplers
-    // stratify for a given total spp, so each level is a render of its own.
-    const bool prefixes = samplerByKind(s.sampler).prefixesAreSamplings;
-    for (std::uint32_t k = 0; k < cmd.seeds; ++k) {
-        s.seed = cmd.settings.seed + k;
-        std::size_t level = 0;
-        auto measure = [&](const RenderResult& r) {
-            const std::vector<float> mean = r.film.mean();
-            metrics[level].push_back(compareImages(mean.data(), ref.rgb.data(), mean.size()));
-            seconds[level].push_back(r.deviceSeconds);
-            ++level;
-        };
-        if (prefixes) {
-            render(ctx, dev, camera, s, {}, Checkpoints{cmd.spp, measure});
-        } else {
-            for (std::uint32_t spp : cmd.spp) {
-                RenderSettings one = s;
-                one.spp = spp;
-                measure(render(ctx, dev, camera, one));
-            }
-        }
-        if (!cmd.quiet) std::fprintf(stderr, "strata: converge: seed %u of %u done\n", k + 1, cmd.seeds);
-    }
-
+// The report of one series of measurements: per level, the seeds' metrics and seconds.
+ConvergeReport summarize(const ConvergeCommand& cmd, const std::vector<std::vector<ErrorMetrics>>& metrics,
+                         const std::vector<std::vector<double>>& seconds, const RgbImage& ref) {
     ConvergeReport report;
     report.seeds = cmd.seeds;
-    report.sampler = samplerByKind(s.sampler).name;
     std::vector<double> spp, rel, secs;
-    for (std::size_t i = 0; i < levels; ++i) {
+    for (std::size_t i = 0; i < metrics.size(); ++i) {
         ConvergeLevel l;
         l.spp = cmd.spp[i];
         const double n = static_cast<double>(metrics[i].size());
@@ -156,7 +117,7 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
         rel.push_back(l.relMse);
         secs.push_back(l.seconds);
     }
-    if (levels >= 2) {
+    if (metrics.size() >= 2) {
         report.slopeSpp = stats::fitLogLogSlope(spp, rel);
         report.slopeTime = stats::fitLogLogSlope(secs, rel);
         const stats::BiasFit fit = stats::fitBiasFloor(spp, rel);
@@ -170,6 +131,71 @@ ConvergeReport measureConvergence(const ConvergeCommand& cmd) {
         report.referenceFloor = sum / static_cast<double>(ref.rgb.size());
     }
     return report;
+}
+
+}  // namespace
+
+std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd) {
+    if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
+    const RgbImage ref = readReference(cmd.reference);
+    LoadOptions load;
+    load.variant = cmd.variant;
+    load.instancing = cmd.instancing;
+    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
+    const Camera camera = chooseCamera(scene, cmd.view, ref.width, ref.height);
+    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
+    vk::Context ctx({cmd.device, cmd.validation});
+
+    RenderSettings s = cmd.settings;
+    s.width = ref.width;
+    s.height = ref.height;
+    s.spp = cmd.spp.back();
+    s.progress = false;
+    s.aov = cmd.denoise;
+    const DeviceScene dev = uploadScene(ctx, gpu, uploadOptions(s));
+    const std::size_t levels = cmd.spp.size();
+    // [0]: as rendered, [1]: denoised (cmd.denoise).
+    std::vector<std::vector<ErrorMetrics>> metrics[2] = {std::vector<std::vector<ErrorMetrics>>(levels),
+                                                         std::vector<std::vector<ErrorMetrics>>(levels)};
+    std::vector<std::vector<double>> seconds[2] = {std::vector<std::vector<double>>(levels),
+                                                   std::vector<std::vector<double>>(levels)};
+    // Samplers whose prefixes are valid samplings (independent, Sobol) are
+    // measured at checkpoints of one render per seed; the grid samplers
+    // stratify for a given total spp, so each level is a render of its own.
+    const bool prefixes = samplerByKind(s.sampler).prefixesAreSamplings;
+    for (std::uint32_t k = 0; k < cmd.seeds; ++k) {
+        s.seed = cmd.settings.seed + k;
+        std::size_t level = 0;
+        auto measure = [&](const RenderResult& r) {
+            const std::vector<float> mean = r.film.mean();
+            metrics[0][level].push_back(compareImages(mean.data(), ref.rgb.data(), mean.size()));
+            seconds[0][level].push_back(r.deviceSeconds);
+            if (cmd.denoise) {
+                const DenoiseResult d = denoise(ctx, denoiseInput(aovImages(r.film)), cmd.method);
+                metrics[1][level].push_back(compareImages(d.rgb.data(), ref.rgb.data(), d.rgb.size()));
+                seconds[1][level].push_back(r.deviceSeconds + d.deviceSeconds);
+            }
+            ++level;
+        };
+        if (prefixes) {
+            render(ctx, dev, camera, s, {}, Checkpoints{cmd.spp, measure});
+        } else {
+            for (std::uint32_t spp : cmd.spp) {
+                RenderSettings one = s;
+                one.spp = spp;
+                measure(render(ctx, dev, camera, one));
+            }
+        }
+        if (!cmd.quiet) std::fprintf(stderr, "strata: converge: seed %u of %u done\n", k + 1, cmd.seeds);
+    }
+
+    std::vector<ConvergeReport> reports{summarize(cmd, metrics[0], seconds[0], ref)};
+    reports[0].sampler = samplerByKind(s.sampler).name;
+    if (cmd.denoise) {
+        reports.push_back(summarize(cmd, metrics[1], seconds[1], ref));
+        reports[1].sampler = reports[0].sampler + "+" + denoiseMethodName(cmd.method);
+    }
+    return reports;
 }
 
 int runConverge(const ConvergeCommand& cmd) {
@@ -200,7 +226,7 @@ int runConverge(const ConvergeCommand& cmd) {
     for (std::uint32_t kind : kinds) {
         ConvergeCommand one = cmd;
         one.settings.sampler = kind;
-        runs.push_back(measureConvergence(one));
+        for (ConvergeReport& r : measureConvergence(one)) runs.push_back(std::move(r));
     }
     if (!cmd.plot.empty()) plot(cmd.plot, runs, std::filesystem::path(cmd.scene).stem().string());
     nlohmann::json j;

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "denoise/denoise.h"
 #include "render/renderer.h"
 #include "scene/environment.h"
 #include "scene/view.h"
@@ -33,6 +34,8 @@ struct ConvergeCommand {
     int device = -1;
     bool validation = false;
     bool quiet = false;
+    bool denoise = false;               // --denoise [fast]: each image denoised as well, measured apart
+    DenoiseMethod method = DenoiseMethod::Nfor;
 };
 
 struct ConvergeLevel {
@@ -53,12 +56,14 @@ struct ConvergeReport {
     double referenceFloor = 0.0;        // mean refVar / (ref^2 + eps): the floor the reference's own noise adds
     std::uint32_t seeds = 0;
     double eps = 1e-2;
-    std::string sampler;
+    std::string sampler;                // the sampler's name, "+nfor" or "+fast" when denoised
     nlohmann::json toJson() const;
 };
 
-// Renders and measures; `onLevel` output aside, it writes nothing.
-ConvergeReport measureConvergence(const ConvergeCommand& cmd);
+// Renders and measures; it writes nothing. One report, or with cmd.denoise
+// two: the images as rendered, then denoised (the seconds then include the
+// denoiser's device time).
+std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd);
 
 int runConverge(const ConvergeCommand& cmd);
 

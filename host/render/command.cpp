@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "denoise/command.h"
 #include "image/aov.h"
 #include "image/image_io.h"
 #include "bvh/scene_bvh.h"
@@ -72,7 +73,18 @@ int runRender(const RenderCommand& cmd) {
     // outputs or none.
     if (!cmd.statsJson.empty()) writeTextAtomically(cmd.statsJson, stats.dump(2) + "\n");
     try {
-        if (cmd.settings.aov) {
+        if (cmd.denoise) {
+            const AovImages aov = aovImages(result.film);
+            const DenoiseMethod method = cmd.denoiseFast ? DenoiseMethod::Fast : DenoiseMethod::Nfor;
+            const DenoiseResult d = denoise(ctx, denoiseInput(aov), method);
+            if (ctx.validation && vk::validationMessageCount() > 0)
+                throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
+                                      " Vulkan validation message(s) while denoising");
+            writeDenoised(cmd.outputs, aov, d.rgb);
+            if (!cmd.quiet)
+                std::fprintf(stderr, "strata: denoised (%s) in %.3f s (device %.3f s)\n", denoiseMethodName(method),
+                             d.seconds, d.deviceSeconds);
+        } else if (cmd.settings.aov) {
             const AovImages aov = aovImages(result.film);
             writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, aov.color, aovChannels(aov));
         } else if (cmd.variance) {
