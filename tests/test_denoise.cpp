@@ -118,13 +118,17 @@ TEST_CASE("denoise: both methods reduce the error of a noisy synthetic image, an
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("denoise: an emitter pixel keeps its colour, and the output is the same bits each run") {
+TEST_CASE("denoise: emitter pixels keep their colour, and the output is the same bits each run") {
     Synthetic s = synthetic();
-    const std::size_t p = std::size_t(20) * kSize + 10;
+    // p saw only an emitter; its neighbour p2 a quarter of the time.
+    const std::size_t p = std::size_t(20) * kSize + 10, p2 = p - 1;
     s.in.emitter[p] = 1.0f;
+    s.in.emitter[p2] = 0.25f;
     for (int c = 0; c < 3; ++c) {
         s.in.color[3 * p + c] = s.in.halfA[3 * p + c] = s.in.halfB[3 * p + c] = 40.0f + float(c);
         s.in.variance[3 * p + c] = 0.0f;
+        s.in.color[3 * p2 + c] = s.in.halfA[3 * p2 + c] = s.in.halfB[3 * p2 + c] = 10.0f + float(c);
+        s.in.variance[3 * p2 + c] = 20.0f;
     }
     for (DenoiseMethod method : {DenoiseMethod::Nfor, DenoiseMethod::Fast}) {
         CAPTURE(int(method));
@@ -132,8 +136,11 @@ TEST_CASE("denoise: an emitter pixel keeps its colour, and the output is the sam
         const DenoiseResult b = denoise(test::context(), s.in, method);
         REQUIRE(a.rgb.size() == b.rgb.size());
         CHECK(std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)) == 0);
-        for (int c = 0; c < 3; ++c) CHECK(a.rgb[3 * p + c] == s.in.color[3 * p + c]);
-        // Its neighbours do not take in its light.
+        for (int c = 0; c < 3; ++c) {
+            CHECK(a.rgb[3 * p + c] == s.in.color[3 * p + c]);
+            CHECK(a.rgb[3 * p2 + c] == s.in.color[3 * p2 + c]);
+        }
+        // The pixels beside them do not take in their light.
         const std::size_t q = p + 1;
         CHECK(std::abs(a.rgb[3 * q] - s.clean[3 * q]) < 0.2f);
     }

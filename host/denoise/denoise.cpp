@@ -69,23 +69,23 @@ void checkInput(const DenoiseInput& in) {
 
 float finiteOr(float v, float fallback) { return std::isfinite(v) ? v : fallback; }
 
-// The mean of each pixel's 3x3 neighbourhood (clamped at the borders), all four channels.
-Rgba box3(const Rgba& img, int w, int h) {
-    Rgba rows(img.size()), out(img.size());
+// The weighted mean of each pixel's 3x3 neighbourhood (inside the image),
+// all four channels; a pixel whose neighbourhood weighs nothing keeps its value.
+Rgba box3(const Rgba& img, const std::vector<float>& weight, int w, int h) {
+    Rgba out(img.size());
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 4; ++c) {
-                float s = 0.0f;
-                for (int d = -1; d <= 1; ++d) s += img[(std::size_t(y) * w + std::clamp(x + d, 0, w - 1)) * 4 + c];
-                rows[(std::size_t(y) * w + x) * 4 + c] = s;
-            }
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 4; ++c) {
-                float s = 0.0f;
-                for (int d = -1; d <= 1; ++d) s += rows[(std::size_t(std::clamp(y + d, 0, h - 1)) * w + x) * 4 + c];
-                out[(std::size_t(y) * w + x) * 4 + c] = s * (1.0f / 9.0f);
-            }
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * w + x;
+            float sum[4] = {0, 0, 0, 0}, sumW = 0.0f;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    if (x + dx < 0 || y + dy < 0 || x + dx >= w || y + dy >= h) continue;
+                    const std::size_t q = std::size_t(y + dy) * w + (x + dx);
+                    for (int c = 0; c < 4; ++c) sum[c] += weight[q] * img[4 * q + c];
+                    sumW += weight[q];
+                }
+            for (int c = 0; c < 4; ++c) out[4 * i + c] = sumW > 0.0f ? sum[c] / sumW : img[4 * i + c];
+        }
     return out;
 }
 
@@ -93,6 +93,9 @@ Rgba box3(const Rgba& img, int w, int h) {
 // layers the kernels read.
 struct Prepared {
     std::vector<float> factor;  // 3/pixel: the albedo, or 1 where it is dark
+    // 1/pixel: 1 where the pixel may be a neighbour in a filter: no sample saw
+    // an emitter or the background directly, every colour value is finite.
+    std::vector<float> neighbour;
     Rgba features;              // normal xyz, depth / the largest depth
     Rgba featureVar;            // their variances (empty: no prefilter)
 };
@@ -104,6 +107,14 @@ Prepared prepare(const DenoiseInput& in) {
     for (std::size_t i = 0; i < 3 * n; ++i) {
         const float a = finiteOr(in.albedo[i], 0.0f);
         p.factor[i] = a >= kDarkAlbedo ? a : 1.0f;
+    }
+    p.neighbour.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        bool ok = in.emitter[i] == 0.0f;
+        for (int c = 0; c < 3; ++c)
+            ok = ok && std::isfinite(in.color[3 * i + c]) && std::isfinite(in.halfA[3 * i + c]) &&
+                 std::isfinite(in.halfB[3 * i + c]) && std::isfinite(in.variance[3 * i + c]);
+        p.neighbour[i] = ok ? 1.0f : 0.0f;
     }
     float maxDepth = 0.0f;
     for (float d : in.depth) maxDepth = std::max(maxDepth, finiteOr(d, 0.0f));
@@ -242,22 +253,19 @@ Denoised runNfor(const vk::Context& ctx, Passes& passes, const DenoiseInput& in,
     const std::size_t n = std::size_t(in.width) * in.height;
     Rgba a(4 * n), b(4 * n), varHalf(4 * n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
-        const float e = std::clamp(finiteOr(in.emitter[i], 1.0f), 0.0f, 1.0f);
-        bool finite = true;
         float v = 0.0f;
         for (int c = 0; c < 3; ++c) {
             const float f = prep.factor[3 * i + c];
-            const float ha = in.halfA[3 * i + c], hb = in.halfB[3 * i + c], vc = in.variance[3 * i + c];
-            finite = finite && std::isfinite(ha) && std::isfinite(hb) && std::isfinite(vc);
-            a[4 * i + c] = finiteOr(ha, 0.0f) / f;
-            b[4 * i + c] = finiteOr(hb, 0.0f) / f;
-            v += 2.0f * std::max(finiteOr(vc, 0.0f), 0.0f) / (f * f);
+            a[4 * i + c] = finiteOr(in.halfA[3 * i + c], 0.0f) / f;
+            b[4 * i + c] = finiteOr(in.halfB[3 * i + c], 0.0f) / f;
+            v += 2.0f * std::max(finiteOr(in.variance[3 * i + c], 0.0f), 0.0f) / (f * f);
         }
         varHalf[4 * i] = v * (1.0f / 3.0f);
-        a[4 * i + 3] = finite ? 1.0f - e : 0.0f;
+        a[4 * i + 3] = prep.neighbour[i];
     }
-    const Rgba varSmooth = box3(varHalf, in.width, in.height);
-    Rgba guideA = box3(a, in.width, in.height), guideB = box3(b, in.width, in.height);
+    // The guides and the variance: 3x3 means over the pixels that may be neighbours.
+    const Rgba varSmooth = box3(varHalf, prep.neighbour, in.width, in.height);
+    Rgba guideA = box3(a, prep.neighbour, in.width, in.height), guideB = box3(b, prep.neighbour, in.width, in.height);
     for (std::size_t i = 0; i < n; ++i) {
         guideA[4 * i + 3] = guideB[4 * i + 3] = varSmooth[4 * i] * (1.0f / 9.0f);
         b[4 * i + 3] = varSmooth[4 * i];
@@ -310,13 +318,15 @@ Denoised runFast(const vk::Context& ctx, Passes& passes, const DenoiseInput& in,
         }
         c[4 * i + 3] = v;
     }
-    const Image feat = upload(ctx, prep.features);
+    Rgba aux(4 * n, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) aux[4 * i] = prep.neighbour[i];
+    const Image feat = upload(ctx, prep.features), neighbour = upload(ctx, aux);
     Image ping = upload(ctx, c), pong = blank(ctx, n);
     std::vector<vk::Kernel*> steps;
     for (int it = 0; it < kAtrousIterations; ++it) {
         const Image& src = it % 2 == 0 ? ping : pong;
         const Image& dst = it % 2 == 0 ? pong : ping;
-        steps.push_back(&passes.add(STRATA_DENOISE_SPIRV(denoise_atrous), {&src, &feat}, {&dst}));
+        steps.push_back(&passes.add(STRATA_DENOISE_SPIRV(denoise_atrous), {&src, &feat, &neighbour}, {&dst}));
     }
     const Image& last = kAtrousIterations % 2 == 1 ? pong : ping;
     const Run run = submit(ctx, last, n, [&](VkCommandBuffer cmd) {
@@ -342,11 +352,16 @@ DenoiseResult denoise(const vk::Context& ctx, const DenoiseInput& in, DenoiseMet
     DenoiseResult r;
     r.rgb.resize(3 * n);
     for (std::size_t i = 0; i < n; ++i) {
-        const float e = std::clamp(finiteOr(in.emitter[i], 1.0f), 0.0f, 1.0f);
+        // A pixel where some sample saw an emitter or the background is not
+        // filtered: its denoised value is its colour, so out = e * color +
+        // (1 - e) * denoised = color. (Its colour is e Le + (1 - e) S with Le
+        // that radiance; the filter estimates S alone, from the neighbours,
+        // and e * color + (1 - e) * S would lose (1 - e) e Le.)
+        const float e = finiteOr(in.emitter[i], 1.0f);
         for (int c = 0; c < 3; ++c) {
             const float color = in.color[3 * i + c];
             const float den = d.demodulated[4 * i + c] * prep.factor[3 * i + c];
-            r.rgb[3 * i + c] = e >= 1.0f ? color : e * color + (1.0f - e) * den;
+            r.rgb[3 * i + c] = e > 0.0f ? color : den;
         }
     }
     r.pipelineMs = passes.pipelineMs();

@@ -11,6 +11,7 @@
 
 layout(set = 0, binding = DN_IN0) uniform samplerBuffer colorIn;  // rgb, a: variance of the luminance
 layout(set = 0, binding = DN_IN1) uniform samplerBuffer features; // normal xyz, depth / the image's largest depth
+layout(set = 0, binding = DN_IN2) uniform samplerBuffer neighbour; // r: 1 where the pixel may be a neighbour, else 0
 layout(std430, set = 0, binding = DN_OUT0) writeonly buffer Out { vec4 colorOut[]; };
 
 void main() {
@@ -47,7 +48,8 @@ void main() {
             const float wl = exp(-abs(lp - dnLuminance(cq.rgb)) * lumScale);
             const float h = kernel[abs(i)] * kernel[abs(j)];
             const bool centre = i == 0 && j == 0;
-            const float w = inImage ? (centre ? h : h * wn * wz * wl) : 0.0;
+            const float valid = texelFetch(neighbour, iq).r;
+            const float w = inImage ? (centre ? h : h * wn * wz * wl * valid) : 0.0;
             sum += w * cq.rgb;
             sumVar += w * w * cq.a;
             sumW += w;
