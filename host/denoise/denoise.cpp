@@ -31,7 +31,7 @@ constexpr float kDarkAlbedo = 0.01f;
 constexpr int kNforRadius = 7;
 constexpr float kNforK1 = 0.5f, kNforK2 = 1.0f;
 constexpr float kNforRidge = 1e-3f;
-constexpr int kSelectRadius = 3;
+constexpr int kSelectRadius = 1;
 // The feature prefilter's window radius and 1 / k^2.
 constexpr int kFeatureRadius = 3;
 constexpr float kFeatureInvK2 = 1.0f;

@@ -8,7 +8,8 @@
 // other half: half A is filtered with weights from half B's guide and
 // half B with half A's, at two bandwidths: four candidates out.
 // The guides are the halves box-filtered over 3x3 (host/denoise), their
-// alpha the variance of that box mean.
+// alpha the variance of that box mean; a neighbour's distance is the mean
+// of the guides' distance and the two pixels' own.
 #extension GL_GOOGLE_include_directive : require
 #include "denoise_common.glsl"
 
@@ -91,6 +92,7 @@ void main() {
     const int ip = dnTexel(p);
     const vec4 gAp = texelFetch(guideA, ip), gBp = texelFetch(guideB, ip);
     const vec4 fp = texelFetch(features, ip);
+    const vec4 cAp = texelFetch(colorA, ip), cBp = texelFetch(colorB, ip);
     const int radius = int(P.radius);
     const float invR = 1.0 / float(max(radius, 1));
     const float depthScale = 1.0 / max(fp.w, 1e-4);
@@ -103,8 +105,11 @@ void main() {
             const int iq = dnTexel(p + ivec2(dx, dy), inImage);
             const vec4 cAq = texelFetch(colorA, iq), cBq = texelFetch(colorB, iq);
             const vec4 fq = texelFetch(features, iq);
-            const float dA = nlmDistance(gAp, texelFetch(guideA, iq));
-            const float dB = nlmDistance(gBp, texelFetch(guideB, iq));
+            const vec4 gAq = texelFetch(guideA, iq), gBq = texelFetch(guideB, iq);
+            // The guides' distance and the pixels' own (each half's variance
+            // is 9 times its guide's): the mean of the two.
+            const float dA = 0.5 * (nlmDistance(gAp, gAq) + nlmDistance(vec4(cAp.rgb, 9.0 * gAp.a), vec4(cAq.rgb, 9.0 * gAq.a)));
+            const float dB = 0.5 * (nlmDistance(gBp, gBq) + nlmDistance(vec4(cBp.rgb, 9.0 * gBp.a), vec4(cBq.rgb, 9.0 * gBq.a)));
             const float valid = inImage ? cAq.a : 0.0;
             const vec4 xa = vec4(1.0, fq.xyz - fp.xyz);
             const vec3 xb = vec3((fq.w - fp.w) * depthScale, float(dx) * invR, float(dy) * invR);
