@@ -34,7 +34,9 @@ uint gShadowRays = 0u;
 
 vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     PathVertex v = pathStart();
-    if (kAov != 0u) aovStart();
+#ifdef STRATA_AOV
+    aovStart();
+#endif
     for (uint depth = 0u;; ++depth) {
         TraceHit hit;
         if (kCountRays != 0u) ++gClosestRays;
@@ -66,7 +68,9 @@ void shadePixel(uvec2 local) {
     cameraSample(pixel, params.sampleIndex, smp, dir);
     vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
     accumulateSample(pixel.y * frame.image.x + pixel.x, L);
-    if (kAov != 0u) accumulateAov(pixel.y * frame.image.x + pixel.x, params.sampleIndex, L);
+#ifdef STRATA_AOV
+    accumulateAov(pixel.y * frame.image.x + pixel.x, params.sampleIndex, L);
+#endif
 }
 
 void main() {

@@ -20,8 +20,9 @@ namespace strata {
 // The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp built for the
 // scene's traversal: BVH2, four-wide with registers, or four-wide with an
 // array stack; the path tracer with the material layers (STRATA_LAYERS) when
-// the scene has one (gpu::kFeaturesLayers).
-std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace);
+// the scene has one (gpu::kFeaturesLayers); with `aov` the path tracer that
+// also sums the AOVs (STRATA_AOV, `--aov`).
+std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov = false);
 
 // The SPIR-V of wavefront.comp, with the material layers when the scene has one.
 std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene);

@@ -18,11 +18,7 @@ public:
         std::vector<std::uint32_t> spec = pathSpec(dev, s);
         spec[SPEC_COUNT_RAYS] = t.countRays ? 1u : 0u;
         spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, t.workQueue) ? 1u : 0u;
-        if (s.aov) {  // without it the constants are those of a render without AOVs
-            spec.resize(SPEC_AOV + 1, 0u);
-            spec[SPEC_AOV] = 1u;
-        }
-        kernel_ = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true), pathBindings(),
+        kernel_ = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true, s.aov), pathBindings(),
                                                sizeof(DispatchParams), spec, t.reusePipeline);
         bindPathInputs(*kernel_, dev, film);
     }

@@ -40,7 +40,7 @@ struct RenderSettings {
     std::uint32_t mis = gpu::kMisPower; // gpu::kMis*: light and BSDF sampling by the power
                                         // heuristic, or one technique alone (for comparisons)
     IntegratorKind integrator = IntegratorKind::Megakernel;
-    bool aov = false;                   // --aov: the AOV sums as well (SPEC_AOV; Film::aovSum);
+    bool aov = false;                   // --aov: the AOV sums as well (pathtrace*_aov; Film::aovSum);
                                         // the megakernel only
 };
 

@@ -13,7 +13,6 @@
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
-layout(constant_id = SPEC_AOV) const uint kAov = 0u;  // 1: pathtrace.comp adds the AOV sums
 
 // The sampler of sample `sampleIndex` of `pixel`.
 Sampler pixelSampler(uvec2 pixel, uint sampleIndex) {
@@ -49,41 +48,47 @@ void accumulateSample(uint pixelIndex, vec3 L) {
     }
 }
 
-// The AOVs of one path (SPEC_AOV), recorded at its first non-delta vertex:
+#ifdef STRATA_AOV
+// The AOVs of one path (STRATA_AOV: the pathtrace*_aov variants), recorded at its first non-delta vertex:
 // the camera ray and the mirror and smooth-glass vertices it meets first are
 // followed, their sampled weights multiplied into `tint`.
 struct AovPath {
     vec3 tint;
     bool done;       // the first non-delta vertex, an emitter or an escape was recorded
-    vec3 albedo;     // tint times the material's albedo, in [0,1]
+    vec3 albedo;     // tint times the material's albedo (clamped to [0,1] when summed)
     float depth;     // the camera ray's hit distance; 0 when it escaped
-    vec3 normal;     // unit shading normal in camera space (x right, y up, z towards the camera); 0 on escape
+    vec3 normal;     // unit shading normal, world space (camera space when summed: x right, y up,
+                     // z towards the camera); 0 on escape
     float emitter;   // 1: an emitter, an unlit surface or the background was seen there
 };
 AovPath gAov;
 
 void aovStart() { gAov = AovPath(vec3(1.0), false, vec3(0.0), 0.0, vec3(0.0), 0.0); }
 
-// Records the first non-delta vertex: its albedo, its world-space shading normal, whether it emits.
-void aovRecord(vec3 albedo, vec3 n, float emitter) {
-    vec3 right = normalize(frame.camRight.xyz), up = normalize(frame.camUp.xyz);
-    gAov.albedo = clamp(gAov.tint * albedo, 0.0, 1.0);
-    gAov.normal = vec3(dot(n, right), dot(n, up), -dot(n, frame.camForward.xyz));
-    gAov.emitter = emitter;
-    gAov.done = true;
-}
+// Records the first non-delta vertex: its albedo, its world-space shading
+// normal (made camera-space by accumulateAov), whether it emits.
+#define AOV_RECORD(albedo_, n_, emitter_) \
+    gAov.albedo = gAov.tint * (albedo_);  \
+    gAov.normal = (n_);                   \
+    gAov.emitter = (emitter_);            \
+    gAov.done = true
 
 // The AOV sums of sample `sampleIndex` (radiance L) of pixel `pixelIndex`,
 // after the image's own sums (kAovVec4PerPixel, shared/types.h): the
 // samples accumulateSample keeps, the even-indexed ones also in half A.
 void accumulateAov(uint pixelIndex, uint sampleIndex, vec3 L) {
     if (any(isnan(L)) || any(isinf(L))) return;
+    vec3 albedo = clamp(gAov.albedo, 0.0, 1.0);
+    vec3 right = normalize(frame.camRight.xyz), up = normalize(frame.camUp.xyz);
+    vec3 n = vec3(dot(gAov.normal, right), dot(gAov.normal, up), -dot(gAov.normal, frame.camForward.xyz));
     uint base = frame.image.x * frame.image.y * kAccumVec4PerPixel + pixelIndex * kAovVec4PerPixel;
     if ((sampleIndex & 1u) == 0u) accum[base] += vec4(L, 1.0);
-    accum[base + 1u] += vec4(gAov.albedo, gAov.depth);
-    accum[base + 2u] += vec4(gAov.normal, gAov.emitter);
-    accum[base + 3u] += vec4(gAov.albedo * gAov.albedo, gAov.depth * gAov.depth);
-    accum[base + 4u] += vec4(gAov.normal * gAov.normal, 0.0);
+    accum[base + 1u] += vec4(albedo, gAov.depth);
+    accum[base + 2u] += vec4(n, gAov.emitter);
+    accum[base + 3u] += vec4(albedo * albedo, gAov.depth * gAov.depth);
+    accum[base + 4u] += vec4(n * n, 0.0);
 }
+
+#endif  // STRATA_AOV
 
 #endif

@@ -63,7 +63,9 @@ void pathEscaped(inout PathVertex v, vec3 dir) {
         float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, v.prevDelta ? 0.0 : lightPdfEnvironment(dir));
         v.L += v.beta * w * environmentRadiance(dir);
     }
-    if (kAov != 0u && !gAov.done) aovRecord(vec3(1.0), vec3(0.0), 1.0);
+#ifdef STRATA_AOV
+    if (!gAov.done) { AOV_RECORD(vec3(1.0), vec3(0.0), 1.0); }
+#endif
 }
 
 // The ray along `dir` hit `hit` at bounce `depth` (maxDepth counts
@@ -93,7 +95,9 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     bool front = dot(dir, ng) < 0.0;
     TriShading sh = shadeShading(hit.triangle);
     Material mat = sceneMaterial(sh.material);
-    if (kAov != 0u && depth == 0u) gAov.depth = hit.t;
+#ifdef STRATA_AOV
+    if (depth == 0u) gAov.depth = hit.t;
+#endif
 
     // KHR_materials_volume: a ray that reaches a back face of a volume has
     // travelled hit.t inside it (volumes closed and not nested): Beer-Lambert.
@@ -108,14 +112,17 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             vec2 bary = vec2(hit.u, hit.v);
             vec3 le = emissionAt(sh.material, hit.triangle, bary);
             v.L += v.beta * w * coatedEmission(sh.material, hit.triangle, bary, le, -dir);
-            if (kAov != 0u && !gAov.done) aovRecord(vec3(1.0), front ? ng : -ng, 1.0);
+#ifdef STRATA_AOV
+            if (!gAov.done) { AOV_RECORD(vec3(1.0), front ? ng : -ng, 1.0); }
+#endif
         }
     }
     // KHR_materials_unlit: the surface's colour, seen from either side, and no scattering.
     if (hasFeature(kFeatureUnlit) && (mat.flags & kMaterialUnlit) != 0u) {
         v.L += v.beta * unlitColor(mat, hit.triangle, vec2(hit.u, hit.v));
-        if (kAov != 0u && !gAov.done)
-            aovRecord(unlitColor(mat, hit.triangle, vec2(hit.u, hit.v)), front ? ng : -ng, 1.0);
+#ifdef STRATA_AOV
+        if (!gAov.done) { AOV_RECORD(unlitColor(mat, hit.triangle, vec2(hit.u, hit.v)), front ? ng : -ng, 1.0); }
+#endif
         return o;
     }
     if (depth < maxDepth) {
@@ -159,11 +166,13 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         }
         // The AOVs' vertex: the first whose lobes are not all deltas (a
         // smooth metal or a smooth fully transmitting dielectric is followed).
+#ifdef STRATA_AOV
         bool aovFollow = false;
-        if (kAov != 0u && !gAov.done) {
+        if (!gAov.done) {
             aovFollow = !kLambertOnly && bsdf.delta && (sp.metallic >= 1.0 || sp.transmission >= 1.0);
-            if (!aovFollow) aovRecord(sp.baseColor, ns, 0.0);
+            if (!aovFollow) { AOV_RECORD(sp.baseColor, ns, 0.0); }
         }
+#endif
         vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2;
         samplerSetDim(smp, 2u + depth * kDimsPerVertex);
 
@@ -206,7 +215,9 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         float geoSide = dot(n, wi);
         if (bs.valid && !(geoSide == 0.0 || (geoSide > 0.0) != (bs.wi.z > 0.0))) {
             v.beta *= bs.weight;
+#ifdef STRATA_AOV
             if (aovFollow) gAov.tint *= bs.weight;
+#endif
             v.prevBsdfPdf = bs.pdf;
             v.prevDelta = bs.delta;
 

@@ -299,7 +299,7 @@ struct Emitter {
 // of finite samples (in .w), then the sum of squared rgb (.w unused).
 STRATA_CONST(uint, kAccumVec4PerPixel, 2u);
 
-// With SPEC_AOV (--aov) the accumulation buffer goes on, after the two vec4
+// With AOVs (--aov, the pathtrace*_aov variants) the accumulation buffer goes on, after the two vec4
 // of every pixel, with kAovVec4PerPixel vec4 per pixel, summed over the same
 // samples (lib/film.glsl, accumulateAov): the even-indexed samples' rgb and
 // their count; albedo rgb and depth; the camera-space normal and the
