@@ -305,37 +305,60 @@ Denoised runNfor(const vk::Context& ctx, Passes& passes, const DenoiseInput& in,
     return {run.rgba, run.deviceSeconds};
 }
 
+// Fast: the a-trous filter run on each half apart, and NFOR's selection
+// (denoise_select) between the filtered halves' average and the unfiltered
+// mean by the error the cross-half differences estimate, so that where the
+// filter's bias exceeds the noise it removes (fine gradients at high spp)
+// the pixel keeps its own colour.
 Denoised runFast(const vk::Context& ctx, Passes& passes, const DenoiseInput& in, const Prepared& prep) {
     const std::size_t n = std::size_t(in.width) * in.height;
     constexpr float kLum[3] = {0.2126f, 0.7152f, 0.0722f};
-    Rgba c(4 * n);
+    // Each half demodulated, .a the variance of its luminance (twice the mean's).
+    Rgba half[2] = {Rgba(4 * n), Rgba(4 * n)};
+    Rgba a(4 * n), b(4 * n), varHalf(4 * n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
-        float v = 0.0f;
+        float lum = 0.0f, v = 0.0f;
         for (int k = 0; k < 3; ++k) {
             const float f = prep.factor[3 * i + k];
-            c[4 * i + k] = finiteOr(in.color[3 * i + k], 0.0f) / f;
-            v += kLum[k] * kLum[k] * std::max(finiteOr(in.variance[3 * i + k], 0.0f), 0.0f) / (f * f);
+            const float var = 2.0f * std::max(finiteOr(in.variance[3 * i + k], 0.0f), 0.0f) / (f * f);
+            half[0][4 * i + k] = a[4 * i + k] = finiteOr(in.halfA[3 * i + k], 0.0f) / f;
+            half[1][4 * i + k] = b[4 * i + k] = finiteOr(in.halfB[3 * i + k], 0.0f) / f;
+            lum += kLum[k] * kLum[k] * var;
+            v += var;
         }
-        c[4 * i + 3] = v;
+        half[0][4 * i + 3] = half[1][4 * i + 3] = lum;
+        varHalf[4 * i] = v * (1.0f / 3.0f);
+        a[4 * i + 3] = prep.neighbour[i];
     }
+    const Rgba varSmooth = box3(varHalf, prep.neighbour, in.width, in.height);
+    for (std::size_t i = 0; i < n; ++i) b[4 * i + 3] = varSmooth[4 * i];
     Rgba aux(4 * n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) aux[4 * i] = prep.neighbour[i];
     const Image feat = upload(ctx, prep.features), neighbour = upload(ctx, aux);
-    Image ping = upload(ctx, c), pong = blank(ctx, n);
-    std::vector<vk::Kernel*> steps;
-    for (int it = 0; it < kAtrousIterations; ++it) {
-        const Image& src = it % 2 == 0 ? ping : pong;
-        const Image& dst = it % 2 == 0 ? pong : ping;
-        steps.push_back(&passes.add(STRATA_DENOISE_SPIRV(denoise_atrous), {&src, &feat, &neighbour}, {&dst}));
-    }
-    const Image& last = kAtrousIterations % 2 == 1 ? pong : ping;
-    const Run run = submit(ctx, last, n, [&](VkCommandBuffer cmd) {
+    const Image cA = upload(ctx, a), cB = upload(ctx, b);
+    Image ping[2] = {upload(ctx, half[0]), upload(ctx, half[1])}, pong[2] = {blank(ctx, n), blank(ctx, n)};
+    std::vector<vk::Kernel*> steps[2];
+    for (int h = 0; h < 2; ++h)
         for (int it = 0; it < kAtrousIterations; ++it) {
-            gpu::DenoiseParams p = passes.params();
-            p.step = 1u << it;
-            p.sigma = kAtrousSigmaLum;
-            passes.dispatch(cmd, *steps[std::size_t(it)], p);
+            const Image& src = it % 2 == 0 ? ping[h] : pong[h];
+            const Image& dst = it % 2 == 0 ? pong[h] : ping[h];
+            steps[h].push_back(&passes.add(STRATA_DENOISE_SPIRV(denoise_atrous), {&src, &feat, &neighbour}, {&dst}));
         }
+    const Image& fA = kAtrousIterations % 2 == 1 ? pong[0] : ping[0];
+    const Image& fB = kAtrousIterations % 2 == 1 ? pong[1] : ping[1];
+    const Image out = blank(ctx, n);
+    vk::Kernel& select = passes.add(STRATA_DENOISE_SPIRV(denoise_select), {&fA, &fB, &fA, &fB, &cA, &cB}, {&out});
+    const Run run = submit(ctx, out, n, [&](VkCommandBuffer cmd) {
+        for (int h = 0; h < 2; ++h)
+            for (int it = 0; it < kAtrousIterations; ++it) {
+                gpu::DenoiseParams p = passes.params();
+                p.step = 1u << it;
+                p.sigma = kAtrousSigmaLum;
+                passes.dispatch(cmd, *steps[h][std::size_t(it)], p);
+            }
+        gpu::DenoiseParams p = passes.params();
+        p.radius = kSelectRadius;
+        passes.dispatch(cmd, select, p);
     });
     return {run.rgba, run.deviceSeconds};
 }
