@@ -36,6 +36,9 @@ Errors denoisedErrors(const std::string& scene, const std::string& reference, st
     const DenoiseResult nfor = denoise(context(), denoiseInput(aov), DenoiseMethod::Nfor);
     const DenoiseResult fast = denoise(context(), denoiseInput(aov), DenoiseMethod::Fast);
     const std::size_t n = aov.color.size();
+    MESSAGE(scene << " relMSE raw " << compareImages(aov.color.data(), ref.rgb.data(), n).relMse << ", nfor "
+                  << compareImages(nfor.rgb.data(), ref.rgb.data(), n).relMse << ", fast "
+                  << compareImages(fast.rgb.data(), ref.rgb.data(), n).relMse);
     return {compareImages(aov.color.data(), ref.rgb.data(), n).relMse,
             compareImages(nfor.rgb.data(), ref.rgb.data(), n).relMse,
             compareImages(fast.rgb.data(), ref.rgb.data(), n).relMse};

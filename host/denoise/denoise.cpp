@@ -28,7 +28,7 @@ constexpr float kDarkAlbedo = 0.01f;
 // NFOR: the regression window's radius, the two NL-means bandwidths k, the
 // ridge on the feature terms (relative to the weight sum) and the radius of
 // the box over which the selection averages each candidate's error.
-constexpr int kNforRadius = 7;
+constexpr int kNforRadius = 4;
 constexpr float kNforK1 = 0.5f, kNforK2 = 1.0f;
 constexpr float kNforRidge = 1e-3f;
 constexpr int kSelectRadius = 1;
