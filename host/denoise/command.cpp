@@ -52,8 +52,8 @@ int runDenoise(const DenoiseCommand& cmd) {
                               " Vulkan validation message(s) while denoising");
     writeDenoised(cmd.outputs, aov, d.rgb);
     if (!cmd.quiet) {
-        std::fprintf(stderr, "strata: denoised %dx%d (%s) in %.3f s (device %.3f s)\n", aov.width, aov.height,
-                     denoiseMethodName(cmd.method), d.seconds, d.deviceSeconds);
+        std::fprintf(stderr, "strata: denoised %dx%d (%s) in %.3f s (device %.3f s; pipelines %.0f ms)\n", aov.width,
+                     aov.height, denoiseMethodName(cmd.method), d.seconds, d.deviceSeconds, d.pipelineMs);
         for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());
     }
     return 0;
