@@ -51,7 +51,7 @@ double centralCosine(int px, int py) {
 
 TEST_SUITE_BEGIN("render");
 
-TEST_CASE("aov: a diffuse wall's albedo, normal and depth; a mirror's tinted albedo of the wall it shows; the "
+TEST_CASE("aov: a diffuse wall's albedo, normal and depth, a mirror's tinted albedo of the wall it shows, the "
           "background marked") {
     const RenderResult r = renderWalls(true);
     const AovImages a = aovImages(r.film);

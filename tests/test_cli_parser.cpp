@@ -140,12 +140,18 @@ TEST_CASE("cli parser: bad flags are the same one-line errors as before") {
     CHECK(errorOf(cli::parseBench, {}) == "strata: error: bench needs a scene file");
     CHECK(errorOf(cli::parseEdges, {"x"}) == "strata: error: unexpected argument 'x'");
     CHECK(errorOf(cli::parseCompare, {"a.exr"}) == "strata: error: compare needs IMAGE and REFERENCE");
+    CHECK(errorOf(cli::parseDenoise, {}) == "strata: error: denoise needs an EXR rendered with --aov");
+    CHECK(errorOf(cli::parseDenoise, {"a.exr"}) == "strata: error: denoise needs -o OUT.exr or OUT.png");
+    CHECK(errorOf(cli::parseDenoise, {"a.exr", "b.exr", "-o", "c.exr"}) ==
+          "strata: error: unexpected argument 'b.exr' (one image)");
+    CHECK(errorOf(cli::parseDenoise, {"a.exr", "-o", "c.exr", "--method", "slow"}).find("--method") !=
+          std::string::npos);
     CHECK(errorOf(cli::parseCompare, {"a.exr", "b.exr", "--plot", "p.png"}) ==
           "strata: error: unknown option '--plot' (see 'strata compare --help')");
 }
 
 TEST_CASE("cli help: each command's help shows every flag of its table, with metavar and default") {
-    CHECK(cli::commands().size() == 7);
+    CHECK(cli::commands().size() == 8);
     for (const cli::CommandInfo& c : cli::commands()) {
         CAPTURE(c.name);
         const std::string help = flat(c.help());
@@ -166,6 +172,30 @@ TEST_CASE("cli help: each command's help shows every flag of its table, with met
     CHECK(flat(cli::findCommand("converge")->help()).find("(default: 1,2,4,8,16,32,64,128,256)") != std::string::npos);
     CHECK(flat(cli::findCommand("edges")->help()).find("(default: all)") != std::string::npos);
     CHECK(cli::findCommand("frobnicate") == nullptr);
+}
+
+TEST_SUITE_END();
+
+TEST_SUITE_BEGIN("unit");
+
+TEST_CASE("cli: --denoise takes an optional method and turns the AOVs on, and --aov alone does not denoise") {
+    const RenderCommand plain = cli::parseRender({"s.gltf", "--denoise"});
+    CHECK(plain.denoise);
+    CHECK(!plain.denoiseFast);
+    CHECK(plain.settings.aov);
+    const RenderCommand fast = cli::parseRender({"s.gltf", "--denoise", "fast", "--spp", "4"});
+    CHECK(fast.denoiseFast);
+    CHECK(fast.settings.spp == 4);
+    CHECK(fast.scene == "s.gltf");
+    const RenderCommand aov = cli::parseRender({"s.gltf", "--aov"});
+    CHECK(aov.settings.aov);
+    CHECK(!aov.denoise);
+    const ConvergeCommand conv = cli::parseConverge({"s.gltf", "--reference", "r.exr", "-o", "c.csv", "--denoise", "fast"});
+    CHECK(conv.denoise);
+    CHECK(conv.method == DenoiseMethod::Fast);
+    const DenoiseCommand d = cli::parseDenoise({"in.exr", "-o", "out.exr", "--method", "fast"});
+    CHECK(d.input == "in.exr");
+    CHECK(d.method == DenoiseMethod::Fast);
 }
 
 TEST_SUITE_END();
