@@ -249,28 +249,41 @@ struct Denoised {
     double deviceSeconds = 0.0;
 };
 
-Denoised runNfor(const vk::Context& ctx, Passes& passes, const DenoiseInput& in, const Prepared& prep) {
+// Both halves demodulated, as the selection (denoise_select) and the
+// filters read them: a's .a the pixel's weight as a neighbour, b's .a the
+// variance of a half's mean (twice the mean's, channels averaged), as a 3x3
+// mean over the neighbour pixels.
+struct Halves {
+    Rgba a, b;
+};
+
+Halves demodulatedHalves(const DenoiseInput& in, const Prepared& prep) {
     const std::size_t n = std::size_t(in.width) * in.height;
-    Rgba a(4 * n), b(4 * n), varHalf(4 * n, 0.0f);
+    Halves h{Rgba(4 * n), Rgba(4 * n)};
+    Rgba varHalf(4 * n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
         float v = 0.0f;
         for (int c = 0; c < 3; ++c) {
             const float f = prep.factor[3 * i + c];
-            a[4 * i + c] = finiteOr(in.halfA[3 * i + c], 0.0f) / f;
-            b[4 * i + c] = finiteOr(in.halfB[3 * i + c], 0.0f) / f;
+            h.a[4 * i + c] = finiteOr(in.halfA[3 * i + c], 0.0f) / f;
+            h.b[4 * i + c] = finiteOr(in.halfB[3 * i + c], 0.0f) / f;
             v += 2.0f * std::max(finiteOr(in.variance[3 * i + c], 0.0f), 0.0f) / (f * f);
         }
         varHalf[4 * i] = v * (1.0f / 3.0f);
-        a[4 * i + 3] = prep.neighbour[i];
+        h.a[4 * i + 3] = prep.neighbour[i];
     }
-    // The guides and the variance: 3x3 means over the pixels that may be neighbours.
     const Rgba varSmooth = box3(varHalf, prep.neighbour, in.width, in.height);
-    Rgba guideA = box3(a, prep.neighbour, in.width, in.height), guideB = box3(b, prep.neighbour, in.width, in.height);
-    for (std::size_t i = 0; i < n; ++i) {
-        guideA[4 * i + 3] = guideB[4 * i + 3] = varSmooth[4 * i] * (1.0f / 9.0f);
-        b[4 * i + 3] = varSmooth[4 * i];
-    }
-    const Image gA = upload(ctx, guideA), gB = upload(ctx, guideB), cA = upload(ctx, a), cB = upload(ctx, b);
+    for (std::size_t i = 0; i < n; ++i) h.b[4 * i + 3] = varSmooth[4 * i];
+    return h;
+}
+
+Denoised runNfor(const vk::Context& ctx, Passes& passes, const DenoiseInput& in, const Prepared& prep) {
+    const std::size_t n = std::size_t(in.width) * in.height;
+    const Halves h = demodulatedHalves(in, prep);
+    // The guides: 3x3 means over the pixels that may be neighbours, .a the variance of that mean.
+    Rgba guideA = box3(h.a, prep.neighbour, in.width, in.height), guideB = box3(h.b, prep.neighbour, in.width, in.height);
+    for (std::size_t i = 0; i < n; ++i) guideA[4 * i + 3] = guideB[4 * i + 3] = h.b[4 * i + 3] * (1.0f / 9.0f);
+    const Image gA = upload(ctx, guideA), gB = upload(ctx, guideB), cA = upload(ctx, h.a), cB = upload(ctx, h.b);
     const Image feat = upload(ctx, prep.features);
     Image featVar, featOut;
     const bool prefilter = !prep.featureVar.empty();
@@ -313,29 +326,21 @@ Denoised runNfor(const vk::Context& ctx, Passes& passes, const DenoiseInput& in,
 Denoised runFast(const vk::Context& ctx, Passes& passes, const DenoiseInput& in, const Prepared& prep) {
     const std::size_t n = std::size_t(in.width) * in.height;
     constexpr float kLum[3] = {0.2126f, 0.7152f, 0.0722f};
-    // Each half demodulated, .a the variance of its luminance (twice the mean's).
-    Rgba half[2] = {Rgba(4 * n), Rgba(4 * n)};
-    Rgba a(4 * n), b(4 * n), varHalf(4 * n, 0.0f);
+    const Halves h = demodulatedHalves(in, prep);
+    // The filters' input: each half, .a the variance of its luminance (twice the mean's).
+    Rgba half[2] = {h.a, h.b};
     for (std::size_t i = 0; i < n; ++i) {
-        float lum = 0.0f, v = 0.0f;
+        float lum = 0.0f;
         for (int k = 0; k < 3; ++k) {
             const float f = prep.factor[3 * i + k];
-            const float var = 2.0f * std::max(finiteOr(in.variance[3 * i + k], 0.0f), 0.0f) / (f * f);
-            half[0][4 * i + k] = a[4 * i + k] = finiteOr(in.halfA[3 * i + k], 0.0f) / f;
-            half[1][4 * i + k] = b[4 * i + k] = finiteOr(in.halfB[3 * i + k], 0.0f) / f;
-            lum += kLum[k] * kLum[k] * var;
-            v += var;
+            lum += kLum[k] * kLum[k] * (2.0f * std::max(finiteOr(in.variance[3 * i + k], 0.0f), 0.0f) / (f * f));
         }
         half[0][4 * i + 3] = half[1][4 * i + 3] = lum;
-        varHalf[4 * i] = v * (1.0f / 3.0f);
-        a[4 * i + 3] = prep.neighbour[i];
     }
-    const Rgba varSmooth = box3(varHalf, prep.neighbour, in.width, in.height);
-    for (std::size_t i = 0; i < n; ++i) b[4 * i + 3] = varSmooth[4 * i];
     Rgba aux(4 * n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) aux[4 * i] = prep.neighbour[i];
     const Image feat = upload(ctx, prep.features), neighbour = upload(ctx, aux);
-    const Image cA = upload(ctx, a), cB = upload(ctx, b);
+    const Image cA = upload(ctx, h.a), cB = upload(ctx, h.b);
     Image ping[2] = {upload(ctx, half[0]), upload(ctx, half[1])}, pong[2] = {blank(ctx, n), blank(ctx, n)};
     std::vector<vk::Kernel*> steps[2];
     for (int h = 0; h < 2; ++h)

@@ -69,17 +69,12 @@ ExtraChannels aovChannels(const AovImages& a) {
 AovImages readAovImages(const std::string& path) {
     const Image img = readImage(path);
     const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
-    auto channel = [&](const std::string& name) -> int {
-        for (int c = 0; c < img.channels; ++c)
-            if (img.channelNames[c] == name) return c;
-        return -1;
-    };
     // The layer's channels interleaved; empty when `optional` and absent.
     auto layer = [&](const std::string& name, const std::string& suffix, bool optional) {
         std::vector<int> cs;
         for (char s : suffix) {
             const std::string full = name.empty() ? std::string(1, s) : name + "." + s;
-            const int c = channel(full);
+            const int c = img.channel(full);
             if (c < 0) {
                 if (optional) return std::vector<float>{};
                 throw Error(path + ": error: no " + (name.empty() ? "R, G, B" : name) + " layer (channel " + full +

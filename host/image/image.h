@@ -11,6 +11,13 @@ struct Image {
     int channels = 0;
     std::vector<std::string> channelNames;
     std::vector<float> pixels;  // row-major, interleaved channels, row 0 at the top
+
+    // The index of the channel named `name`, or -1.
+    int channel(const std::string& name) const {
+        for (int c = 0; c < channels; ++c)
+            if (channelNames[c] == name) return c;
+        return -1;
+    }
 };
 
 // Channels an EXR gets after R, G, B (variance.R, albedo.R, ...): their

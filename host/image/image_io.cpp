@@ -151,14 +151,9 @@ RgbImage readReference(const std::string& path) {
 
 RgbImage readRgb(const std::string& path) {
     const Image img = readImage(path);
-    auto channel = [&](const std::string& name) {
-        for (int c = 0; c < img.channels; ++c)
-            if (img.channelNames[c] == name) return c;
-        return -1;
-    };
-    const int r = channel("R"), g = channel("G"), b = channel("B");
+    const int r = img.channel("R"), g = img.channel("G"), b = img.channel("B");
     if (r < 0 || g < 0 || b < 0) fail(path, "image has no R, G and B channels");
-    const int vr = channel("variance.R"), vg = channel("variance.G"), vb = channel("variance.B");
+    const int vr = img.channel("variance.R"), vg = img.channel("variance.G"), vb = img.channel("variance.B");
     const bool hasVariance = vr >= 0 && vg >= 0 && vb >= 0;
     RgbImage out;
     out.width = img.width;

@@ -1,0 +1,180 @@
+// The flag groups the commands share (the path, the traversal, the
+// environment, the scene, the device) and the helpers that build a
+// command's table from them, for cli/commands.cpp.
+#pragma once
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/flags.h"
+#include "render/filter.h"
+#include "render/sampler_kind.h"
+
+namespace strata::cli {
+
+// The member a flag sets, for a command and for a const one.
+#define STRATA_FIELD(member) [](auto& c) -> auto& { return c.member; }
+
+template <class T>
+std::vector<Flag<T>> concat(std::initializer_list<std::vector<Flag<T>>> groups) {
+    std::vector<Flag<T>> all;
+    for (const auto& g : groups) all.insert(all.end(), g.begin(), g.end());
+    return all;
+}
+
+inline std::vector<std::string> samplerNames() {
+    std::vector<std::string> names;
+    for (const SamplerInfo& s : samplers()) names.push_back(s.name);
+    return names;
+}
+
+inline constexpr const char* kSamplerHelp =
+    "the pixel sampler; regular, rotated and stratified need a square spp, bluenoise a power of two";
+
+inline std::vector<std::string> filterNames() {
+    std::vector<std::string> names;
+    for (FilterKind k : {FilterKind::Box, FilterKind::Tent, FilterKind::Gaussian, FilterKind::BlackmanHarris})
+        names.push_back(filterName(k));
+    return names;
+}
+
+// "box 0.5, tent 1, ...": each filter's own radius.
+inline std::string filterRadii() {
+    std::vector<std::string> radii;
+    for (const std::string& name : filterNames()) radii.push_back(name + " " + numberText(filterByName(name).radius));
+    return joined(radii, ", ");
+}
+
+// The shared groups. `settings` gives the command's RenderSettings, which
+// holds seed, maxDepth and the traversal choices.
+template <class T, class Settings>
+Flag<T> seedFlag(Settings settings) {
+    return integer<T>("--seed", "S", "seed of the sample sequences", 0, 0xffffffffu,
+                      [settings](auto& c) -> auto& { return settings(c).seed; });
+}
+
+// --camera, --look-from, --look-at, --up, --fov, --seed, --max-depth.
+template <class T, class Settings>
+std::vector<Flag<T>> pathFlags(Settings settings) {
+    return {
+        integer<T>("--camera", "I", "view through camera I, counting the scene's nodes with a camera in order", 0,
+                   1u << 20,
+                   STRATA_FIELD(view.camera)),
+        flag<T>("--look-from", "X,Y,Z", "view from this point instead of the scene's camera; needs --look-at",
+                [](T& c, const std::string& given, const std::string& v) { c.view.lookFrom = parsePoint(given, v); }),
+        flag<T>("--look-at", "X,Y,Z", "the point the --look-from view looks at",
+                [](T& c, const std::string& given, const std::string& v) { c.view.lookAt = parsePoint(given, v); }),
+        flag<T>("--up", "X,Y,Z", "the up direction of the --look-from view",
+                [](T& c, const std::string& given, const std::string& v) { c.view.up = parsePoint(given, v); })
+            .withDefault("0,1,0"),
+        flag<T>("--fov", "DEGREES", "vertical field of view, in (0, 179]",
+                [](T& c, const std::string& given, const std::string& v) {
+                    c.view.fovDegrees = float(parsePositive(given, v, 179.0, "degrees"));
+                })
+            .withDefault("the scene camera's, else 40"),
+        seedFlag<T>(settings),
+        integer<T>("--max-depth", "D",
+                   "scattering events per path (pbrt's count): 0 shows emitters only, 1 is direct lighting", 0, 1024,
+                   [settings](auto& c) -> auto& { return settings(c).maxDepth; }),
+    };
+}
+
+// --bvh, --bvh-stack, --reads (formerly --traversal), --integrator.
+template <class T, class Settings>
+std::vector<Flag<T>> traceFlags(Settings settings) {
+    return {
+        choice<T, int>("--bvh", "traverse the four-wide BVH, or the binary one it is collapsed from; the same hits",
+                       {{"2", 2}, {"4", 4}}, [settings](auto& c) -> auto& { return settings(c).bvhWidth; }),
+        choice<T, BvhStack>("--bvh-stack",
+                            "the four-wide traversal's stack: registers, or memory (an array, the children entered "
+                            "nearest first); the same hits; auto: registers on CPU devices, memory elsewhere",
+                            {{"auto", BvhStack::Auto},
+                             {"registers", BvhStack::Registers},
+                             {"memory", BvhStack::Memory}},
+                            [settings](auto& c) -> auto& { return settings(c).bvhStack; }),
+        choice<T, ReadMode>("--reads",
+                             "how the scene arrays are read: texel (the BVH through texel views, the rest through "
+                             "storage buffers) or storage (every array through storage buffers); auto: every array "
+                             "through texel views on CPU devices, storage buffers elsewhere, texel views for a scene "
+                             "past the storage range",
+                             {{"auto", ReadMode::Auto}, {"texel", ReadMode::Texel}, {"storage", ReadMode::Storage}},
+                             [settings](auto& c) -> auto& { return settings(c).reads; })
+            .withOldName("--traversal"),
+        choice<T, IntegratorKind>("--integrator",
+                              "one path per invocation (megakernel), or stages with ray lists on the device "
+                              "(wavefront); the same image",
+                              {{"megakernel", IntegratorKind::Megakernel}, {"wavefront", IntegratorKind::Wavefront}},
+                              [settings](auto& c) -> auto& { return settings(c).integrator; }),
+    };
+}
+
+// --env, --env-color, --env-intensity, --env-rotate (cmd.env).
+template <class T>
+std::vector<Flag<T>> envFlags() {
+    return {
+        text<T>("--env", "MAP.hdr|MAP.exr",
+                "light the scene with an equirectangular map: +Y up, the image centre at -Z, u towards +X",
+                STRATA_FIELD(env.file)),
+        flag<T>("--env-color", "R,G,B",
+                "light the scene with a constant radiance: three numbers in [0, 1e+30], not all 0; excludes --env",
+                [](T& c, const std::string& given, const std::string& v) {
+                    c.env.color = parseColor(given, v);
+                    c.env.hasColor = true;
+                }),
+        positive<T>("--env-intensity", "S", "scale the radiance of --env or --env-color", 1e30, "a factor",
+                    STRATA_FIELD(env.intensity)),
+        finite<T>("--env-rotate", "DEGREES",
+                  "turn the environment about +Y, counter-clockwise seen from above; any finite angle",
+                  STRATA_FIELD(env.rotateDegrees)),
+    };
+}
+
+inline void checkViewFlags(const ViewOptions& view) {
+    if (view.lookFrom.has_value() != view.lookAt.has_value())
+        badFlag(view.lookFrom ? "--look-from needs --look-at" : "--look-at needs --look-from");
+    if (view.up && !view.lookFrom) badFlag("--up needs --look-from and --look-at");
+}
+
+inline void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
+    if (!env.file.empty() && env.hasColor) badFlag("--env and --env-color exclude each other");
+    for (const std::string& a : parsed.given)
+        if ((a == "--env-intensity" || a == "--env-rotate") && !env.given())
+            badFlag(a + " needs --env or --env-color");
+}
+
+// --variant (the scene's materials), --instancing (its meshes).
+template <class T>
+std::vector<Flag<T>> sceneFlags() {
+    return {text<T>("--variant", "NAME",
+                    "give each primitive its material for this KHR_materials_variants variant; --stats lists them",
+                    STRATA_FIELD(variant)),
+            choice<T, Instancing>("--instancing",
+                                  "a mesh placed by several nodes or by EXT_mesh_gpu_instancing: stored once and "
+                                  "placed by instances (on), or flattened into world-space triangles (off); auto: "
+                                  "instanced when its placements hold more than 2^20 triangles",
+                                  {{"auto", Instancing::Auto}, {"on", Instancing::On}, {"off", Instancing::Off}},
+                                  [](auto& c) -> auto& { return c.instancing; })};
+}
+
+// --device, --validation.
+template <class T>
+std::vector<Flag<T>> deviceFlags() {
+    return {
+        integer<T>("--device", "I", "run on device I of 'strata devices'", 0, 1024, STRATA_FIELD(device))
+            .withDefault("a discrete GPU, else an integrated one, else the CPU"),
+        toggle<T>("--validation", "turn on the Vulkan validation layers, as STRATA_VALIDATION=1 does",
+                  [](T& c) { c.validation = true; }),
+    };
+}
+
+template <class T>
+CommandSpec<T> makeSpec(CommandText text, std::vector<Flag<T>> flags, T init = {}) {
+    CommandSpec<T> spec;
+    static_cast<CommandText&>(spec) = std::move(text);
+    spec.flags = std::move(flags);
+    spec.init = std::move(init);
+    return spec;
+}
+
+}  // namespace strata::cli
