@@ -228,6 +228,22 @@ class GltfWriter:
             node["extensions"] = {"KHR_lights_punctual": {"light": light}}
         return self._add("nodes", node)
 
+    def add_animation(self, name, channels):
+        """channels: (node, path, interpolation, times, values) tuples; path is
+        translation, rotation or scale, values one tuple per output element
+        (three per key for CUBICSPLINE: in-tangent, value, out-tangent)."""
+        samplers, targets = [], []
+        for node, path, interpolation, times, values in channels:
+            width = len(values[0])
+            inp = self.add_accessor(self.add_view(struct.pack("<%df" % len(times), *times)), FLOAT,
+                                    len(times), "SCALAR", 0, [f32(min(times))], [f32(max(times))])
+            flat = [float(c) for v in values for c in v]
+            out = self.add_accessor(self.add_view(struct.pack("<%df" % len(flat), *flat)), FLOAT,
+                                    len(values), {3: "VEC3", 4: "VEC4"}[width])
+            samplers.append({"input": inp, "output": out, "interpolation": interpolation})
+            targets.append({"sampler": len(samplers) - 1, "target": {"node": node, "path": path}})
+        return self._add("animations", {"name": name, "channels": targets, "samplers": samplers})
+
     def set_scene(self, nodes, name=None):
         scene = {} if name is None else {"name": name}
         scene["nodes"] = list(nodes)

@@ -65,8 +65,9 @@ void shadePixel(uvec2 local) {
     uvec2 pixel = uvec2(params.tileX, params.tileY) + local;
     Sampler smp;
     vec3 dir;
-    cameraSample(pixel, params.sampleIndex, smp, dir);
-    vec3 L = tracePath(smp, frame.camOrigin.xyz, dir);
+    vec3 origin;
+    cameraSample(pixel, params.sampleIndex, smp, origin, dir);
+    vec3 L = tracePath(smp, origin, dir);
     accumulateSample(pixel.y * frame.image.x + pixel.x, L);
 #ifdef STRATA_AOV
     accumulateAov(pixel.y * frame.image.x + pixel.x, params.sampleIndex, L);

@@ -61,10 +61,11 @@ void cameraStage(uint k) {
     uvec2 pixel = uvec2(params.tileX + k % params.tileW, params.tileY + k / params.tileW);
     Sampler smp;
     vec3 dir;
-    cameraSample(pixel, params.sampleIndex, smp, dir);
+    vec3 origin;
+    cameraSample(pixel, params.sampleIndex, smp, origin, dir);
     uint pixelIndex = pixel.y * frame.image.x + pixel.x;
     state[k] = PathState(vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0), uvec4(pixelIndex, 0u, 1u, 0u));
-    nextRays[k] = TraceRay(frame.camOrigin.xyz, 0.0, dir, kRayMax);
+    nextRays[k] = TraceRay(origin, 0.0, dir, kRayMax);
     nextLive[k] = k;
 }
 

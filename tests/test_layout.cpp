@@ -33,6 +33,9 @@ TEST_CASE("shared structs have the std430 offsets the shaders assume") {
     CHECK(offsetof(FrameUniforms, envScale) == 112);
     CHECK(offsetof(FrameUniforms, envRotation) == 128);
     CHECK(offsetof(FrameUniforms, envInfo) == 144);
+    CHECK(offsetof(FrameUniforms, lens) == 160);
+    CHECK(offsetof(FrameUniforms, shutter) == 176);
+    CHECK(offsetof(FrameUniforms, cameraKeys) == 192);
     CHECK(offsetof(TraceRay, tmin) == 12);
     CHECK(offsetof(TraceHit, triangle) == 4);
     // Texel views read nodes as 2 and triangles as 3 RGBA32 texels.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "scene/pose.h"
 #include "util/error.h"
 
 namespace strata {
@@ -76,22 +77,50 @@ SceneBvh buildRange(const Scene& scene, std::size_t first, std::size_t count, co
     return out;
 }
 
+// Corner c (bits x, y, z: 0 the low side, 1 the high) of a bottom level's box.
+glm::dvec3 corner(const BottomLevel& bottom, int c) {
+    return {(c & 1) ? bottom.hi.x : bottom.lo.x, (c & 2) ? bottom.hi.y : bottom.lo.y,
+            (c & 4) ? bottom.hi.z : bottom.lo.z};
+}
+
+// The box [a, b] in float, rounded outwards (it contains the double box).
+void roundOut(const glm::dvec3& a, const glm::dvec3& b, glm::vec3& lo, glm::vec3& hi) {
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = std::nextafter(float(a[k]), -std::numeric_limits<float>::infinity());
+        hi[k] = std::nextafter(float(b[k]), std::numeric_limits<float>::infinity());
+    }
+}
+
 }  // namespace
 
 void placedBox(const BottomLevel& bottom, const glm::mat4& toWorld, glm::vec3& lo, glm::vec3& hi) {
     const glm::dmat4 m(toWorld);
     glm::dvec3 a(std::numeric_limits<double>::max()), b(-std::numeric_limits<double>::max());
     for (int c = 0; c < 8; ++c) {
-        const glm::dvec3 p((c & 1) ? bottom.hi.x : bottom.lo.x, (c & 2) ? bottom.hi.y : bottom.lo.y,
-                           (c & 4) ? bottom.hi.z : bottom.lo.z);
-        const glm::dvec3 w(m * glm::dvec4(p, 1.0));
+        const glm::dvec3 w(m * glm::dvec4(corner(bottom, c), 1.0));
         a = glm::min(a, w);
         b = glm::max(b, w);
     }
-    for (int k = 0; k < 3; ++k) {
-        lo[k] = std::nextafter(float(a[k]), -std::numeric_limits<float>::infinity());
-        hi[k] = std::nextafter(float(b[k]), std::numeric_limits<float>::infinity());
+    roundOut(a, b, lo, hi);
+}
+
+void motionBox(const BottomLevel& bottom, const std::vector<MotionKey>& motion, glm::vec3& lo, glm::vec3& hi) {
+    glm::dvec3 a(std::numeric_limits<double>::max()), b(-std::numeric_limits<double>::max());
+    double pad = 0.0;
+    for (std::size_t k = 0; k + 1 < motion.size(); ++k) {
+        glm::dvec3 previous[8];
+        for (int step = 0; step <= kMotionBoxSteps; ++step) {
+            const glm::dmat4 m = interpolatePose(motion[k], motion[k + 1], double(step) / kMotionBoxSteps);
+            for (int c = 0; c < 8; ++c) {
+                const glm::dvec3 w(m * glm::dvec4(corner(bottom, c), 1.0));
+                a = glm::min(a, w);
+                b = glm::max(b, w);
+                if (step > 0) pad = std::max(pad, 0.25 * glm::length(w - previous[c]));
+                previous[c] = w;
+            }
+        }
     }
+    roundOut(a - pad, b + pad, lo, hi);
 }
 
 SceneBvh buildSceneBvh(const Scene& scene, const BvhBuildOptions& options) {
@@ -101,25 +130,35 @@ SceneBvh buildSceneBvh(const Scene& scene, const BvhBuildOptions& options) {
     out.bottoms.push_back(append(out, buildRange(scene, 0, world, options), 0, world));
     for (const SharedMesh& m : scene.sharedMeshes)
         out.bottoms.push_back(append(out, buildRange(scene, m.first, m.count, options), m.first, m.count));
-    if (!out.bottoms[0].empty) out.placements.push_back({0, glm::mat4(1.0f)});
-    for (const MeshInstance& i : scene.instances)
-        if (!out.bottoms[1 + i.mesh].empty) out.placements.push_back({1 + i.mesh, i.toWorld});
+    buildTopLevel(scene, out, options);
     if (out.placements.empty()) {  // nothing with triangles: the empty scene
         out.bottoms.clear();
         return buildRange(scene, 0, 0, options);
     }
+    return out;
+}
+
+void buildTopLevel(const Scene& scene, SceneBvh& out, const BvhBuildOptions& options) {
+    out.placements.clear();
+    if (!out.bottoms[0].empty) out.placements.push_back({0, glm::mat4(1.0f), {}});
+    for (const MeshInstance& i : scene.instances)
+        if (!out.bottoms[1 + i.mesh].empty) out.placements.push_back({1 + i.mesh, i.toWorld, i.motion});
+    if (out.placements.empty()) return;
     // The top level over the placements' world boxes, each given to the
     // builder as the degenerate triangle (lo, hi, centre), whose bounds are the box.
     const std::size_t n = out.placements.size();
     std::vector<glm::vec3> v0(n), v1(n), v2(n);
     for (std::size_t i = 0; i < n; ++i) {
-        placedBox(out.bottoms[out.placements[i].bottom], out.placements[i].toWorld, v0[i], v1[i]);
+        const Placement& p = out.placements[i];
+        if (p.motion.empty())
+            placedBox(out.bottoms[p.bottom], p.toWorld, v0[i], v1[i]);
+        else
+            motionBox(out.bottoms[p.bottom], p.motion, v0[i], v1[i]);
         v2[i] = 0.5f * (v0[i] + v1[i]);
     }
     BvhBuildOptions top = options;
     top.maxLeafSize = 1;
     out.top = buildBvh(v0, v1, v2, top);
-    return out;
 }
 
 }  // namespace strata

@@ -26,6 +26,7 @@ struct BottomLevel {
 struct Placement {
     std::uint32_t bottom = 0;  // 0: the world triangles (identity); 1 + j: Scene::sharedMeshes[j]
     glm::mat4 toWorld{1.0f};
+    std::vector<MotionKey> motion;  // MeshInstance::motion: empty when it does not move
 };
 
 struct SceneBvh {
@@ -45,8 +46,20 @@ struct SceneBvh {
 // vertices); the collapse runs on options.threads threads (0: all).
 SceneBvh buildSceneBvh(const Scene& scene, const BvhBuildOptions& options = {});
 
+// The placements of the scene's instances (the world's triangles first,
+// unless empty) over out.bottoms, and the top level over their world boxes.
+void buildTopLevel(const Scene& scene, SceneBvh& out, const BvhBuildOptions& options = {});
+
 // The world box of `bottom` placed by `toWorld`: its eight corners
 // transformed in double, rounded outwards to float.
 void placedBox(const BottomLevel& bottom, const glm::mat4& toWorld, glm::vec3& lo, glm::vec3& hi);
+
+// The world box of `bottom` over a placement's motion: the boxes of its
+// poses at kMotionBoxSteps times per key interval (interpolated as the
+// shaders do), each widened by a quarter of the largest distance a corner
+// moves between two of those times, which bounds how far its path strays
+// from the chords.
+void motionBox(const BottomLevel& bottom, const std::vector<MotionKey>& motion, glm::vec3& lo, glm::vec3& hi);
+inline constexpr int kMotionBoxSteps = 16;
 
 }  // namespace strata

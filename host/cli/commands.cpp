@@ -63,6 +63,33 @@ std::vector<Flag<RenderCommand>> renderFlags() {
                       "EXR outputs get the AOV layers: variance, halfA, halfB, albedo, normal (camera space), "
                       "depth, emitter (docs/denoising.md)",
                       [](C& c) { c.settings.aov = true; }),
+            flag<C>("--frames", "FIRST:LAST[:STEP]",
+                    "render the animation frame by frame: frame f poses the scene at f / fps; each -o holds a run of "
+                    "'#' for the frame number (out_####.exr)",
+                    [](C& c, const std::string& given, const std::string& v) {
+                        const std::size_t a = v.find(':'), b = a == std::string::npos ? a : v.find(':', a + 1);
+                        if (a == std::string::npos) badFlag(given + " takes FIRST:LAST[:STEP], got '" + v + "'");
+                        c.frames.enabled = true;
+                        c.frames.first = int(parseUnsigned(given, v.substr(0, a), 0, 1u << 24));
+                        c.frames.last = int(parseUnsigned(given, v.substr(a + 1, b == std::string::npos ? b : b - a - 1),
+                                                          0, 1u << 24));
+                        if (b != std::string::npos)
+                            c.frames.step = int(parseUnsigned(given, v.substr(b + 1), 1, 1u << 24));
+                        if (c.frames.last < c.frames.first)
+                            badFlag(given + ": LAST must not precede FIRST, got '" + v + "'");
+                    }),
+            positive<C>("--fps", "F", "frames per second of --frames", 1e6, "frames per second",
+                        STRATA_FIELD(frames.fps))
+                .withDefault("24"),
+            flag<C>("--shutter-angle", "DEGREES",
+                    "each frame's shutter stays open for DEGREES / 360 of the frame's time, in [0, 360]; 0: no "
+                    "motion blur",
+                    [](C& c, const std::string& given, const std::string& v) {
+                        const double a = parseFinite(given, v);
+                        if (a < 0.0 || a > 360.0) badFlag(given + " must be in [0, 360], got '" + v + "'");
+                        c.frames.shutterAngle = a;
+                    })
+                .withDefault("0"),
             toggle<C>("--denoise",
                       "denoise the image (with the AOVs): R, G, B denoised, noisy.R/G/B the image as rendered; "
                       "'--denoise fast' for the edge-aware a-trous filter instead of the regression",
@@ -108,6 +135,28 @@ std::vector<std::string> withoutDenoiseMethod(const std::vector<std::string>& gi
     return args;
 }
 
+// --frames excludes --shutter and sets the shutter per frame; --fps and
+// --shutter-angle need it; every output it writes names the frame.
+void checkFrameFlags(const Parsed& parsed, RenderCommand& cmd) {
+    const auto given = [&](const char* flag) {
+        return std::find(parsed.given.begin(), parsed.given.end(), flag) != parsed.given.end();
+    };
+    if (!cmd.frames.enabled) {
+        for (const char* f : {"--fps", "--shutter-angle"})
+            if (given(f)) badFlag(std::string(f) + " needs --frames");
+        return;
+    }
+    if (cmd.settings.shutter) badFlag("--frames sets each frame's shutter (--fps, --shutter-angle); leave out --shutter");
+    for (const std::string& out : cmd.outputs)
+        if (out.find('#') == std::string::npos)
+            badFlag("with --frames each output names its frame by a run of '#', e.g. out_####.exr; got '" + out + "'");
+    if (!cmd.statsJson.empty() && cmd.statsJson.find('#') == std::string::npos)
+        badFlag("with --frames --stats-json names its frame by a run of '#', e.g. stats_####.json");
+    cmd.settings.shutter = true;  // posed by the animation (renderer: frame by frame)
+    cmd.settings.shutterOpen = cmd.frames.first / cmd.frames.fps;
+    cmd.settings.shutterClose = cmd.settings.shutterOpen + cmd.frames.shutterAngle / 360.0 / cmd.frames.fps;
+}
+
 // Parses a render-like command's flags and positional scene.
 RenderCommand parseRenderLike(const std::string& name, const std::vector<std::string>& given, Parsed& parsed) {
     const CommandSpec<RenderCommand>& spec = renderSpec(name);
@@ -121,8 +170,10 @@ RenderCommand parseRenderLike(const std::string& name, const std::vector<std::st
     cmd.scene = parsed.positional[0];
     checkEnvFlags(parsed, cmd.env);
     checkViewFlags(cmd.view);
+    checkFrameFlags(parsed, cmd);
+    checkLensFlags(cmd.settings);
     if (cmd.outputs.empty()) {
-        const std::string stem = std::filesystem::path(cmd.scene).stem().string();
+        const std::string stem = std::filesystem::path(cmd.scene).stem().string() + (cmd.frames.enabled ? "_####" : "");
         cmd.outputs = {stem + ".exr", stem + ".png"};
     }
     return cmd;
@@ -385,6 +436,7 @@ T parseSceneCommand(const CommandSpec<T>& spec, const std::vector<std::string>& 
     cmd.scene = parsed.positional[0];
     checkEnvFlags(parsed, cmd.env);
     checkViewFlags(cmd.view);
+    checkLensFlags(cmd.settings);
     return cmd;
 }
 

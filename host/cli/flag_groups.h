@@ -77,6 +77,34 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
         integer<T>("--max-depth", "D",
                    "scattering events per path (pbrt's count): 0 shows emitters only, 1 is direct lighting", 0, 1024,
                    [settings](auto& c) -> auto& { return settings(c).maxDepth; }),
+        flag<T>("--lens-radius", "R",
+                "a thin lens of radius R (world units) for depth of field; 0 is a pinhole",
+                [settings](T& c, const std::string& given, const std::string& v) {
+                    const double r = parseFinite(given, v);
+                    if (r < 0.0) badFlag(given + " must be 0 or more (a radius), got '" + v + "'");
+                    settings(c).lensRadius = static_cast<float>(r);
+                })
+            .withDefault("0"),
+        positive<T>("--focus-distance", "D", "the distance along the view direction that the lens keeps sharp",
+                    1e30, "a distance", [settings](auto& c) -> auto& { return settings(c).focusDistance; })
+            .withDefault("1"),
+        integer<T>("--aperture-blades", "N", "a polygonal aperture of N blades (3 or more); 0 is round", 0, 64,
+                   [settings](auto& c) -> auto& { return settings(c).apertureBlades; }),
+        flag<T>("--shutter", "OPEN,CLOSE",
+                "pose the scene by its animation at OPEN (seconds on its timeline); OPEN < CLOSE blurs the motion "
+                "over the interval (a box shutter); without it the nodes keep their static transforms",
+                [settings](T& c, const std::string& given, const std::string& v) {
+                    const std::size_t comma = v.find(',');
+                    if (comma == std::string::npos) badFlag(given + " takes OPEN,CLOSE (two times in seconds), got '" + v + "'");
+                    const double open = parseFinite(given, v.substr(0, comma));
+                    const double close = parseFinite(given, v.substr(comma + 1));
+                    if (close < open) badFlag(given + ": CLOSE must not precede OPEN, got '" + v + "'");
+                    settings(c).shutter = true;
+                    settings(c).shutterOpen = open;
+                    settings(c).shutterClose = close;
+                }),
+        text<T>("--animation", "NAME|INDEX", "the glTF animation --shutter plays (default: the first)",
+                [settings](auto& c) -> auto& { return settings(c).animation; }),
     };
 }
 
@@ -134,6 +162,15 @@ inline void checkViewFlags(const ViewOptions& view) {
     if (view.lookFrom.has_value() != view.lookAt.has_value())
         badFlag(view.lookFrom ? "--look-from needs --look-at" : "--look-at needs --look-from");
     if (view.up && !view.lookFrom) badFlag("--up needs --look-from and --look-at");
+}
+
+inline void checkLensFlags(const RenderSettings& s) {
+    if (s.apertureBlades == 1 || s.apertureBlades == 2)
+        badFlag("--aperture-blades must be 0 (round) or 3 or more, got " + std::to_string(s.apertureBlades));
+    if (!s.animation.empty() && !s.shutter) badFlag("--animation needs --shutter (or --frames)");
+    if (s.cameraEffects() && s.integrator == IntegratorKind::Wavefront)
+        badFlag("--lens-radius and a --shutter interval need the megakernel integrator; the wavefront integrator "
+                "has no lens and no time");
 }
 
 inline void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {

@@ -13,6 +13,9 @@ std::unique_ptr<Integrator> makeIntegrator(const vk::Context& ctx, const DeviceS
         if (s.aov)
             throw Error("strata: error: --aov and --denoise need the megakernel integrator (--integrator megakernel); "
                         "the wavefront integrator keeps no AOVs");
+        if (s.cameraEffects())
+            throw Error("strata: error: --lens-radius and a --shutter interval need the megakernel integrator "
+                        "(--integrator megakernel); the wavefront integrator has no lens and no time");
         return std::make_unique<WavefrontIntegrator>(ctx, dev, s, t, maxTilePixels, film);
     }
     return makeMegakernel(ctx, dev, s, t, film);

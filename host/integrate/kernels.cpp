@@ -8,7 +8,7 @@
 
 namespace strata {
 
-std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov) {
+std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov, bool motion) {
     using Span = std::span<const std::uint32_t>;
 #define STRATA_SPIRV(name) Span(kSpirvPtr_##name, kSpirvSize_##name / 4)
     // 0: no layers, 1: the layers, 2: the layers with the thin film.
@@ -17,7 +17,8 @@ std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pa
                        : (scene.features.bits & gpu::kFeaturesLayers) != 0u     ? 1
                                                                                 : 0;
     const bool inst = (scene.features.bits & gpu::kFeatureInstancing) != 0u;
-    // [instancing][layers][traversal: bvh4 registers, bvh2, bvh4 memory], and with the AOVs
+    // [instancing][layers][traversal: bvh4 registers, bvh2, bvh4 memory], and
+    // with the AOVs, the camera effects, or both
 #define STRATA_PATHS(aov)                                                                                          \
     {{{STRATA_SPIRV(pathtrace##aov), STRATA_SPIRV(pathtrace_bvh2##aov), STRATA_SPIRV(pathtrace_bvh4m##aov)},        \
       {STRATA_SPIRV(pathtrace_layers##aov), STRATA_SPIRV(pathtrace_bvh2_layers##aov),                                \
@@ -32,12 +33,15 @@ std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pa
        STRATA_SPIRV(pathtrace_bvh4m_film_inst##aov)}}}
     const Span path[2][3][3] = STRATA_PATHS();
     const Span pathAov[2][3][3] = STRATA_PATHS(_aov);
+    const Span pathMotion[2][3][3] = STRATA_PATHS(_motion);
+    const Span pathMotionAov[2][3][3] = STRATA_PATHS(_motion_aov);
 #undef STRATA_PATHS
     const Span trace[2][3] = {{STRATA_SPIRV(trace), STRATA_SPIRV(trace_bvh2), STRATA_SPIRV(trace_bvh4m)},
                               {STRATA_SPIRV(trace_inst), STRATA_SPIRV(trace_bvh2_inst), STRATA_SPIRV(trace_bvh4m_inst)}};
 #undef STRATA_SPIRV
     const int traversal = !scene.wide ? 1 : scene.memoryStack ? 2 : 0;
     if (!pathtrace) return trace[inst][traversal];
+    if (motion) return aov ? pathMotionAov[inst][layers][traversal] : pathMotion[inst][layers][traversal];
     return aov ? pathAov[inst][layers][traversal] : path[inst][layers][traversal];
 }
 

@@ -21,8 +21,10 @@ namespace strata {
 // scene's traversal: BVH2, four-wide with registers, or four-wide with an
 // array stack; the path tracer with the material layers (STRATA_LAYERS) when
 // the scene has one (gpu::kFeaturesLayers); with `aov` the path tracer that
-// also sums the AOVs (STRATA_AOV, `--aov`).
-std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov = false);
+// also sums the AOVs (STRATA_AOV, `--aov`); with `motion` the path tracer
+// with the camera effects (STRATA_MOTION: time and the thin lens).
+std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov = false,
+                                               bool motion = false);
 
 // The SPIR-V of wavefront.comp, with the material layers when the scene has one.
 std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene);

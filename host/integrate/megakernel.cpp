@@ -18,7 +18,7 @@ public:
         std::vector<std::uint32_t> spec = pathSpec(dev, s);
         spec[SPEC_COUNT_RAYS] = t.countRays ? 1u : 0u;
         spec[SPEC_WORK_QUEUE] = useWorkQueue(ctx, t.workQueue) ? 1u : 0u;
-        kernel_ = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true, s.aov), pathBindings(),
+        kernel_ = std::make_unique<vk::Kernel>(ctx, traversalShader(dev, true, s.aov, s.cameraEffects()), pathBindings(),
                                                sizeof(DispatchParams), spec, t.reusePipeline);
         bindPathInputs(*kernel_, dev, film);
     }

@@ -295,6 +295,7 @@ int runBench(const BenchCommand& cmd) {
     options.requireEmitter = false;  // traversal needs no light
     options.variant = cmd.variant;
     options.instancing = cmd.instancing;
+    options.motion = motionOptions(cmd.settings);
     auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, options);
     const std::string environment = scene.environment.enabled ? scene.environment.source : "";

@@ -141,6 +141,7 @@ std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd) {
     LoadOptions load;
     load.variant = cmd.variant;
     load.instancing = cmd.instancing;
+    load.motion = motionOptions(cmd.settings);
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
     const Camera camera = chooseCamera(scene, cmd.view, ref.width, ref.height);
     const GpuScene gpu = packScene(scene, buildSceneBvh(scene));

@@ -126,6 +126,8 @@ void packInstances(const Scene& scene, const SceneBvh& bvh, GpuScene& g) {
         std::memcpy(t, &node, sizeof node);
         for (const glm::uvec4& w : t) g.instances.push_back(w);
     }
+    // The moving placements' MotionKeys follow the records.
+    std::size_t keyTexel = recordBase + n * gpu::kInstanceTexels;
     for (std::size_t k = 0; k < n; ++k) {
         const Placement& p = bvh.placements[bvh.top.triIndices[k]];
         const BottomLevel& b = bvh.bottoms[p.bottom];
@@ -138,10 +140,23 @@ void packInstances(const Scene& scene, const SceneBvh& bvh, GpuScene& g) {
         }
         rec.root4 = b.root4;
         rec.root2 = b.root2;
+        if (!p.motion.empty()) {
+            rec.motionFirst = std::uint32_t(keyTexel);
+            rec.motionCount = std::uint32_t(p.motion.size());
+            keyTexel += p.motion.size() * gpu::kMotionKeyTexels;
+        }
         glm::uvec4 t[gpu::kInstanceTexels];
         std::memcpy(t, &rec, sizeof rec);
         for (const glm::uvec4& w : t) g.instances.push_back(w);
         g.placedTriangles += p.bottom == 0 ? scene.worldTriangles() : scene.sharedMeshes[p.bottom - 1].count;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        for (const MotionKey& m : bvh.placements[bvh.top.triIndices[k]].motion) {
+            const gpu::MotionKey key{m.time, m.translation, m.rotation, m.scale, 0.0f};
+            glm::uvec4 t[gpu::kMotionKeyTexels];
+            std::memcpy(t, &key, sizeof key);
+            for (const glm::uvec4& w : t) g.instances.push_back(w);
+        }
     }
     g.placementCount = n;
     g.sharedMeshCount = scene.sharedMeshes.size();
@@ -150,6 +165,12 @@ void packInstances(const Scene& scene, const SceneBvh& bvh, GpuScene& g) {
 }
 
 }  // namespace
+
+std::vector<glm::uvec4> packInstanceArray(const Scene& scene, const SceneBvh& bvh) {
+    GpuScene g;
+    packInstances(scene, bvh, g);
+    return std::move(g.instances);
+}
 
 void setLightUniforms(gpu::FrameUniforms& f, const GpuScene& g) {
     f.counts.x = static_cast<std::uint32_t>(g.emitters.size());

@@ -79,6 +79,10 @@ GpuScene packScene(const Scene& scene, SceneBvh bvh);
 // shallow enough to be traversed; bvhWidth 2 keeps it.
 GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth = 4);
 
+// The instances array alone (GpuScene::instances) of a scene posed again
+// (--frames): `bvh` holds the bottom levels' roots and the new top level.
+std::vector<glm::uvec4> packInstanceArray(const Scene& scene, const SceneBvh& bvh);
+
 // Fills FrameUniforms.counts.x and the env* members from the packed scene.
 void setLightUniforms(gpu::FrameUniforms& frame, const GpuScene& scene);
 

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <memory>
+#include <optional>
 
 #include "denoise/command.h"
 #include "image/aov.h"
@@ -35,35 +37,71 @@ GpuScene buildAndPackReleasing(Scene& scene, int bvhWidth, double& ms) {
     return gpu;
 }
 
-int runRender(const RenderCommand& cmd) {
-    for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
-    for (const auto& out : cmd.outputs) requireImageSupport(out);
-    for (const auto& out : cmd.outputs) checkOutputPath(out);
-    if (!cmd.statsJson.empty()) checkOutputPath(cmd.statsJson);
-    checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
-                         cmd.settings.height);
+namespace {
 
+// A scene on the device, and what a frame of --frames needs to pose it
+// again: the host Scene (its triangles released), the BVH's bottom levels.
+struct Loaded {
+    Scene scene;
+    GpuScene gpu;
+    DeviceScene dev;
+    std::vector<BottomLevel> bottoms;
+    Camera camera;
+    double loadMs = 0.0, packMs = 0.0, deviceMs = 0.0;
+};
+
+// Load, build, pack and upload `cmd.scene`; `shared` is the device, created
+// on first use (after the scene loaded).
+Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared) {
+    Loaded l;
     auto t0 = std::chrono::steady_clock::now();
-    LoadOptions load;
-    load.variant = cmd.variant;
-    load.instancing = cmd.instancing;
-    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
-    const double loadMs = msSince(t0);
-    const Camera camera = chooseCamera(scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
-
-    double packMs = 0.0;  // the BVH build and the packing
-    GpuScene gpu = buildAndPackReleasing(scene, cmd.settings.bvhWidth, packMs);
+    LoadOptions options;
+    options.variant = cmd.variant;
+    options.instancing = cmd.instancing;
+    options.motion = motionOptions(cmd.settings);
+    options.motion.frames = cmd.frames.enabled;
+    l.scene = loadSceneWithEnvironment(cmd.scene, cmd.env, options);
+    l.loadMs = msSince(t0);
+    l.camera = chooseCamera(l.scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
+    t0 = std::chrono::steady_clock::now();
+    SceneBvh bvh = buildSceneBvh(l.scene);
+    l.bottoms = bvh.bottoms;
+    // Packing releases the placements with the triangles; a sequence of
+    // frames poses them again.
+    std::vector<MeshInstance> instances;
+    if (cmd.frames.enabled) instances = l.scene.instances;
+    l.gpu = packSceneAndRelease(l.scene, std::move(bvh), cmd.settings.bvhWidth);
+    if (cmd.frames.enabled) l.scene.instances = std::move(instances);
+    l.packMs = msSince(t0);
     const auto t1 = std::chrono::steady_clock::now();
-    vk::Context ctx({cmd.device, cmd.validation});
-    const double deviceMs = msSince(t1);
-    if (!cmd.quiet)
-        std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
-                     ctx.info.type.c_str(), ctx.info.driver.c_str());
+    if (!shared) {
+        shared = std::make_unique<vk::Context>(vk::ContextOptions{cmd.device, cmd.validation});
+        if (!cmd.quiet)
+            std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", shared->info.index, shared->info.name.c_str(),
+                         shared->info.type.c_str(), shared->info.driver.c_str());
+    }
+    l.deviceMs = msSince(t1);
+    l.dev = uploadAndRelease(*shared, l.gpu, uploadOptions(cmd.settings, cmd.tuning));
+    return l;
+}
 
-    const DeviceScene dev = uploadAndRelease(ctx, gpu, uploadOptions(cmd.settings, cmd.tuning));
-    RenderResult result = render(ctx, dev, camera, cmd.settings, cmd.tuning);
+// Poses a loaded scene for another frame's shutter: its moving placements
+// (a new top level and instances array on the device) and cameras.
+void pose(const vk::Context& ctx, const RenderCommand& cmd, Loaded& l) {
+    l.scene.poser->pose(l.scene, cmd.settings.shutterOpen, cmd.settings.shutterClose);
+    l.camera = chooseCamera(l.scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
+    if (!l.scene.instanced()) return;
+    SceneBvh top;
+    top.bottoms = l.bottoms;
+    buildTopLevel(l.scene, top);
+    l.gpu.instances = packInstanceArray(l.scene, top);
+    l.dev.instances = uploadArray(ctx, l.gpu.instances, sceneLimits(ctx, cmd.tuning.limits));
+}
 
-    StatsInput in{&ctx, &scene, &gpu, &cmd.settings, &result, loadMs, packMs, deviceMs};
+// Renders the loaded scene and writes the outputs.
+void renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l) {
+    RenderResult result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning);
+    StatsInput in{&ctx, &l.scene, &l.gpu, &cmd.settings, &result, l.loadMs, l.packMs, l.deviceMs};
     nlohmann::json stats = statsJson(in);
     if (ctx.validation && vk::validationMessageCount() > 0)
         throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
@@ -105,6 +143,62 @@ int runRender(const RenderCommand& cmd) {
                             " samples were NaN or Inf and were left out of the image");
     if (!cmd.quiet)
         for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());
+}
+
+}  // namespace
+
+std::string frameFileName(const std::string& pattern, int frame) {
+    const std::size_t first = pattern.find('#');
+    if (first == std::string::npos) return pattern;
+    std::size_t last = first;
+    while (last < pattern.size() && pattern[last] == '#') ++last;
+    std::string number = std::to_string(frame);
+    if (number.size() < last - first) number.insert(0, last - first - number.size(), '0');
+    return pattern.substr(0, first) + number + pattern.substr(last);
+}
+
+int runRender(const RenderCommand& cmd) {
+    for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
+    for (const auto& out : cmd.outputs) requireImageSupport(out);
+    for (const auto& out : cmd.outputs) checkOutputPath(out);
+    if (!cmd.statsJson.empty()) checkOutputPath(cmd.statsJson);
+    checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
+                         cmd.settings.height);
+
+    std::unique_ptr<vk::Context> ctx;
+    if (!cmd.frames.enabled) {
+        Loaded l = load(cmd, ctx);
+        renderAndWrite(cmd, *ctx, l);
+        return 0;
+    }
+    // Each frame its own shutter. The scene is loaded once (every mesh the
+    // animation moves instanced); each later frame poses its placements and
+    // cameras again: a new top level and instances array. A scene without a
+    // poser (Scene::poser) is loaded anew each frame. The device and its
+    // compiled pipelines stay.
+    const FrameRange& fr = cmd.frames;
+    std::optional<Loaded> l;
+    for (int f = fr.first; f <= fr.last; f += fr.step) {
+        RenderCommand frame = cmd;
+        frame.settings.shutter = true;
+        frame.settings.shutterOpen = f / fr.fps;
+        frame.settings.shutterClose = frame.settings.shutterOpen + fr.shutterAngle / 360.0 / fr.fps;
+        for (std::string& out : frame.outputs) out = frameFileName(out, f);
+        if (!frame.statsJson.empty()) frame.statsJson = frameFileName(frame.statsJson, f);
+        const auto t0 = std::chrono::steady_clock::now();
+        if (l && l->scene.poser)
+            pose(*ctx, frame, *l);
+        else  // the first frame, or a scene the poser cannot pose (Scene::poser)
+            l.emplace(load(frame, ctx));
+        const double setUpMs = msSince(t0);
+        if (f != fr.first && l->scene.poser) {  // this frame's start-up: the posing alone (--stats: pack)
+            l->loadMs = l->deviceMs = l->dev.uploadMs = 0.0;
+            l->packMs = setUpMs;
+        }
+        renderAndWrite(frame, *ctx, *l);
+        if (!cmd.quiet)
+            std::fprintf(stderr, "strata: frame %d: set-up %.1f ms, in all %.2f s\n", f, setUpMs, msSince(t0) / 1000.0);
+    }
     return 0;
 }
 

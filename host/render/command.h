@@ -12,6 +12,20 @@
 
 namespace strata {
 
+// --frames FIRST:LAST[:STEP], --fps, --shutter-angle: an animation rendered
+// frame by frame; frame f's shutter opens at f / fps and stays open for
+// shutterAngle / 360 of a frame's time.
+struct FrameRange {
+    bool enabled = false;
+    int first = 0, last = 0, step = 1;
+    double fps = 24.0;
+    double shutterAngle = 0.0;  // degrees in [0, 360]; 0: no motion blur
+};
+
+// `pattern` with its run of '#' replaced by the frame number, zero-padded to
+// the run's length ("out_####.exr", 7 -> "out_0007.exr").
+std::string frameFileName(const std::string& pattern, int frame);
+
 struct RenderCommand {
     std::string scene;
     std::vector<std::string> outputs;   // .exr and/or .png
@@ -29,6 +43,7 @@ struct RenderCommand {
     bool variance = false;              // EXR outputs get variance.R/G/B channels
     bool denoise = false;               // --denoise: R, G, B denoised (settings.aov is set too)
     bool denoiseFast = false;           // '--denoise fast': the a-trous filter, not the regression
+    FrameRange frames;                  // --frames: outputs and statsJson hold a run of '#'
 };
 
 // The BVH and packing stages as the commands run them, consuming the scene

@@ -50,6 +50,15 @@ gpu::FrameUniforms frameUniforms(const DeviceScene& dev, const Camera& cam, cons
     f.camUp = glm::vec4(up * tanHalf, 0.0f);
     f.image = glm::uvec4(s.width, s.height, s.maxDepth, s.seed);
     f.counts.w = s.spp;
+    f.lens = glm::vec4(s.lensRadius, s.focusDistance, static_cast<float>(s.apertureBlades), 0.0f);
+    if (s.cameraEffects()) {
+        f.shutter = glm::vec4(float(s.shutterOpen), float(s.shutter ? s.shutterClose : s.shutterOpen),
+                              float(cam.motion.size()), 0.0f);
+        for (std::size_t k = 0; k < cam.motion.size() && k < gpu::kMaxCameraKeys; ++k) {
+            f.cameraKeys[2 * k] = glm::vec4(cam.motion[k].time, cam.motion[k].translation);
+            f.cameraKeys[2 * k + 1] = cam.motion[k].rotation;
+        }
+    }
     return f;
 }
 

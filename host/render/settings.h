@@ -6,6 +6,7 @@
 
 #include "../../shaders/shared/types.h"
 #include "render/filter.h"
+#include "scene/scene.h"
 #include "upload/device_scene.h"
 
 namespace strata {
@@ -40,9 +41,25 @@ struct RenderSettings {
     std::uint32_t mis = gpu::kMisPower; // gpu::kMis*: light and BSDF sampling by the power
                                         // heuristic, or one technique alone (for comparisons)
     IntegratorKind integrator = IntegratorKind::Megakernel;
+    // The camera effects (the pathtrace*_motion variants, lib/camera.glsl):
+    float lensRadius = 0.0f;            // --lens-radius (world units): 0 is a pinhole
+    float focusDistance = 1.0f;         // --focus-distance: the plane in focus, along the view direction
+    std::uint32_t apertureBlades = 0;   // --aperture-blades: 0 a round aperture, 3 or more a polygon
+    bool shutter = false;               // --shutter given: the scene posed by its animation
+    double shutterOpen = 0.0;           // --shutter OPEN,CLOSE (seconds on the animation's timeline)
+    double shutterClose = 0.0;
+    std::string animation;              // --animation: its name or index; empty: the first
+    // Whether the render needs the camera effects' shader variants: a lens,
+    // or a shutter interval (motion blur).
+    bool cameraEffects() const { return lensRadius > 0.0f || (shutter && shutterClose > shutterOpen); }
     bool aov = false;                   // --aov: the AOV sums as well (pathtrace*_aov; Film::aovSum);
                                         // the megakernel only
 };
+
+// The loader's part of the settings: --shutter and --animation.
+inline MotionOptions motionOptions(const RenderSettings& s) {
+    return {s.shutter, s.animation, s.shutterOpen, s.shutterClose};
+}
 
 struct RenderTuning {
     std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding

@@ -18,6 +18,7 @@
 
 #include "scene/gltf_deform.h"
 #include "scene/gltf_internal.h"
+#include "scene/gltf_motion.h"
 #include "scene/scene.h"
 #include "scene/tangents.h"
 #include "util/error.h"
@@ -111,7 +112,7 @@ public:
             std::size_t nextChild;
         };
         std::vector<Frame> stack, visits;
-        auto enter = [&](int node, const glm::dmat4& parent) {
+        auto enter = [&](int node, const glm::dmat4& parent, int parentNode) {
             if (onPath[static_cast<std::size_t>(node)]) {
                 fail(path_, nodeLabel(model_, node) +
                                 " is its own ancestor (cycle in the node hierarchy)");
@@ -124,7 +125,9 @@ public:
                                 " (a node may have one parent, and a root none)");
             }
             entered[static_cast<std::size_t>(node)] = 1;
-            const glm::dmat4 world = parent * localTransform(path_, model_, node);
+            timeline_->setParent(node, parentNode);
+            if (frames_) targets_.hierarchy.push_back({node, parentNode});
+            const glm::dmat4 world = parent * timeline_->localAtOpen(node, localTransform(path_, model_, node));
             visits.push_back({node, world, 0});
             onPath[static_cast<std::size_t>(node)] = 1;
             stack.push_back({node, world, 0});
@@ -135,7 +138,7 @@ public:
                                 std::to_string(root) + " does not exist (" +
                                 std::to_string(model_.nodes.size()) + " nodes)");
             }
-            enter(root, glm::dmat4(1.0));
+            enter(root, glm::dmat4(1.0), -1);
             while (!stack.empty()) {
                 Frame& top = stack.back();
                 const auto& children = model_.nodes[static_cast<std::size_t>(top.node)].children;
@@ -151,7 +154,7 @@ public:
                                     " nodes)");
                 }
                 const glm::dmat4 parent = top.world;
-                enter(child, parent);
+                enter(child, parent, top.node);
             }
         }
         // Each mesh's placements (a node, or each of its EXT_mesh_gpu_instancing
@@ -159,7 +162,7 @@ public:
         std::vector<gltf::GpuInstances> gpu(visits.size());
         const std::size_t meshCount = model_.meshes.size();
         std::vector<std::size_t> placements(meshCount, 0), meshTriangles(meshCount, 0);
-        std::vector<char> eligible(meshCount, 1);
+        std::vector<char> eligible(meshCount, 1), moving(meshCount, 0);
         for (std::size_t k = 0; k < visits.size(); ++k) {
             const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
             const int mesh = node.mesh;
@@ -168,7 +171,9 @@ public:
             decodedMesh(mesh);  // in the order the meshes are reached (skippedPrimitives)
             placements[std::size_t(mesh)] += gpu[k].count > 0 ? gpu[k].count : 1;
             if (node.skin >= 0) eligible[std::size_t(mesh)] = 0;
+            if ((timeline_->blurs() || frames_) && timeline_->animated(visits[k].node)) moving[std::size_t(mesh)] = 1;
         }
+        std::size_t stillMoving = 0;  // moving meshes that cannot be instanced
         std::size_t triangles = 0;
         instanced_.assign(meshCount, 0);
         for (std::size_t m = 0; m < meshCount; ++m) {
@@ -183,9 +188,15 @@ public:
             const std::size_t placed = placements[m] * meshTriangles[m];
             bool instance = eligible[m] && placements[m] >= 2 && instancing_ != Instancing::Off;
             if (instancing_ == Instancing::Auto) instance = instance && placed > kInstancingMinTriangles;
+            // A mesh that moves during the shutter is instanced: its placements carry MotionKeys.
+            if (moving[m] && eligible[m]) instance = true;
+            if (moving[m] && !eligible[m]) ++stillMoving, targets_.complete = false;
             instanced_[m] = instance;
             triangles += instance ? 0 : placed;
         }
+        if (stillMoving > 0 && timeline_->blurs())
+            warn(path_, std::to_string(stillMoving) + " moving mesh(es) emit light, are skinned or have morph targets: "
+                        "rendered at the pose at the shutter's open, without motion blur");
         reserveHuge(scene_.triangles, triangles);
         for (std::size_t k = 0; k < visits.size(); ++k) visit(visits[k].node, visits[k].world, gpu[k]);
         // The instanced meshes' own triangles after the world's, once per
@@ -204,6 +215,12 @@ public:
     }
 
     void setInstancing(Instancing mode) { instancing_ = mode; }
+    // `frames`: every animated mesh is instanced and the poser's targets recorded.
+    void setTimeline(gltf::NodeTimeline& timeline, bool frames) {
+        timeline_ = &timeline;
+        frames_ = frames;
+    }
+    gltf::PoseTargets& poseTargets() { return targets_; }
 
     bool usesDefaultMaterial() const { return usesDefault_; }
     std::size_t zeroLights() const { return zeroLights_; }
@@ -317,13 +334,16 @@ private:
         if (node.camera >= 0 || node.camera < -1) addCamera(nodeIndex, world);
         if (node.mesh >= 0 || node.mesh < -1) {
             if (gpu.count == 0) {
-                place(nodeIndex, world);
+                place(nodeIndex, world, glm::dmat4(1.0), nodeLabel(model_, nodeIndex));
             } else {
-                for (std::size_t i = 0; i < gpu.count; ++i) place(nodeIndex, world * gpu.local(i));
+                for (std::size_t i = 0; i < gpu.count; ++i)
+                    place(nodeIndex, world * gpu.local(i), gpu.local(i),
+                          nodeLabel(model_, nodeIndex) + " instance " + std::to_string(i));
             }
         }
         const int light = gltf::nodeLight(path_, model_, nodeIndex, nodeLabel(model_, nodeIndex));
         if (light >= 0) addLight(nodeIndex, light, world);
+        if (light >= 0 && frames_ && timeline_->animated(nodeIndex)) targets_.complete = false;
     }
 
     void addLight(int nodeIndex, int light, const glm::dmat4& world) {
@@ -362,28 +382,24 @@ private:
             fail(path_, msg.str());
         }
         // Camera space: looks down -Z, +Y up. Normalising removes any scale.
-        const glm::dmat3 linear(world);
-        const glm::dvec3 position(world[3]);
-        const auto forward = tryNormalize(linear * glm::dvec3(0.0, 0.0, -1.0));
-        const glm::dvec3 upRaw = linear * glm::dvec3(0.0, 1.0, 0.0);
-        const auto up =
-            forward ? tryNormalize(upRaw - glm::dot(upRaw, *forward) * *forward) : std::nullopt;
-        if (!forward || !up || !isFinite(position)) {
+        Camera camera;
+        if (!gltf::cameraFromWorld(world, camera)) {
             fail(path_, label + " on " + nodeLabel(model_, nodeIndex) +
                             ": degenerate world transform (zero scale or not finite)");
         }
-        Camera camera;
-        camera.position = glm::vec3(position);
-        camera.forward = glm::vec3(*forward);
-        camera.up = glm::vec3(*up);
         camera.yfov = static_cast<float>(yfov);
         camera.name = !src.name.empty() ? src.name : node.name;
+        camera.motion = timeline_->cameraKeys(nodeIndex, label + " on " + nodeLabel(model_, nodeIndex));
+        if (frames_ && timeline_->animated(nodeIndex))
+            targets_.cameras.push_back({scene_.cameras.size(), nodeIndex, label + " on " + nodeLabel(model_, nodeIndex)});
         scene_.cameras.push_back(camera);
     }
 
-    // A placement of the node's mesh: an instance of its shared copy, or
-    // its triangles in world space.
-    void place(int nodeIndex, const glm::dmat4& world) {
+    // A placement of the node's mesh (world: at the shutter's open; local:
+    // its EXT_mesh_gpu_instancing transform under the node): an instance of
+    // its shared copy, with its MotionKeys when it moves, or its triangles in
+    // world space.
+    void place(int nodeIndex, const glm::dmat4& world, const glm::dmat4& local, const std::string& label) {
         const int mesh = model_.nodes[static_cast<std::size_t>(nodeIndex)].mesh;
         const bool known = mesh >= 0 && std::size_t(mesh) < instanced_.size();
         const double det = glm::determinant(glm::dmat3(world));
@@ -391,13 +407,16 @@ private:
         for (int c = 0; c < 4; ++c) finite = finite && isFinite(glm::dvec3(world[c]));
         // A degenerate or non-finite placement is flattened (addMesh reports it).
         if (!known || !instanced_[std::size_t(mesh)] || !finite || det == 0.0) {
+            if (frames_ && timeline_->animated(nodeIndex)) targets_.complete = false;
             addMesh(nodeIndex, world);
             return;
         }
         const SharedKey key{mesh, det < 0.0, nodeIndex};
         auto it = shared_.find(key);
         if (it == shared_.end()) it = shared_.emplace(key, std::uint32_t(shared_.size())).first;
-        scene_.instances.push_back({it->second, glm::mat4(world)});
+        scene_.instances.push_back({it->second, glm::mat4(world), timeline_->keys(nodeIndex, local, label)});
+        if (frames_ && timeline_->animated(nodeIndex))
+            targets_.placements.push_back({scene_.instances.size() - 1, nodeIndex, local, label});
     }
 
     void addMesh(int nodeIndex, const glm::dmat4& world, bool reverseWinding = false) {
@@ -508,6 +527,9 @@ private:
     const tinygltf::Model& model_;
     Scene& scene_;
     Instancing instancing_ = Instancing::Auto;
+    gltf::NodeTimeline* timeline_ = nullptr;
+    bool frames_ = false;
+    gltf::PoseTargets targets_;
     std::vector<char> instanced_;                    // per mesh: placed by instances
     std::map<SharedKey, std::uint32_t> shared_;      // -> index into scene_.sharedMeshes
     std::vector<std::optional<LocalMesh>> meshes_;  // decoded on first use
@@ -546,9 +568,18 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
         scene.materials.push_back(gltf::convertMaterial(path, model, static_cast<int>(i)));
     }
     gltf::warnTextureFallbacks(path, model, scene.materials);
+    std::optional<gltf::Animation> animation;
+    if (options.motion.enabled && model.animations.empty() && options.motion.animation.empty())
+        warn(path, "no animations in the file: --shutter poses nothing and blurs nothing");
+    else if (options.motion.enabled)
+        animation = gltf::Animation::load(path, model, options.motion.animation);
+    gltf::NodeTimeline timeline(path, model, animation ? &*animation : nullptr, options.motion);
     SceneBuilder builder(path, model, scene);
     builder.setInstancing(options.instancing);
+    builder.setTimeline(timeline, options.motion.frames && animation);
     builder.walk(sceneIndex);
+    if (options.motion.frames && animation && builder.poseTargets().complete)
+        scene.poser = gltf::makePoser(path, model, std::move(*animation), std::move(builder.poseTargets()));
     const std::string skipped = builder.skippedPrimitives();
     if (scene.triangles.empty() && !skipped.empty()) fail(path, "no triangles to render: skipped " + skipped);
     if (builder.usesDefaultMaterial() || scene.materials.empty()) {

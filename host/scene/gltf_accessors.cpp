@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include <glm/ext/vector_float1.hpp>
+
 #include "scene/gltf_internal.h"
 #include "util/error.h"
 
@@ -445,6 +447,9 @@ std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygl
     return out;
 }
 
+template std::vector<glm::vec1> readFloats<1>(const std::string&, const tinygltf::Model&, int,
+                                              const std::string&, const AccessorFormat&,
+                                              const AccessorFormat*);
 template std::vector<glm::vec2> readFloats<2>(const std::string&, const tinygltf::Model&, int,
                                               const std::string&, const AccessorFormat&,
                                               const AccessorFormat*);

@@ -9,20 +9,6 @@
 
 namespace strata::gltf {
 
-glm::dmat4 trs(const glm::dvec3& t, glm::dvec4 q, const glm::dvec3& s) {
-    const double len = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
-    q /= len;
-    const double x = q.x, y = q.y, z = q.z, w = q.w;
-    // Unit quaternion (x, y, z, w) -> rotation matrix; m[column][row].
-    const glm::dmat3 r(glm::dvec3(1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)),
-                       glm::dvec3(2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)),
-                       glm::dvec3(2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)));
-    glm::dmat4 m(1.0);
-    for (int c = 0; c < 3; ++c) m[c] = glm::dvec4(r[c] * s[c], 0.0);
-    m[3] = glm::dvec4(t, 1.0);
-    return m;
-}
-
 glm::dmat4 GpuInstances::local(std::size_t i) const {
     return trs(translation.empty() ? glm::dvec3(0.0) : glm::dvec3(translation[i]),
                rotation.empty() ? glm::dvec4(0.0, 0.0, 0.0, 1.0) : glm::dvec4(rotation[i]),

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
+#include "scene/pose.h"
 #include "scene/scene.h"
 
 namespace strata::gltf {
@@ -60,7 +61,7 @@ inline constexpr std::size_t kZeroAccessorFloor = std::size_t(1) << 20;
 // `mesh 0 ("Quad") primitive 0 POSITION`. `undeclared`, when not null, is the
 // format KHR_mesh_quantization would accept: the file does not declare it,
 // and an accessor that fits it is told so in the error. Instantiated for N =
-// 2, 3, 4.
+// 1 (glm::vec1, <glm/ext/vector_float1.hpp>), 2, 3, 4.
 template <int N>
 std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygltf::Model& model,
                                            int index, const std::string& use,
@@ -72,9 +73,7 @@ std::vector<glm::vec<N, float>> readFloats(const std::string& path, const tinygl
 std::vector<glm::mat4> readMatrices(const std::string& path, const tinygltf::Model& model, int index,
                                     const std::string& use);
 
-// T * R * S from a translation, a quaternion (x, y, z, w) of any non-zero
-// length (normalised here) and a scale.
-glm::dmat4 trs(const glm::dvec3& t, glm::dvec4 q, const glm::dvec3& s);
+using strata::trs;  // scene/pose.h
 
 // EXT_mesh_gpu_instancing of one node: each attribute's values (empty when
 // the file leaves it out) and the instance count.

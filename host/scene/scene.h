@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,12 +14,27 @@
 
 namespace strata {
 
+// One pose of something that moves during the shutter (motion blur): its
+// world transform at `time` (seconds on the animation's timeline) as T R S.
+// Keys are in time order; between two the pose is interpolated (T and S
+// linearly, R by slerp); two keys at one time are a jump (before, after).
+struct MotionKey {
+    float time = 0.0f;
+    glm::vec3 translation{0.0f};
+    glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // unit quaternion xyzw
+    glm::vec3 scale{1.0f};
+};
+
 struct Camera {
     glm::vec3 position{0.0f};
     glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit, camera's local -Z
     glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, camera's local +Y, orthogonal to forward
     float yfov = 0.8f;                     // radians
     std::string name;                      // glTF camera name, else its node's name
+    // An animated camera node over the shutter (LoadOptions::motion): its
+    // position and orientation (scale 1; rotation takes camera space to
+    // world space); empty when it does not move. At most gpu::kMaxCameraKeys.
+    std::vector<MotionKey> motion;
 };
 
 // KHR_texture_transform of one texture reference: uv' = offset +
@@ -220,7 +236,20 @@ struct SharedMesh {
 // reversed, so its front faces stay front faces.
 struct MeshInstance {
     std::uint32_t mesh = 0;  // index into Scene::sharedMeshes
-    glm::mat4 toWorld{1.0f};
+    glm::mat4 toWorld{1.0f};  // with motion: the pose at the shutter's open
+    std::vector<MotionKey> motion;  // over the shutter; empty: it does not move
+};
+
+struct Scene;
+
+// Poses a loaded scene's animated placements and cameras for another
+// shutter (--frames): their toWorld, MotionKeys and camera transforms, as
+// loading with that shutter would have made them. Set by the loader with
+// MotionOptions::frames.
+class ScenePoser {
+public:
+    virtual ~ScenePoser() = default;
+    virtual void pose(Scene& scene, double open, double close) const = 0;
 };
 
 struct Scene {
@@ -255,6 +284,10 @@ struct Scene {
     // Triangles with an emissive material but zero area. They stay in
     // `triangles` as geometry and are not emitters (see isEmitter).
     std::size_t droppedEmitters = 0;
+    // MotionOptions::frames with an animation, unless something animated
+    // cannot be posed again (a light, an emitting, skinned or morphed
+    // mesh): null then, and each frame is loaded anew.
+    std::shared_ptr<const ScenePoser> poser;
 };
 
 // Frees what packing copies (triangles, texture coordinates, tangents, colours,
@@ -301,6 +334,21 @@ inline constexpr const char* kDefaultEnvironment = "default (no light in the sce
 enum class Instancing { Auto, On, Off };
 inline constexpr std::size_t kInstancingMinTriangles = std::size_t(1) << 20;
 
+// glTF animation (--animation, --shutter): the scene is posed at `open` on
+// the chosen animation's timeline; with open < close every placement and
+// camera that moves within [open, close] gets MotionKeys (its mesh is then
+// instanced, whatever `instancing` says). Emitting, skinned and morphed
+// meshes stay at the pose at `open` (a warning says so).
+struct MotionOptions {
+    bool enabled = false;   // off: the nodes' static transforms, as if no animation
+    std::string animation;  // its name or index; empty: the first
+    double open = 0.0;
+    double close = 0.0;
+    // A sequence of frames (--frames): every mesh the animation moves is
+    // instanced, whatever this shutter, and Scene::poser poses the others.
+    bool frames = false;
+};
+
 struct LoadOptions {
     // A scene where nothing emits or was meant to (no emissive material on a
     // triangle, no punctual light) and no externalLight gets a uniform white
@@ -315,6 +363,7 @@ struct LoadOptions {
     // (--variant); empty for their own. A name the file lacks is an error.
     std::string variant;
     Instancing instancing = Instancing::Auto;
+    MotionOptions motion;
 };
 
 // Loads .gltf or .glb (binary when the file starts with the 'glTF' magic).

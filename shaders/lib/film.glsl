@@ -27,13 +27,23 @@ vec3 cameraRay(vec2 pixel) {
     return normalize(frame.camForward.xyz + ndc.x * frame.camRight.xyz + ndc.y * frame.camUp.xyz);
 }
 
-// Sample `sampleIndex` of `pixel`: its sampler, and the direction of its
-// camera ray (from frame.camOrigin) through a point drawn by filter
-// importance sampling (weight 1) from the sampler's first pair.
-void cameraSample(uvec2 pixel, uint sampleIndex, out Sampler smp, out vec3 dir) {
+#ifdef STRATA_MOTION
+#include "lib/camera.glsl"
+#endif
+
+// Sample `sampleIndex` of `pixel`: its sampler, and its camera ray through a
+// point drawn by filter importance sampling (weight 1) from the sampler's
+// first pair: from frame.camOrigin (a pinhole), or with STRATA_MOTION at the
+// sample.s time and through a point of the lens (lib/camera.glsl).
+void cameraSample(uvec2 pixel, uint sampleIndex, out Sampler smp, out vec3 origin, out vec3 dir) {
     smp = pixelSampler(pixel, sampleIndex);
     vec2 offset = sampleFilter(sample2D(smp));
+#ifdef STRATA_MOTION
+    motionCameraRay(vec2(pixel) + 0.5 + offset, smp, origin, dir);
+#else
     dir = cameraRay(vec2(pixel) + 0.5 + offset);
+    origin = frame.camOrigin.xyz;
+#endif
 }
 
 // Radiance L of one sample added to the sums of pixel `pixelIndex` (y * width

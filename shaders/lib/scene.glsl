@@ -78,8 +78,14 @@ BvhNode bvhFetchTopNode(uint index) {
     return bvhNodeFromTexels(uvec4[](instanceWord(base), instanceWord(base + 1u)));
 }
 
-// The record starting at texel `first`: the two transforms' rows and the roots.
+// The record starting at texel `first`: the two transforms' rows and the
+// roots (with STRATA_MOTION a moving instance's rows at the path's time:
+// lib/motion.glsl).
+#ifdef STRATA_MOTION
+#include "lib/motion.glsl"
+#else
 vec4 instanceRow(uint first, uint row) { return uintBitsToFloat(instanceWord(first + row)); }
+#endif
 uint instanceRoot(uint first) {
     uvec4 t = instanceWord(first + kInstanceWordRoot4 / kTexelWords);
 #ifdef STRATA_BVH2

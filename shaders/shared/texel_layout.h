@@ -27,6 +27,8 @@ STRATA_CONST(uint, kBvhNodeWordCount, 7u);
 STRATA_CONST(uint, kInstanceTexels, 7u);
 STRATA_CONST(uint, kInstanceWordRoot4, 24u);
 STRATA_CONST(uint, kInstanceWordRoot2, 25u);
+STRATA_CONST(uint, kInstanceWordMotionFirst, 26u);
+STRATA_CONST(uint, kInstanceWordMotionCount, 27u);
 STRATA_CONST(uint, kBvhNode4Texels, 7u);
 STRATA_CONST(uint, kBvhNode4WordMinX, 0u);
 STRATA_CONST(uint, kBvhNode4WordMaxX, 4u);
@@ -146,6 +148,8 @@ STRATA_WORD(BvhNode, count, kBvhNodeWordCount);
 STRATA_TEXELS(Instance, kInstanceTexels);
 STRATA_WORD(Instance, root4, kInstanceWordRoot4);
 STRATA_WORD(Instance, root2, kInstanceWordRoot2);
+STRATA_WORD(Instance, motionFirst, kInstanceWordMotionFirst);
+STRATA_WORD(Instance, motionCount, kInstanceWordMotionCount);
 
 STRATA_TEXELS(BvhNode4, kBvhNode4Texels);
 STRATA_TEXEL_WORD(BvhNode4, minX, kBvhNode4WordMinX);

@@ -85,11 +85,25 @@ struct Instance {
     vec4 objectToWorld[3];
     uint root4;   // the bottom level's root among the four-wide nodes
     uint root2;   // ... among the BVH2 nodes
-    uint pad0;
-    uint pad1;
+    uint motionFirst;  // motion blur: the first texel of its MotionKeys in the
+    uint motionCount;  // instances array, and their count (0: it does not move)
+};
+
+// One pose of a moving instance (motion blur, STRATA_MOTION): its
+// object-to-world transform at `time` is T R S. The keys of an instance are
+// in time order; between two the pose is interpolated (T and S linearly, R
+// by slerp); two keys at one time are a jump (the pose before, then after).
+struct MotionKey {
+    float time;
+    vec3 translation;
+    vec4 rotation;     // unit quaternion xyzw
+    vec3 scale;
+    float pad;
 };
 
 STRATA_CONST(uint, kNoInstance, 0xffffffffu);
+STRATA_CONST(uint, kMotionKeyTexels, 3u);   // a MotionKey in the instances array
+STRATA_CONST(uint, kMaxCameraKeys, 16u);    // FrameUniforms::cameraKeys
 
 // How the shaders read the scene's arrays (SPEC_TEXEL_FETCH). Every array
 // that has a texel view is bound both ways; the storage descriptor or the
@@ -324,6 +338,17 @@ struct FrameUniforms {
     vec4 envRotation;   // x, y: cos, sin of the rotation about +Y; zw unused
     uvec4 envInfo;      // x: the environment's emitter index (kNoLight: none);
                         // y, z: map width, height (0 without a map); w unused
+    // The camera effects (STRATA_MOTION, the *_motion variants; lib/motion.glsl).
+    // lens: x: lens radius (0: a pinhole), y: focus distance along the view
+    // direction (world units), z: aperture blades (0: a disk), w unused.
+    vec4 lens;
+    // shutter: x, y: open and close times (seconds on the animation's
+    // timeline), z: the camera's motion keys in cameraKeys (0: it does not
+    // move), w unused.
+    vec4 shutter;
+    // Two texels per key: (time, position xyz), (orientation: unit quaternion
+    // xyzw taking camera space to world space).
+    vec4 cameraKeys[2 * kMaxCameraKeys];
 };
 
 // Per-dispatch constants (push constants).
@@ -484,12 +509,13 @@ static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
 static_assert(sizeof(TriColors) == 48);
 static_assert(sizeof(TextureRef) == 48);
-static_assert(sizeof(FrameUniforms) == 160);
+static_assert(sizeof(FrameUniforms) == 192 + 32 * kMaxCameraKeys);
 static_assert(sizeof(DispatchParams) == 32);
 static_assert(sizeof(RenderCounters) == 32);
 static_assert(sizeof(TraceRay) == 32);
 static_assert(sizeof(TraceHit) == 16);
 static_assert(sizeof(Instance) == 112);
+static_assert(sizeof(MotionKey) == 16 * kMotionKeyTexels);
 static_assert(sizeof(TraceParams) == 16);
 static_assert(sizeof(PathState) == 48);
 static_assert(sizeof(WaveParams) == 32);
