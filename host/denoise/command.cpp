@@ -33,6 +33,7 @@ DenoiseInput denoiseInput(const AovImages& a) {
 void writeDenoised(const std::vector<std::string>& paths, const AovImages& aov, const std::vector<float>& denoised) {
     ExtraChannels extra;
     extra.add("noisy", "RGB", aov.color);
+    extra.attributes = aov.attributes;
     const ExtraChannels layers = aovChannels(aov);
     extra.names.insert(extra.names.end(), layers.names.begin(), layers.names.end());
     extra.planes.insert(extra.planes.end(), layers.planes.begin(), layers.planes.end());

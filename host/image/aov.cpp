@@ -63,6 +63,7 @@ ExtraChannels aovChannels(const AovImages& a) {
     if (!a.albedoVariance.empty()) x.add("albedoVariance", "RGB", a.albedoVariance);
     if (!a.normalVariance.empty()) x.add("normalVariance", "XYZ", a.normalVariance);
     if (!a.depthVariance.empty()) x.add("depthVariance", "Z", a.depthVariance);
+    x.attributes = a.attributes;
     return x;
 }
 
@@ -97,6 +98,7 @@ AovImages readAovImages(const std::string& path) {
     AovImages a;
     a.width = img.width;
     a.height = img.height;
+    a.attributes = img.attributes;
     // A denoised file (render --denoise) keeps the image as rendered in noisy.R/G/B.
     a.color = layer("noisy", "RGB", true);
     if (a.color.empty()) a.color = layer("", "RGB", false);

@@ -27,6 +27,8 @@ struct AovImages {
     std::vector<float> albedoVariance;  // albedoVariance.R/G/B
     std::vector<float> normalVariance;  // normalVariance.X/Y/Z
     std::vector<float> depthVariance;   // depthVariance.Z
+    // The EXR header's strata:... attributes (ExtraChannels::attributes).
+    std::vector<std::pair<std::string, int>> attributes;
 };
 
 // The AOV images of a film rendered with AOVs (film.aov).

@@ -2,6 +2,7 @@
 // (oiio/api.h) reads into. Plain data; includes nothing of strata's.
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace strata {
@@ -11,6 +12,8 @@ struct Image {
     int channels = 0;
     std::vector<std::string> channelNames;
     std::vector<float> pixels;  // row-major, interleaved channels, row 0 at the top
+    // The header's integer attributes named "strata:..." (ExrAttributes).
+    std::vector<std::pair<std::string, int>> attributes;
 
     // The index of the channel named `name`, or -1.
     int channel(const std::string& name) const {
@@ -26,6 +29,9 @@ struct Image {
 struct ExtraChannels {
     std::vector<std::string> names;
     std::vector<float> planes;
+    // Integer attributes of the EXR header, named "strata:..." (the samples
+    // per pixel a render reached and asked for).
+    std::vector<std::pair<std::string, int>> attributes;
 
     // Appends channels `layer`.`suffix[k]` from an image with suffix.size()
     // interleaved channels per pixel.

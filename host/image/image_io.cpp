@@ -16,6 +16,7 @@
 #include "oiio/api.h"
 #include "util/error.h"
 #include "util/files.h"
+#include "util/interrupt.h"
 
 namespace strata {
 namespace fs = std::filesystem;
@@ -101,6 +102,7 @@ const oiio::Api& imageModule(const std::string& path) {
 void writeImages(const std::vector<std::string>& paths, int width, int height,
                  const std::vector<float>& rgb, const ExtraChannels& extra) {
     std::vector<std::string> temps;
+    std::vector<std::unique_ptr<TempFileGuard>> guards;  // removed by a second SIGINT or SIGTERM
     auto cleanup = [&] {
         std::error_code ec;
         for (const auto& t : temps) fs::remove(t, ec);
@@ -114,6 +116,7 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
             name += p.extension().string();
             const fs::path tmp = p.parent_path() / name;
             temps.push_back(tmp.string());
+            guards.push_back(std::make_unique<TempFileGuard>(tmp.string()));
             writeOne(path, tmp.string(), width, height, rgb, extra);
         }
         for (std::size_t i = 0; i < paths.size(); ++i) {

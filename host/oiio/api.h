@@ -16,18 +16,20 @@
 
 namespace strata::oiio {
 
-inline constexpr int kApiVersion = 2;
+inline constexpr int kApiVersion = 3;
 
 struct Api {
     int version = kApiVersion;
     // Linear float RGB and the `extra` channels after them, zip-compressed,
-    // written to `tmp` in the format `path` names (EXR).
+    // with extra's attributes in the header, written to `tmp` in the format
+    // `path` names (EXR).
     std::string (*writeExr)(const std::string& path, const std::string& tmp, int width, int height,
                             const float* rgb, const ExtraChannels& extra);
     // sRGB-encoded 8-bit RGB written to `tmp` in the format `path` names (PNG).
     std::string (*writePng)(const std::string& path, const std::string& tmp, int width, int height,
                             const std::uint8_t* rgb);
-    // Any image OpenImageIO reads, as float, with its channel names.
+    // Any image OpenImageIO reads, as float, with its channel names and its
+    // header's integer attributes named "strata:...".
     std::string (*read)(const std::string& path, Image& out);
     // Draws the panels side by side (panelWidth x height each) as display
     // RGB floats, row 0 at the top.

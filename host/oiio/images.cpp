@@ -31,6 +31,7 @@ std::string writeExr(const std::string& path, const std::string& tmp, int w, int
     spec.channelnames = {"R", "G", "B"};
     spec.channelnames.insert(spec.channelnames.end(), extra.names.begin(), extra.names.end());
     spec.attribute("compression", "zip");
+    for (const auto& [name, value] : extra.attributes) spec.attribute(name, value);
     if (extra.names.empty()) return write(path, tmp, spec, OIIO::TypeDesc::FLOAT, rgb);
     std::vector<float> all(pixels * channels);
     for (std::size_t i = 0; i < pixels; ++i) {
@@ -60,6 +61,9 @@ std::string read(const std::string& path, Image& img) {
     img.height = spec.height;
     img.channels = spec.nchannels;
     img.channelNames = spec.channelnames;
+    for (const OIIO::ParamValue& p : spec.extra_attribs)
+        if (p.name().string().rfind("strata:", 0) == 0 && p.type() == OIIO::TypeDesc::INT)
+            img.attributes.emplace_back(p.name().string(), p.get_int());
     img.pixels.resize(static_cast<std::size_t>(img.width) * img.height * img.channels);
     if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
         return readFailure(oneLine(in->geterror()));

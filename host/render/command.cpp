@@ -17,6 +17,7 @@
 #include "scene/scene.h"
 #include "util/error.h"
 #include "util/files.h"
+#include "util/interrupt.h"
 #include "vk/check.h"
 #include "vk/context.h"
 
@@ -98,8 +99,9 @@ void pose(const vk::Context& ctx, const RenderCommand& cmd, Loaded& l) {
     l.dev.instances = uploadArray(ctx, l.gpu.instances, sceneLimits(ctx, cmd.tuning.limits));
 }
 
-// Renders the loaded scene and writes the outputs.
-void renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l) {
+// Renders the loaded scene and writes the outputs; returns the signal that
+// interrupted the render (the outputs then hold the samples reached), or 0.
+int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l) {
     RenderResult result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning);
     StatsInput in{&ctx, &l.scene, &l.gpu, &cmd.settings, &result, l.loadMs, l.packMs, l.deviceMs};
     nlohmann::json stats = statsJson(in);
@@ -110,9 +112,14 @@ void renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l)
     // The statistics first, taken back if an image cannot be written: all
     // outputs or none.
     if (!cmd.statsJson.empty()) writeTextAtomically(cmd.statsJson, stats.dump(2) + "\n");
+    // The EXR header says how many samples the image holds (fewer than asked
+    // when interrupted or stopped by --time).
+    const std::vector<std::pair<std::string, int>> header{{"strata:spp", int(result.spp)},
+                                                          {"strata:sppRequested", int(cmd.settings.spp)}};
     try {
         if (cmd.denoise) {
-            const AovImages aov = aovImages(result.film);
+            AovImages aov = aovImages(result.film);
+            aov.attributes = header;
             const DenoiseMethod method = cmd.denoiseFast ? DenoiseMethod::Fast : DenoiseMethod::Nfor;
             const DenoiseResult d = denoise(ctx, denoiseInput(aov), method);
             if (ctx.validation && vk::validationMessageCount() > 0)
@@ -123,14 +130,18 @@ void renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l)
                 std::fprintf(stderr, "strata: denoised (%s) in %.3f s (device %.3f s)\n", denoiseMethodName(method),
                              d.seconds, d.deviceSeconds);
         } else if (cmd.settings.aov) {
-            const AovImages aov = aovImages(result.film);
+            AovImages aov = aovImages(result.film);
+            aov.attributes = header;
             writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, aov.color, aovChannels(aov));
         } else if (cmd.variance) {
             ExtraChannels var;
             var.add("variance", "RGB", result.film.varianceOfMean());
+            var.attributes = header;
             writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), var);
         } else {
-            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean());
+            ExtraChannels none;
+            none.attributes = header;
+            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), none);
         }
     } catch (...) {
         if (!cmd.statsJson.empty()) std::remove(cmd.statsJson.c_str());
@@ -143,6 +154,10 @@ void renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l)
                             " samples were NaN or Inf and were left out of the image");
     if (!cmd.quiet)
         for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());
+    if (result.interrupted)
+        std::fprintf(stderr, "strata: interrupted by %s: the outputs hold %u of %u spp\n",
+                     signalName(result.interrupted).c_str(), result.spp, cmd.settings.spp);
+    return result.interrupted;
 }
 
 }  // namespace
@@ -165,11 +180,14 @@ int runRender(const RenderCommand& cmd) {
     checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
                          cmd.settings.height);
 
+    // SIGINT, SIGTERM: the render in progress stops after its submission and
+    // writes what it reached; the status is then 128 + the signal.
+    installInterruptHandlers();
     std::unique_ptr<vk::Context> ctx;
     if (!cmd.frames.enabled) {
         Loaded l = load(cmd, ctx);
-        renderAndWrite(cmd, *ctx, l);
-        return 0;
+        const int signal = renderAndWrite(cmd, *ctx, l);
+        return signal ? 128 + signal : 0;
     }
     // Each frame its own shutter. The scene is loaded once (every mesh the
     // animation moves instanced); each later frame poses its placements and
@@ -195,9 +213,10 @@ int runRender(const RenderCommand& cmd) {
             l->loadMs = l->deviceMs = l->dev.uploadMs = 0.0;
             l->packMs = setUpMs;
         }
-        renderAndWrite(frame, *ctx, *l);
+        const int signal = renderAndWrite(frame, *ctx, *l);
         if (!cmd.quiet)
             std::fprintf(stderr, "strata: frame %d: set-up %.1f ms, in all %.2f s\n", f, setUpMs, msSince(t0) / 1000.0);
+        if (signal) return 128 + signal;  // this frame written with the samples reached; no later frame
     }
     return 0;
 }

@@ -13,6 +13,7 @@
 #include "render/sampler_kind.h"
 #include "integrate/integrator.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 #include "vk/check.h"
 #include "vk/kernel.h"
 #include "vk/timer.h"
@@ -230,6 +231,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
 
         const double perSample = secs / batch;
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
+        if ((result.interrupted = interruptSignal()) != 0) break;  // SIGINT or SIGTERM: the samples reached
         double target = t.submitSeconds;
         if (s.timeLimit > 0.0) target = std::min(target, s.timeLimit - elapsed());
         batch = t.fixedBatch ? t.fixedBatch
@@ -238,7 +240,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
             printProgress(result.spp, s.spp, elapsed(),
                           static_cast<double>(pixels) * result.spp / elapsed() * 1e-6);
     }
-    if (unfolded > 0) {  // stopped by --time inside a fold group
+    if (unfolded > 0) {  // stopped by --time or a signal inside a fold group
         recordFold(submit.begin());
         submit.submitAndWait();
         foldIntoFilm();

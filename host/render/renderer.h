@@ -26,6 +26,8 @@ struct Checkpoints {
 struct RenderResult {
     Film film;
     std::uint32_t spp = 0;              // samples per pixel actually taken
+    int interrupted = 0;                // the SIGINT or SIGTERM that ended the loop early
+                                        // (util/interrupt.h), 0 when none
     double seconds = 0.0;               // wall time of the dispatch loop
     double deviceSeconds = 0.0;         // device time of the path-tracing dispatches (timestamps),
                                         // excluding upload and the readback of each batch;

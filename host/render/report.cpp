@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "render/sampler_kind.h"
+#include "util/interrupt.h"
 #include "util/memory.h"
 #include "vk/buffer.h"
 
@@ -45,6 +46,7 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"height", s.height},
                    {"spp_requested", s.spp},
                    {"spp", r.spp},
+                   {"interrupted", r.interrupted ? nlohmann::json(signalName(r.interrupted)) : nlohmann::json()},
                    {"seed", s.seed},
                    {"max_depth", s.maxDepth},
                    {"seconds", r.seconds},
@@ -119,6 +121,8 @@ std::string statsText(const nlohmann::json& j) {
                   r["bvh_stack"].get<std::string>().c_str(),
                   r["sampler"].get<std::string>().c_str());
     o << line;
+    if (r.contains("interrupted") && !r["interrupted"].is_null())
+        o << "stopped    by " << r["interrupted"].get<std::string>() << " before the samples asked for\n";
     o << "samples    " << r["non_finite_samples"] << " non-finite dropped\n";
     o << "memory     " << memoryText(j["memory"]) << "\n";
     return o.str();

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace strata {
 
@@ -39,6 +40,7 @@ void checkOutputPath(const std::string& path) {
 
 void writeTextAtomically(const std::string& path, const std::string& text) {
     const std::string tmp = path + ".tmp";
+    const TempFileGuard guard(tmp);  // removed by a second SIGINT or SIGTERM
     {
         std::ofstream f(tmp);
         f << text;
