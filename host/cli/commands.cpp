@@ -153,8 +153,8 @@ void checkFrameFlags(const Parsed& parsed, RenderCommand& cmd) {
     if (!cmd.statsJson.empty() && cmd.statsJson.find('#') == std::string::npos)
         badFlag("with --frames --stats-json names its frame by a run of '#', e.g. stats_####.json");
     cmd.settings.shutter = true;  // posed by the animation (renderer: frame by frame)
-    cmd.settings.shutterOpen = cmd.frames.first / cmd.frames.fps;
-    cmd.settings.shutterClose = cmd.settings.shutterOpen + cmd.frames.shutterAngle / 360.0 / cmd.frames.fps;
+    cmd.settings.shutterOpen = cmd.frames.open(cmd.frames.first);
+    cmd.settings.shutterClose = cmd.frames.close(cmd.frames.first);
 }
 
 // Parses a render-like command's flags and positional scene.

@@ -199,8 +199,8 @@ int runRender(const RenderCommand& cmd) {
     for (int f = fr.first; f <= fr.last; f += fr.step) {
         RenderCommand frame = cmd;
         frame.settings.shutter = true;
-        frame.settings.shutterOpen = f / fr.fps;
-        frame.settings.shutterClose = frame.settings.shutterOpen + fr.shutterAngle / 360.0 / fr.fps;
+        frame.settings.shutterOpen = fr.open(f);
+        frame.settings.shutterClose = fr.close(f);
         for (std::string& out : frame.outputs) out = frameFileName(out, f);
         if (!frame.statsJson.empty()) frame.statsJson = frameFileName(frame.statsJson, f);
         const auto t0 = std::chrono::steady_clock::now();

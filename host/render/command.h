@@ -20,6 +20,8 @@ struct FrameRange {
     int first = 0, last = 0, step = 1;
     double fps = 24.0;
     double shutterAngle = 0.0;  // degrees in [0, 360]; 0: no motion blur
+    double open(int frame) const { return frame / fps; }  // frame's shutter, seconds
+    double close(int frame) const { return open(frame) + shutterAngle / 360.0 / fps; }
 };
 
 // `pattern` with its run of '#' replaced by the frame number, zero-padded to

@@ -31,60 +31,12 @@ namespace {
 
 using gltf::LocalMesh;
 using gltf::LocalPrimitive;
+using gltf::nodeName;
 using gltf::quoted;
 
 // Used where a normal cannot be computed (zero-area triangle, degenerate
 // transform); any unit vector is valid for a triangle that is never hit.
 constexpr glm::dvec3 kFallbackNormal{0.0, 0.0, 1.0};
-
-std::string nodeLabel(const tinygltf::Model& model, int node) {
-    std::string label = "node " + std::to_string(node);
-    const auto& name = model.nodes[static_cast<std::size_t>(node)].name;
-    if (!name.empty()) label += " (" + quoted(name) + ")";
-    return label;
-}
-
-// glTF node transform: `matrix` (column-major) or T * R * S.
-glm::dmat4 localTransform(const std::string& path, const tinygltf::Model& model, int index) {
-    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
-    glm::dmat4 m(1.0);
-    if (!node.matrix.empty()) {
-        if (node.matrix.size() != 16) {
-            fail(path, nodeLabel(model, index) + ": matrix has " +
-                           std::to_string(node.matrix.size()) + " numbers; expected 16");
-        }
-        for (int c = 0; c < 4; ++c) {
-            for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[static_cast<std::size_t>(c * 4 + r)];
-        }
-        return m;
-    }
-    auto checkSize = [&](const std::vector<double>& v, std::size_t n, const char* what) {
-        if (!v.empty() && v.size() != n) {
-            fail(path, nodeLabel(model, index) + ": " + what + " has " + std::to_string(v.size()) +
-                           " numbers; expected " + std::to_string(n));
-        }
-    };
-    checkSize(node.translation, 3, "translation");
-    checkSize(node.rotation, 4, "rotation");
-    checkSize(node.scale, 3, "scale");
-
-    glm::dvec4 q(0.0, 0.0, 0.0, 1.0);
-    if (!node.rotation.empty()) {
-        q = glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]);
-        const double len = std::sqrt(glm::dot(q, q));
-        if (!(len > 0.0) || !std::isfinite(len)) {
-            fail(path, nodeLabel(model, index) + ": rotation is not a valid quaternion");
-        }
-    }
-    const glm::dvec3 scale = node.scale.empty()
-                                 ? glm::dvec3(1.0)
-                                 : glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
-    const glm::dvec3 translation = node.translation.empty()
-                                       ? glm::dvec3(0.0)
-                                       : glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
-    m = gltf::trs(translation, q, scale);
-    return m;
-}
 
 std::optional<glm::dvec3> tryNormalize(const glm::dvec3& v) {
     const double len = glm::length(v);
@@ -104,59 +56,12 @@ public:
     // Depth-first, parents before children, children in file order. The
     // nodes are listed first, so the triangles are allocated once.
     void walk(int sceneIndex) {
-        const tinygltf::Scene& s = model_.scenes[static_cast<std::size_t>(sceneIndex)];
-        std::vector<char> onPath(model_.nodes.size(), 0), entered(model_.nodes.size(), 0);
-        struct Frame {
-            int node;
-            glm::dmat4 world;
-            std::size_t nextChild;
-        };
-        std::vector<Frame> stack, visits;
-        auto enter = [&](int node, const glm::dmat4& parent, int parentNode) {
-            if (onPath[static_cast<std::size_t>(node)]) {
-                fail(path_, nodeLabel(model_, node) +
-                                " is its own ancestor (cycle in the node hierarchy)");
-            }
-            // The hierarchy is a set of disjoint trees: a node reached twice
-            // has two parents (or is a root and a child), and such a graph can
-            // multiply the instances exponentially.
-            if (entered[static_cast<std::size_t>(node)]) {
-                fail(path_, nodeLabel(model_, node) + " is reached twice from scene " + std::to_string(sceneIndex) +
-                                " (a node may have one parent, and a root none)");
-            }
-            entered[static_cast<std::size_t>(node)] = 1;
-            timeline_->setParent(node, parentNode);
-            if (frames_) targets_.hierarchy.push_back({node, parentNode});
-            const glm::dmat4 world = parent * timeline_->localAtOpen(node, localTransform(path_, model_, node));
-            visits.push_back({node, world, 0});
-            onPath[static_cast<std::size_t>(node)] = 1;
-            stack.push_back({node, world, 0});
-        };
-        for (const int root : s.nodes) {
-            if (!validNode(root)) {
-                fail(path_, "scene " + std::to_string(sceneIndex) + ": node " +
-                                std::to_string(root) + " does not exist (" +
-                                std::to_string(model_.nodes.size()) + " nodes)");
-            }
-            enter(root, glm::dmat4(1.0), -1);
-            while (!stack.empty()) {
-                Frame& top = stack.back();
-                const auto& children = model_.nodes[static_cast<std::size_t>(top.node)].children;
-                if (top.nextChild == children.size()) {
-                    onPath[static_cast<std::size_t>(top.node)] = 0;
-                    stack.pop_back();
-                    continue;
-                }
-                const int child = children[top.nextChild++];
-                if (!validNode(child)) {
-                    fail(path_, nodeLabel(model_, top.node) + ": child " + std::to_string(child) +
-                                    " does not exist (" + std::to_string(model_.nodes.size()) +
-                                    " nodes)");
-                }
-                const glm::dmat4 parent = top.world;
-                enter(child, parent, top.node);
-            }
-        }
+        const std::vector<gltf::NodeVisit> visits =
+            gltf::walkNodes(path_, model_, sceneIndex, [&](int node, int parent) {
+                timeline_->setParent(node, parent);
+                if (frames_) targets_.hierarchy.push_back({node, parent});
+                return timeline_->localAtOpen(node, gltf::nodeTransform(path_, model_, node));
+            });
         // Each mesh's placements (a node, or each of its EXT_mesh_gpu_instancing
         // instances) decide whether it is flattened or instanced.
         std::vector<gltf::GpuInstances> gpu(visits.size());
@@ -166,7 +71,7 @@ public:
         for (std::size_t k = 0; k < visits.size(); ++k) {
             const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
             const int mesh = node.mesh;
-            gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeLabel(model_, visits[k].node));
+            gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
             if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshCount) continue;  // visit reports it
             decodedMesh(mesh);  // in the order the meshes are reached (skippedPrimitives)
             placements[std::size_t(mesh)] += gpu[k].count > 0 ? gpu[k].count : 1;
@@ -316,10 +221,6 @@ private:
         return out;
     }
 
-    bool validNode(int node) const {
-        return node >= 0 && static_cast<std::size_t>(node) < model_.nodes.size();
-    }
-
     LocalMesh& decodedMesh(int mesh) {
         auto& decoded = meshes_[static_cast<std::size_t>(mesh)];
         if (!decoded) {
@@ -334,21 +235,21 @@ private:
         if (node.camera >= 0 || node.camera < -1) addCamera(nodeIndex, world);
         if (node.mesh >= 0 || node.mesh < -1) {
             if (gpu.count == 0) {
-                place(nodeIndex, world, glm::dmat4(1.0), nodeLabel(model_, nodeIndex));
+                place(nodeIndex, world, glm::dmat4(1.0), nodeName(model_, nodeIndex));
             } else {
                 for (std::size_t i = 0; i < gpu.count; ++i)
                     place(nodeIndex, world * gpu.local(i), gpu.local(i),
-                          nodeLabel(model_, nodeIndex) + " instance " + std::to_string(i));
+                          nodeName(model_, nodeIndex) + " instance " + std::to_string(i));
             }
         }
-        const int light = gltf::nodeLight(path_, model_, nodeIndex, nodeLabel(model_, nodeIndex));
+        const int light = gltf::nodeLight(path_, model_, nodeIndex, nodeName(model_, nodeIndex));
         if (light >= 0) addLight(nodeIndex, light, world);
         if (light >= 0 && frames_ && timeline_->animated(nodeIndex)) targets_.complete = false;
     }
 
     void addLight(int nodeIndex, int light, const glm::dmat4& world) {
         const PunctualLight l =
-            gltf::convertLight(path_, model_, light, world, nodeLabel(model_, nodeIndex));
+            gltf::convertLight(path_, model_, light, world, nodeName(model_, nodeIndex));
         const glm::vec3 i = l.intensityRgb();
         if (!(i.x > 0.0f || i.y > 0.0f || i.z > 0.0f)) {
             ++zeroLights_;
@@ -361,7 +262,7 @@ private:
     void addCamera(int nodeIndex, const glm::dmat4& world) {
         const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
         if (static_cast<std::size_t>(node.camera) >= model_.cameras.size()) {
-            fail(path_, nodeLabel(model_, nodeIndex) + ": camera " + std::to_string(node.camera) +
+            fail(path_, nodeName(model_, nodeIndex) + ": camera " + std::to_string(node.camera) +
                             " does not exist (" + std::to_string(model_.cameras.size()) +
                             " cameras)");
         }
@@ -384,14 +285,14 @@ private:
         // Camera space: looks down -Z, +Y up. Normalising removes any scale.
         Camera camera;
         if (!gltf::cameraFromWorld(world, camera)) {
-            fail(path_, label + " on " + nodeLabel(model_, nodeIndex) +
+            fail(path_, label + " on " + nodeName(model_, nodeIndex) +
                             ": degenerate world transform (zero scale or not finite)");
         }
         camera.yfov = static_cast<float>(yfov);
         camera.name = !src.name.empty() ? src.name : node.name;
-        camera.motion = timeline_->cameraKeys(nodeIndex, label + " on " + nodeLabel(model_, nodeIndex));
+        camera.motion = timeline_->cameraKeys(nodeIndex, label + " on " + nodeName(model_, nodeIndex));
         if (frames_ && timeline_->animated(nodeIndex))
-            targets_.cameras.push_back({scene_.cameras.size(), nodeIndex, label + " on " + nodeLabel(model_, nodeIndex)});
+            targets_.cameras.push_back({scene_.cameras.size(), nodeIndex, label + " on " + nodeName(model_, nodeIndex)});
         scene_.cameras.push_back(camera);
     }
 
@@ -422,7 +323,7 @@ private:
     void addMesh(int nodeIndex, const glm::dmat4& world, bool reverseWinding = false) {
         const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
         if (static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
-            fail(path_, nodeLabel(model_, nodeIndex) + ": mesh " + std::to_string(node.mesh) +
+            fail(path_, nodeName(model_, nodeIndex) + ": mesh " + std::to_string(node.mesh) +
                             " does not exist (" + std::to_string(model_.meshes.size()) +
                             " meshes)");
         }
@@ -469,7 +370,7 @@ private:
                 positions[i] = glm::dvec3(placed * glm::dvec4(glm::dvec3(prim.positions[i]), 1.0));
                 if (!isFinite(positions[i])) {
                     fail(path_, gltf::meshLabel(model_, node.mesh) + " on " +
-                                    nodeLabel(model_, nodeIndex) + ": vertex " + std::to_string(i) +
+                                    nodeName(model_, nodeIndex) + ": vertex " + std::to_string(i) +
                                     " is not finite in world space");
                 }
             }
@@ -540,10 +441,6 @@ private:
 };
 
 }  // namespace
-
-glm::dmat4 gltf::nodeTransform(const std::string& path, const tinygltf::Model& model, int node) {
-    return localTransform(path, model, node);
-}
 
 Scene loadGltf(const std::string& path, const LoadOptions& options) {
     tinygltf::Model model = gltf::parseModel(path);

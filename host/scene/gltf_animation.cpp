@@ -240,12 +240,7 @@ glm::dmat4 Animation::local(const tinygltf::Model& model, int node, double t, bo
     // A node no channel targets keeps its own transform (its matrix, or T * R * S);
     // load() has checked every node's (nodeTransform).
     if (!animates(node)) return nodeTransform(label, model, node);
-    const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
-    glm::dvec3 translation(0.0), scale(1.0);  // the glTF defaults
-    glm::dvec4 rotation = kIdentityRotation;
-    if (!n.translation.empty()) translation = glm::dvec3(n.translation[0], n.translation[1], n.translation[2]);
-    if (!n.rotation.empty()) rotation = glm::dvec4(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]);
-    if (!n.scale.empty()) scale = glm::dvec3(n.scale[0], n.scale[1], n.scale[2]);
+    auto [translation, rotation, scale] = nodeTrs(label, model, node);  // no matrix: load() checked it
     for (const NodeChannel& c : channels) {
         if (c.node != node) continue;
         const glm::dvec4 v = sample(c, t, leftLimit);

@@ -2,6 +2,7 @@
 // Every function throws strata::Error ("<path>: error: <what>", one line).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -91,8 +92,29 @@ struct GpuInstances {
 GpuInstances readGpuInstances(const std::string& path, const tinygltf::Model& model, int node,
                               const std::string& nodeLabel);
 
+// A node's translation, rotation (a quaternion of any non-zero length) and
+// scale, the glTF defaults where absent, checked (sizes, rotation length);
+// for a node without `matrix` (gltf_nodes.cpp).
+struct NodeTrs {
+    glm::dvec3 translation{0.0};
+    glm::dvec4 rotation{0.0, 0.0, 0.0, 1.0};
+    glm::dvec3 scale{1.0};
+};
+NodeTrs nodeTrs(const std::string& path, const tinygltf::Model& model, int node);
+
 // The glTF transform of node `node` alone: `matrix`, or T * R * S.
 glm::dmat4 nodeTransform(const std::string& path, const tinygltf::Model& model, int node);
+
+// Scene `sceneIndex`'s nodes depth first, parents before children, children
+// in file order, each with its world transform; `local(node, parent)` gives
+// a node's local transform (parent -1 for a root). Fails on a node or child
+// that does not exist, a cycle, or a node reached twice.
+struct NodeVisit {
+    int node;
+    glm::dmat4 world;
+};
+std::vector<NodeVisit> walkNodes(const std::string& path, const tinygltf::Model& model, int sceneIndex,
+                                 const std::function<glm::dmat4(int node, int parent)>& local);
 
 // A SCALAR u8/u16/u32 accessor (indices), dense, zeros or sparse as above.
 // (tinygltf 2.7 itself refuses a primitive whose indices accessor has no

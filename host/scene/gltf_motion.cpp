@@ -155,17 +155,13 @@ std::vector<MotionKey> NodeTimeline::cameraKeys(int node, const std::string& lab
     }
     std::vector<MotionKey> out;
     for (const auto& [t, left] : times) {
-        const glm::dmat4 m = world(node, t, left);
-        const glm::dvec3 forward = glm::normalize(glm::dmat3(m) * glm::dvec3(0.0, 0.0, -1.0));
-        const glm::dvec3 upRaw = glm::dmat3(m) * glm::dvec3(0.0, 1.0, 0.0);
-        const glm::dvec3 up = glm::normalize(upRaw - glm::dot(upRaw, forward) * forward);
-        const glm::dvec3 right = glm::cross(forward, up);
-        if (!std::isfinite(right.x + right.y + right.z + m[3].x + m[3].y + m[3].z))
+        glm::dvec3 position, forward, up;
+        if (!cameraFrame(world(node, t, left), position, forward, up))
             fail(path_, label + ": degenerate world transform at time " + std::to_string(t) + " of the shutter");
         MotionKey k;
         k.time = static_cast<float>(t);
-        k.translation = glm::vec3(m[3]);
-        k.rotation = glm::vec4(quaternionOf(glm::dmat3(right, up, -forward)));
+        k.translation = glm::vec3(position);
+        k.rotation = glm::vec4(quaternionOf(glm::dmat3(glm::cross(forward, up), up, -forward)));
         out.push_back(k);
     }
     bool moves = false;
@@ -174,21 +170,28 @@ std::vector<MotionKey> NodeTimeline::cameraKeys(int node, const std::string& lab
     return out;
 }
 
-bool cameraFromWorld(const glm::dmat4& world, Camera& camera) {
+bool cameraFrame(const glm::dmat4& world, glm::dvec3& position, glm::dvec3& forward, glm::dvec3& up) {
     const glm::dmat3 linear(world);
-    const glm::dvec3 position(world[3]);
+    position = glm::dvec3(world[3]);
     const glm::dvec3 f = linear * glm::dvec3(0.0, 0.0, -1.0);
     const glm::dvec3 upRaw = linear * glm::dvec3(0.0, 1.0, 0.0);
     const double fl = glm::length(f);
     if (!(fl > 0.0) || !std::isfinite(fl)) return false;
-    const glm::dvec3 forward = f / fl;
+    forward = f / fl;
     const glm::dvec3 u = upRaw - glm::dot(upRaw, forward) * forward;
     const double ul = glm::length(u);
     if (!(ul > 0.0) || !std::isfinite(ul)) return false;
     if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) return false;
+    up = u / ul;
+    return true;
+}
+
+bool cameraFromWorld(const glm::dmat4& world, Camera& camera) {
+    glm::dvec3 position, forward, up;
+    if (!cameraFrame(world, position, forward, up)) return false;
     camera.position = glm::vec3(position);
     camera.forward = glm::vec3(forward);
-    camera.up = glm::vec3(u / ul);
+    camera.up = glm::vec3(up);
     return true;
 }
 

@@ -62,8 +62,10 @@ private:
 };
 
 // A camera's position, forward (its -Z) and up (its +Y made orthogonal to
-// forward) from its node's world transform; false when degenerate (a zero
-// scale or not finite).
+// forward) from its node's world transform, in double; false when
+// degenerate (a zero scale or not finite).
+bool cameraFrame(const glm::dmat4& world, glm::dvec3& position, glm::dvec3& forward, glm::dvec3& up);
+// The same into a Camera's pose.
 bool cameraFromWorld(const glm::dmat4& world, Camera& camera);
 
 // What the walk tells the poser (ScenePoser, --frames): the hierarchy in
