@@ -10,7 +10,9 @@
 #include "image/image_io.h"
 #include "measure/compare.h"
 #include "render/filter.h"
+#include "render/merge.h"
 #include "render/sampler_kind.h"
+#include "util/files.h"
 #include "vk/context.h"
 
 namespace strata::cli {
@@ -22,11 +24,35 @@ std::vector<Flag<RenderCommand>> renderFlags() {
     return concat<C>({
         {
             flag<C>("--output", "FILE",
-                    "write the image to FILE: .exr (linear float) or .png (sRGB, 8 bits); may be given more "
+                    "write the image to FILE: .exr (linear float) or .png (sRGB, 8 bits), or the whole "
+                    "accumulation to FILE.state, to resume or merge (docs/distributed.md); may be given more "
                     "than once",
-                    [](C& c, const std::string&, const std::string& v) { c.outputs.push_back(v); })
+                    [](C& c, const std::string&, const std::string& v) {
+                        (lowerExtension(v) == ".state" ? c.states : c.outputs).push_back(v);
+                    })
                 .withAlias("-o")
                 .withDefault("SCENE.exr and SCENE.png in the current directory"),
+            positive<C>("--checkpoint-every", "SECONDS",
+                        "rewrite the .state outputs every SECONDS during the render, so that a crash loses at most "
+                        "that much",
+                        1e9, "seconds", STRATA_FIELD(checkpointEvery)),
+            text<C>("--resume", "FILE.state",
+                    "continue the render FILE.state holds to --spp N in all; the same scene and settings, the same "
+                    "bits as an uninterrupted render",
+                    STRATA_FIELD(resume)),
+            flag<C>("--shard", "I/K",
+                    "render shard I (from 0) of K: a contiguous run of whole batches of the --spp sample indices; "
+                    "'strata merge' sums the shards' states",
+                    [](C& c, const std::string& given, const std::string& v) {
+                        const std::size_t slash = v.find('/');
+                        if (slash == std::string::npos) badFlag(given + " takes I/K, e.g. 0/4, got '" + v + "'");
+                        c.shard = static_cast<std::uint32_t>(parseUnsigned(given, v.substr(0, slash), 0, 1u << 24));
+                        c.shards = static_cast<std::uint32_t>(parseUnsigned(given, v.substr(slash + 1), 1, 1u << 24));
+                        if (c.shard >= c.shards)
+                            badFlag(given + " " + v + ": I must be below K (shards count from 0)");
+                    }),
+            toggle<C>("--dry-run", "check the flags and outputs, print what would be rendered, and stop",
+                      [](C& c) { c.dryRun = true; }),
             integer<C>("--spp", "N", "samples per pixel", 1, 1u << 30, STRATA_FIELD(settings.spp)),
             integer<C>("--width", "W", "image width in pixels", 1, 16384, STRATA_FIELD(settings.width)),
             integer<C>("--height", "H", "image height in pixels", 1, 16384, STRATA_FIELD(settings.height)),
@@ -157,6 +183,18 @@ void checkFrameFlags(const Parsed& parsed, RenderCommand& cmd) {
     cmd.settings.shutterClose = cmd.frames.close(cmd.frames.first);
 }
 
+// .state outputs, --checkpoint-every, --resume and --shard: one render, not
+// a sequence of frames; a checkpoint needs a state to write.
+void checkStateFlags(const RenderCommand& cmd) {
+    if (cmd.checkpointEvery > 0.0 && cmd.states.empty())
+        badFlag("--checkpoint-every rewrites the .state outputs: add -o FILE.state");
+    if (cmd.frames.enabled && (!cmd.states.empty() || !cmd.resume.empty() || cmd.shards))
+        badFlag("--frames renders frame by frame: .state outputs, --resume and --shard are for one image");
+    if (!cmd.resume.empty() && lowerExtension(cmd.resume) != ".state")
+        badFlag("--resume takes a .state file, got '" + cmd.resume + "'");
+    if (cmd.shards) shardRange(cmd.settings.spp, cmd.shard, cmd.shards, cmd.tuning.maxBatch);
+}
+
 // Parses a render-like command's flags and positional scene.
 RenderCommand parseRenderLike(const std::string& name, const std::vector<std::string>& given, Parsed& parsed) {
     const CommandSpec<RenderCommand>& spec = renderSpec(name);
@@ -172,7 +210,8 @@ RenderCommand parseRenderLike(const std::string& name, const std::vector<std::st
     checkViewFlags(cmd.view);
     checkFrameFlags(parsed, cmd);
     checkLensFlags(cmd.settings);
-    if (cmd.outputs.empty()) {
+    checkStateFlags(cmd);
+    if (cmd.outputs.empty() && cmd.states.empty()) {
         const std::string stem = std::filesystem::path(cmd.scene).stem().string() + (cmd.frames.enabled ? "_####" : "");
         cmd.outputs = {stem + ".exr", stem + ".png"};
     }
@@ -201,6 +240,31 @@ const CommandSpec<CompareArgs>& compareSpec() {
          "0.1% of terms dropped, MAPE, SMAPE, the largest absolute error and the count of\n"
          "non-finite values. The images must have the same size and R, G, B channels.\n"},
         {text<CompareArgs>("--json", "FILE", "also write the metrics to FILE as JSON", STRATA_FIELD(json))});
+    return spec;
+}
+
+const CommandSpec<MergeCommand>& mergeSpec() {
+    using C = MergeCommand;
+    static const auto spec = makeSpec<C>(
+        {"merge", "A.state B.state ... -o OUT.exr|.png|.state [options]",
+         "Sum the states of a render's shards into one image or state.",
+         "The states must be of one scene with the same settings, and their sample\n"
+         "ranges must not overlap. An image needs every sample of the render (--spp of\n"
+         "the shards); a .state output alone may hold a contiguous part, to be merged\n"
+         "again. The sums are exact: shards from one device merge to the bits a single\n"
+         "render makes (docs/distributed.md). States with AOVs give the AOV layers.\n"},
+        {
+            flag<C>("--output", "FILE", "write FILE: .exr, .png or .state; may be given more than once",
+                    [](C& c, const std::string&, const std::string& v) {
+                        (lowerExtension(v) == ".state" ? c.states : c.outputs).push_back(v);
+                    })
+                .withAlias("-o"),
+            toggle<C>("--variance", "EXR outputs get variance.R/G/B, the variance of each pixel's mean",
+                      [](C& c) { c.variance = true; }),
+            toggle<C>("--quiet", "print no timing or names of the files written", [](C& c) { c.quiet = true; }),
+            toggle<C>("--dry-run", "check the flags and outputs, print what would be merged, and stop",
+                      [](C& c) { c.dryRun = true; }),
+        });
     return spec;
 }
 
@@ -458,6 +522,17 @@ EdgesCommand parseEdges(const std::vector<std::string>& args) {
 
 BenchCommand parseBench(const std::vector<std::string>& args) { return parseSceneCommand(benchSpec(), args); }
 
+MergeCommand parseMerge(const std::vector<std::string>& args) {
+    MergeCommand cmd = mergeSpec().init;
+    const Parsed parsed = parseFlags(mergeSpec(), args, cmd);
+    if (parsed.positional.empty()) badFlag("merge needs the .state files of the shards");
+    for (const std::string& in : parsed.positional)
+        if (lowerExtension(in) != ".state") badFlag("merge takes .state files, got '" + in + "'");
+    if (cmd.outputs.empty() && cmd.states.empty()) badFlag("merge needs -o OUT.exr, OUT.png or OUT.state");
+    cmd.inputs = parsed.positional;
+    return cmd;
+}
+
 DenoiseCommand parseDenoise(const std::vector<std::string>& args) {
     DenoiseCommand cmd = denoiseSpec().init;
     const Parsed parsed = parseFlags(denoiseSpec(), args, cmd);
@@ -481,6 +556,7 @@ const std::vector<CommandInfo>& commands() {
         command(edgesSpec(), [](const auto& a) { return runEdges(parseEdges(a)); }),
         command(benchSpec(), [](const auto& a) { return runBench(parseBench(a)); }),
         command(denoiseSpec(), [](const auto& a) { return runDenoise(parseDenoise(a)); }),
+        command(mergeSpec(), [](const auto& a) { return runMerge(parseMerge(a)); }),
         command(devicesSpec(), listDevices),
     };
     return list;

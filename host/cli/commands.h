@@ -10,6 +10,7 @@
 #include "measure/converge.h"
 #include "measure/edges.h"
 #include "render/command.h"
+#include "render/merge.h"
 
 namespace strata::cli {
 
@@ -23,7 +24,7 @@ struct CommandInfo {
     std::function<int(const std::vector<std::string>& args)> run;
 };
 
-// render, reference, compare, converge, edges, bench, devices.
+// render, reference, compare, converge, edges, bench, denoise, merge, devices.
 const std::vector<CommandInfo>& commands();
 const CommandInfo* findCommand(const std::string& name);
 // `strata --help`: the commands with their summaries.
@@ -44,5 +45,6 @@ ConvergeCommand parseConverge(const std::vector<std::string>& args);
 EdgesCommand parseEdges(const std::vector<std::string>& args);
 BenchCommand parseBench(const std::vector<std::string>& args);
 DenoiseCommand parseDenoise(const std::vector<std::string>& args);
+MergeCommand parseMerge(const std::vector<std::string>& args);
 
 }  // namespace strata::cli

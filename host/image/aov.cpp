@@ -33,12 +33,15 @@ AovImages aovImages(const Film& film) {
         v->assign(n * 3, 0.0f);
     for (auto* v : {&a.depth, &a.emitter, &a.depthVariance}) v->assign(n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
-        const double* s = &film.aovSum[i * Film::kAovSums];
+        if (film.count[i] == 0) continue;
+        double s[Film::kAovSums];
+        for (int k = 0; k < Film::kAovSums; ++k) s[k] = film.aovAt(i, k);
         const double count = static_cast<double>(film.count[i]), countA = s[kCountA], countB = count - countA;
-        if (count == 0) continue;
         for (int c = 0; c < 3; ++c) {
             if (countA > 0) a.halfA[i * 3 + c] = static_cast<float>(s[kHalfA + c] / countA);
-            if (countB > 0) a.halfB[i * 3 + c] = static_cast<float>((film.sum[i * 3 + c] - s[kHalfA + c]) / countB);
+            if (countB > 0)  // the fixed-point difference is exact
+                a.halfB[i * 3 + c] = static_cast<float>(
+                    fromFixed(film.sum[i * 3 + c] - film.aovSum[i * Film::kAovSums + kHalfA + c]) / countB);
             a.albedo[i * 3 + c] = static_cast<float>(s[kAlbedo + c] / count);
             a.normal[i * 3 + c] = static_cast<float>(s[kNormal + c] / count);
             a.albedoVariance[i * 3 + c] = varianceOfMean(s[kAlbedo + c], s[kAlbedoSq + c], count);

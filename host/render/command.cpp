@@ -48,12 +48,18 @@ struct Loaded {
     DeviceScene dev;
     std::vector<BottomLevel> bottoms;
     Camera camera;
+    std::string sceneHash;  // sceneContentHash, with states
     double loadMs = 0.0, packMs = 0.0, deviceMs = 0.0;
 };
 
+bool usesStates(const RenderCommand& cmd) { return !cmd.states.empty() || !cmd.resume.empty(); }
+
+void checkResumable(const RenderCommand& cmd, const RenderState& st, const StateInfo& here);
+
 // Load, build, pack and upload `cmd.scene`; `shared` is the device, created
-// on first use (after the scene loaded).
-Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared) {
+// on first use (after the scene loaded). A --resume state (`resumed`) is
+// checked against the scene and settings before the device is opened.
+Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared, const RenderState* resumed = nullptr) {
     Loaded l;
     auto t0 = std::chrono::steady_clock::now();
     LoadOptions options;
@@ -74,6 +80,14 @@ Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared) {
     l.gpu = packSceneAndRelease(l.scene, std::move(bvh), cmd.settings.bvhWidth);
     if (cmd.frames.enabled) l.scene.instances = std::move(instances);
     l.packMs = msSince(t0);
+    if (usesStates(cmd)) l.sceneHash = sceneContentHash(l.gpu, l.camera);
+    if (resumed) {
+        StateInfo here;
+        here.sceneHash = l.sceneHash;
+        here.settings = stateSettings(cmd.settings, l.camera);
+        here.batch = cmd.tuning.maxBatch;
+        checkResumable(cmd, *resumed, here);
+    }
     const auto t1 = std::chrono::steady_clock::now();
     if (!shared) {
         shared = std::make_unique<vk::Context>(vk::ContextOptions{cmd.device, cmd.validation});
@@ -99,23 +113,110 @@ void pose(const vk::Context& ctx, const RenderCommand& cmd, Loaded& l) {
     l.dev.instances = uploadArray(ctx, l.gpu.instances, sceneLimits(ctx, cmd.tuning.limits));
 }
 
+// The header of the states this render writes.
+StateInfo stateInfo(const RenderCommand& cmd, const vk::Context& ctx, const Loaded& l) {
+    StateInfo in;
+    in.scene = cmd.scene;
+    in.sceneHash = l.sceneHash;
+    in.settings = stateSettings(cmd.settings, l.camera);
+    in.implementation = stateImplementation(ctx.info.name, ctx.info.driver, cmd.settings);
+    in.spp = cmd.settings.spp;
+    in.shard = cmd.shard;
+    in.shards = cmd.shards;
+    in.batch = cmd.tuning.maxBatch;
+    return in;
+}
+
+// Refuses a state that this render cannot continue: another scene, other
+// settings, other samples.
+void checkResumable(const RenderCommand& cmd, const RenderState& st, const StateInfo& here) {
+    const std::string mismatch = stateMismatch(st.info, cmd.resume, here, "this render");
+    if (!mismatch.empty()) fail(cmd.resume, "cannot resume: " + mismatch);
+    const SampleRange range = renderRange(cmd);
+    const std::string shardText =
+        cmd.shards ? "shard " + std::to_string(cmd.shard) + "/" + std::to_string(cmd.shards) : "the whole render";
+    if (st.info.shards != cmd.shards || st.info.shard != cmd.shard || st.acc.begin != range.begin)
+        fail(cmd.resume, "cannot resume: it holds samples " + std::to_string(st.acc.begin) + "-" +
+                             std::to_string(st.acc.end) + (st.info.shards ? " of shard " + std::to_string(st.info.shard) +
+                                                                                "/" + std::to_string(st.info.shards)
+                                                                          : "") +
+                             "; this render is " + shardText + ", samples " + std::to_string(range.begin) + "-" +
+                             std::to_string(range.end));
+    if (st.acc.end > range.end)
+        fail(cmd.resume, "cannot resume: it already holds " + std::to_string(st.acc.end - st.acc.begin) +
+                             " spp, more than this render's " + std::to_string(range.end - range.begin) +
+                             " (--spp " + std::to_string(cmd.settings.spp) + ")");
+}
+
+// A state from another device or traversal is continued with a note: the
+// result is then statistically equivalent to an uninterrupted render, not
+// the same bits.
+void noteImplementation(const RenderCommand& cmd, const RenderState& st, const StateInfo& here) {
+    if (st.info.implementation != here.implementation && !cmd.quiet)
+        std::fprintf(stderr,
+                     "strata: note: %s was rendered on %s, this render runs on %s: the result is statistically "
+                     "equivalent to an uninterrupted render, not the same bits\n",
+                     cmd.resume.c_str(), implementationText(st.info.implementation).c_str(),
+                     implementationText(here.implementation).c_str());
+}
+
 // Renders the loaded scene and writes the outputs; returns the signal that
 // interrupted the render (the outputs then hold the samples reached), or 0.
-int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l) {
-    RenderResult result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning);
+// `resumed`: the state of --resume, read.
+int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l, const RenderState* resumed = nullptr) {
+    SampleRun run;
+    const SampleRange range = renderRange(cmd);
+    run.begin = range.begin;
+    run.end = range.end;
+    StateInfo info;
+    if (usesStates(cmd)) info = stateInfo(cmd, ctx, l);
+    if (resumed) {
+        noteImplementation(cmd, *resumed, info);
+        run.resume = &resumed->acc;
+    }
+    run.keep = !cmd.states.empty();
+    const auto writeStates = [&](const Accumulation& acc) {
+        const RenderState st{info, acc};
+        for (const std::string& path : cmd.states) writeState(path, st);
+    };
+    if (cmd.checkpointEvery > 0.0) {
+        run.checkpointSeconds = cmd.checkpointEvery;
+        run.onCheckpoint = [&](const Accumulation& acc) {
+            writeStates(acc);
+            if (!cmd.quiet && !cmd.settings.progress)
+                std::fprintf(stderr, "strata: checkpoint: %u spp\n", acc.end - acc.begin);
+        };
+    }
+    RenderResult result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning, {}, run);
     StatsInput in{&ctx, &l.scene, &l.gpu, &cmd.settings, &result, l.loadMs, l.packMs, l.deviceMs};
     nlohmann::json stats = statsJson(in);
     if (ctx.validation && vk::validationMessageCount() > 0)
         throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
                               " Vulkan validation message(s) during the render");
 
-    // The statistics first, taken back if an image cannot be written: all
-    // outputs or none.
-    if (!cmd.statsJson.empty()) writeTextAtomically(cmd.statsJson, stats.dump(2) + "\n");
+    // The statistics and the states first, taken back if an image cannot be
+    // written: all outputs or none.
+    std::vector<std::string> written;
+    const auto takeBack = [&] {
+        for (const std::string& path : written) std::remove(path.c_str());
+    };
+    try {
+        if (!cmd.statsJson.empty()) {
+            writeTextAtomically(cmd.statsJson, stats.dump(2) + "\n");
+            written.push_back(cmd.statsJson);
+        }
+        if (!cmd.states.empty()) {
+            writeStates(result.state);
+            written.insert(written.end(), cmd.states.begin(), cmd.states.end());
+        }
+    } catch (...) {
+        takeBack();
+        throw;
+    }
     // The EXR header says how many samples the image holds (fewer than asked
     // when interrupted or stopped by --time).
     const std::vector<std::pair<std::string, int>> header{{"strata:spp", int(result.spp)},
-                                                          {"strata:sppRequested", int(cmd.settings.spp)}};
+                                                          {"strata:sppRequested", int(range.end - range.begin)}};
     try {
         if (cmd.denoise) {
             AovImages aov = aovImages(result.film);
@@ -129,22 +230,11 @@ int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l) 
             if (!cmd.quiet)
                 std::fprintf(stderr, "strata: denoised (%s) in %.3f s (device %.3f s)\n", denoiseMethodName(method),
                              d.seconds, d.deviceSeconds);
-        } else if (cmd.settings.aov) {
-            AovImages aov = aovImages(result.film);
-            aov.attributes = header;
-            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, aov.color, aovChannels(aov));
-        } else if (cmd.variance) {
-            ExtraChannels var;
-            var.add("variance", "RGB", result.film.varianceOfMean());
-            var.attributes = header;
-            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), var);
         } else {
-            ExtraChannels none;
-            none.attributes = header;
-            writeImages(cmd.outputs, cmd.settings.width, cmd.settings.height, result.film.mean(), none);
+            writeFilmImages(cmd.outputs, result.film, cmd.variance, header);
         }
     } catch (...) {
-        if (!cmd.statsJson.empty()) std::remove(cmd.statsJson.c_str());
+        takeBack();
         throw;
     }
     if (cmd.stats) std::fputs(statsText(stats).c_str(), stdout);
@@ -152,15 +242,54 @@ int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l) 
         warn(cmd.scene, std::to_string(result.nonFinite) + " of " +
                             std::to_string(std::uint64_t(result.spp) * cmd.settings.width * cmd.settings.height) +
                             " samples were NaN or Inf and were left out of the image");
-    if (!cmd.quiet)
+    if (!cmd.quiet) {
+        for (const auto& out : cmd.states) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());
         for (const auto& out : cmd.outputs) std::fprintf(stderr, "strata: wrote %s\n", out.c_str());
+    }
     if (result.interrupted)
         std::fprintf(stderr, "strata: interrupted by %s: the outputs hold %u of %u spp\n",
-                     signalName(result.interrupted).c_str(), result.spp, cmd.settings.spp);
+                     signalName(result.interrupted).c_str(), result.spp, range.end - range.begin);
     return result.interrupted;
 }
 
+// --dry-run: what the command would do, in one line.
+int dryRun(const RenderCommand& cmd) {
+    const SampleRange range = renderRange(cmd);
+    std::string outputs;
+    for (const auto* list : {&cmd.states, &cmd.outputs})
+        for (const std::string& o : *list) outputs += (outputs.empty() ? "" : ", ") + o;
+    std::printf("strata: dry run: would render %s at %dx%d, samples %u-%u of %u%s%s, to %s\n", cmd.scene.c_str(),
+                cmd.settings.width, cmd.settings.height, range.begin, range.end, cmd.settings.spp,
+                cmd.shards ? (" (shard " + std::to_string(cmd.shard) + "/" + std::to_string(cmd.shards) + ")").c_str()
+                           : "",
+                cmd.resume.empty() ? "" : (", resuming " + cmd.resume).c_str(), outputs.c_str());
+    return 0;
+}
+
 }  // namespace
+
+SampleRange renderRange(const RenderCommand& cmd) {
+    if (cmd.shards) return shardRange(cmd.settings.spp, cmd.shard, cmd.shards, cmd.tuning.maxBatch);
+    return {0, cmd.settings.spp};
+}
+
+void writeFilmImages(const std::vector<std::string>& outputs, const Film& film, bool variance,
+                     const std::vector<std::pair<std::string, int>>& attributes) {
+    if (film.aov) {
+        AovImages aov = aovImages(film);
+        aov.attributes = attributes;
+        writeImages(outputs, film.width, film.height, aov.color, aovChannels(aov));
+    } else if (variance) {
+        ExtraChannels var;
+        var.add("variance", "RGB", film.varianceOfMean());
+        var.attributes = attributes;
+        writeImages(outputs, film.width, film.height, film.mean(), var);
+    } else {
+        ExtraChannels none;
+        none.attributes = attributes;
+        writeImages(outputs, film.width, film.height, film.mean(), none);
+    }
+}
 
 std::string frameFileName(const std::string& pattern, int frame) {
     const std::size_t first = pattern.find('#');
@@ -176,17 +305,22 @@ int runRender(const RenderCommand& cmd) {
     for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
     for (const auto& out : cmd.outputs) requireImageSupport(out);
     for (const auto& out : cmd.outputs) checkOutputPath(out);
+    for (const auto& out : cmd.states) checkOutputPath(out);
     if (!cmd.statsJson.empty()) checkOutputPath(cmd.statsJson);
     checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
                          cmd.settings.height);
+    renderRange(cmd);  // a shard that cannot be (more shards than batches)
+    if (cmd.dryRun) return dryRun(cmd);
+    std::optional<RenderState> resumed;
+    if (!cmd.resume.empty()) resumed = readState(cmd.resume);  // a bad state file before any work
 
     // SIGINT, SIGTERM: the render in progress stops after its submission and
     // writes what it reached; the status is then 128 + the signal.
     installInterruptHandlers();
     std::unique_ptr<vk::Context> ctx;
     if (!cmd.frames.enabled) {
-        Loaded l = load(cmd, ctx);
-        const int signal = renderAndWrite(cmd, *ctx, l);
+        Loaded l = load(cmd, ctx, resumed ? &*resumed : nullptr);
+        const int signal = renderAndWrite(cmd, *ctx, l, resumed ? &*resumed : nullptr);
         return signal ? 128 + signal : 0;
     }
     // Each frame its own shutter. The scene is loaded once (every mesh the

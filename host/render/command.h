@@ -6,6 +6,7 @@
 
 #include "pack/gpu_scene.h"
 #include "render/renderer.h"
+#include "render/state.h"
 #include "scene/scene.h"
 #include "scene/environment.h"
 #include "scene/view.h"
@@ -31,6 +32,11 @@ std::string frameFileName(const std::string& pattern, int frame);
 struct RenderCommand {
     std::string scene;
     std::vector<std::string> outputs;   // .exr and/or .png
+    std::vector<std::string> states;    // -o FILE.state: the accumulation (render/state.h)
+    double checkpointEvery = 0.0;       // --checkpoint-every: rewrite the states this often (seconds)
+    std::string resume;                 // --resume FILE.state: continue it
+    std::uint32_t shard = 0, shards = 0;  // --shard I/K (shards 0: the whole render)
+    bool dryRun = false;                // --dry-run: check the flags, say what would be done, stop
     RenderSettings settings;
     RenderTuning tuning;                // tests lower tuning.limits; the command line never sets it
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
@@ -47,6 +53,15 @@ struct RenderCommand {
     bool denoiseFast = false;           // '--denoise fast': the a-trous filter, not the regression
     FrameRange frames;                  // --frames: outputs and statsJson hold a run of '#'
 };
+
+// The sample indices the command renders: its shard of [0, spp), or all.
+SampleRange renderRange(const RenderCommand& cmd);
+
+// Writes `film` to EXR and PNG `outputs`: the mean, with the AOV layers where
+// the film has them, else with variance.R/G/B when `variance`; the EXR header
+// gets `attributes`.
+void writeFilmImages(const std::vector<std::string>& outputs, const Film& film, bool variance,
+                     const std::vector<std::pair<std::string, int>>& attributes);
 
 // The BVH and packing stages as the commands run them, consuming the scene
 // (packSceneAndRelease); `ms` receives their host time together.

@@ -86,8 +86,14 @@ void checkImageFits(const vk::Context& ctx, const RenderSettings& s, const Scene
                     sizeText(largest) + "); render a smaller image");
 }
 
+Film Accumulation::image() const {
+    Film f = film;
+    if (!pending.empty()) f.fold(pending.data());
+    return f;
+}
+
 RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera& camera, const RenderSettings& s,
-                    const RenderTuning& t, const Checkpoints& checkpoints) {
+                    const RenderTuning& t, const Checkpoints& checkpoints, const SampleRun& run) {
     using namespace gpu;
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
@@ -113,7 +119,6 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     const std::unique_ptr<Integrator> integrator = makeIntegrator(ctx, dev, s, t, maxTilePixels, film);
 
     RenderResult result;
-    result.film = Film(s.width, s.height, s.aov);
     result.reads = dev.reads;
     result.bvhWidth = dev.wide ? 4 : 2;
     result.bvhStack = bvhStackName(dev);
@@ -140,10 +145,35 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         result.warmUpDeviceSeconds = timer.supported() ? timer.seconds() + own : result.warmUpHostSeconds;
         result.warmUpPixels = p.tileW * p.tileH;
     }
+
+    // The samples: [begin, end), from `cur` on. Batches are the runs of
+    // foldEvery indices from multiples of foldEvery (Accumulation).
+    const std::uint32_t foldEvery = std::max(1u, t.maxBatch);
+    const Accumulation* resume = run.resume;
+    const std::uint32_t begin = resume ? resume->begin : run.begin;
+    const std::uint32_t end = run.end ? run.end : s.spp;
+    if (begin % foldEvery != 0 || end < begin || (resume && (resume->end > end || resume->folded % foldEvery != 0)))
+        throw Error("strata: error: internal: samples " + std::to_string(begin) + "-" + std::to_string(end) +
+                    " do not start at a batch of " + std::to_string(foldEvery));
+    std::uint32_t cur = resume ? resume->end : begin;
+    std::uint32_t unfolded = resume ? resume->end - resume->folded : 0;  // samples summed on the device since the last fold
+    Film sums = resume ? resume->film : Film(s.width, s.height, s.aov);  // the complete batches
     {
         VkCommandBuffer cmd = submit.begin();
-        vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cmd, counters.handle(), 0, VK_WHOLE_SIZE, 0);
+        vk::Buffer staging;
+        if (unfolded > 0) {  // the resumed state's batch in progress goes back on the device
+            if (resume->pending.size() * sizeof(float) != accumBytes)
+                throw Error("strata: error: internal: the state's pending sums do not fit the image");
+            staging = vk::Buffer(ctx, accumBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload);
+            std::memcpy(staging.mapped(), resume->pending.data(), accumBytes);
+            VkBufferCopy region{0, 0, accumBytes};
+            vkCmdCopyBuffer(cmd, staging.handle(), accum.handle(), 1, &region);
+        } else {
+            vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
+        }
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         submit.submitAndWait();
     }
 
@@ -153,41 +183,68 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     std::uint32_t batch = t.fixedBatch ? t.fixedBatch : 1u;  // samples in the next submission
     std::size_t nextCheckpoint = 0;
 
-    // The device sums samples in float32 and the host folds the sums into
-    // double. Folds happen at fixed sample counts (every maxBatch samples, at
-    // checkpoints and at the end), never where a submission happens to end,
-    // so the float rounding, and with it every bit of the image, does not
-    // depend on timing.
-    auto recordFold = [&](VkCommandBuffer cmd) {
+    // The device sums samples in float32 and the host folds each complete
+    // batch into the film. Folds happen at fixed sample indices (multiples
+    // of foldEvery), never where a submission happens to end, so the float
+    // rounding, and with it every bit of the image, does not depend on
+    // timing, on checkpoints, or on where a render was stopped and resumed.
+    auto recordCopy = [&](VkCommandBuffer cmd, bool clear) {
         VkBufferCopy region{0, 0, accumBytes};
         vkCmdCopyBuffer(cmd, accum.handle(), readback.handle(), 1, &region);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-        vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+        if (clear) {
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                              VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+            vkCmdFillBuffer(cmd, accum.handle(), 0, VK_WHOLE_SIZE, 0);
+        }
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     };
-    auto foldIntoFilm = [&] {
+    auto readBatch = [&]() -> const float* {
         readback.invalidate();
-        result.film.fold(static_cast<const float*>(readback.mapped()));
+        return static_cast<const float*>(readback.mapped());
     };
-    const std::uint32_t foldEvery = std::max(1u, t.maxBatch);
-    std::uint32_t unfolded = 0;  // samples summed on the device since the last fold
+    // The batch in progress, left on the device: its sums as they are.
+    auto pendingSums = [&]() -> std::vector<float> {
+        if (unfolded == 0) return {};
+        recordCopy(submit.begin(), false);
+        submit.submitAndWait();
+        const float* f = readBatch();
+        return std::vector<float>(f, f + accumBytes / sizeof(float));
+    };
+    auto readCounters = [&]() -> RenderCounters {
+        VkCommandBuffer cmd = submit.begin();
+        VkBufferCopy region{0, 0, sizeof(RenderCounters)};
+        vkCmdCopyBuffer(cmd, counters.handle(), countersBack.handle(), 1, &region);
+        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+        submit.submitAndWait();
+        countersBack.invalidate();
+        RenderCounters c;
+        std::memcpy(&c, countersBack.mapped(), sizeof c);
+        return c;
+    };
+    auto accumulation = [&](std::vector<float> pending) {
+        Accumulation a{sums, std::move(pending), begin, cur - unfolded, cur, readCounters().nonFinite};
+        if (resume) a.nonFinite += resume->nonFinite;
+        return a;
+    };
     double ownSeconds = 0.0;     // device time of what the integrator submitted on its own
+    double lastCheckpoint = 0.0; // elapsed() at the last onCheckpoint
 
-    while (result.spp < s.spp) {
-        while (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] <= result.spp)
-            ++nextCheckpoint;
-        std::uint32_t limit = std::min(foldEvery - unfolded, s.spp - result.spp);
+    while (cur < end) {
+        const std::uint32_t spp = cur - begin;  // in the image so far
+        while (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] <= spp) ++nextCheckpoint;
+        std::uint32_t limit = std::min(foldEvery - cur % foldEvery, end - cur);
         if (nextCheckpoint < checkpoints.spp.size())
-            limit = std::min(limit, checkpoints.spp[nextCheckpoint] - result.spp);
+            limit = std::min(limit, checkpoints.spp[nextCheckpoint] - spp);
         batch = std::clamp(batch, 1u, limit);
-        const std::uint32_t after = result.spp + batch;
-        const bool atCheckpoint = nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] == after;
-        const bool fold = unfolded + batch == foldEvery || after == s.spp || atCheckpoint;
+        const std::uint32_t after = cur + batch;
+        const bool atCheckpoint =
+            nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] == after - begin;
+        const bool fold = after % foldEvery == 0;
 
         const auto t0 = Clock::now();
         VkCommandBuffer cmd = submit.begin();
@@ -200,7 +257,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
                     p.tileY = ty;
                     p.tileW = std::min<std::uint32_t>(tile, s.width - tx);
                     p.tileH = std::min<std::uint32_t>(tile, s.height - ty);
-                    p.sampleIndex = result.spp + k;
+                    p.sampleIndex = cur + k;
                     p.blockStride = blockStride(p.tileW, p.tileH);
                     ownSeconds += integrator->addSample(cmd, p);
                 }
@@ -211,22 +268,31 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
                               VK_ACCESS_TRANSFER_READ_BIT);
         }
         timer.end(cmd);
-        if (fold) recordFold(cmd);
+        if (fold) recordCopy(cmd, true);
         submit.submitAndWait();
         const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         result.hostSubmitSeconds += secs;
         result.deviceSeconds += timer.supported() ? timer.seconds() + ownSeconds : secs;
         ownSeconds = 0.0;
-        result.spp = after;
+        cur = after;
         unfolded += batch;
+        result.sppRendered += batch;
         ++result.submissions;
         if (fold) {
-            foldIntoFilm();
+            sums.fold(readBatch());
             unfolded = 0;
         }
-        if (atCheckpoint && checkpoints.onReached) {
+        if (atCheckpoint && checkpoints.onReached) {  // the image so far, the batch in progress included
+            result.spp = cur - begin;
             result.seconds = elapsed();
+            result.film = sums;
+            if (unfolded > 0) result.film.fold(pendingSums().data());
             checkpoints.onReached(result);
+        }
+        if (run.checkpointSeconds > 0.0 && run.onCheckpoint && cur < end &&
+            elapsed() - lastCheckpoint >= run.checkpointSeconds) {
+            run.onCheckpoint(accumulation(pendingSums()));
+            lastCheckpoint = elapsed();
         }
 
         const double perSample = secs / batch;
@@ -237,32 +303,27 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         batch = t.fixedBatch ? t.fixedBatch
                              : static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
         if (showProgress)
-            printProgress(result.spp, s.spp, elapsed(),
-                          static_cast<double>(pixels) * result.spp / elapsed() * 1e-6);
+            printProgress(cur - begin, end - begin, elapsed(),
+                          static_cast<double>(pixels) * result.sppRendered / elapsed() * 1e-6);
     }
-    if (unfolded > 0) {  // stopped by --time or a signal inside a fold group
-        recordFold(submit.begin());
-        submit.submitAndWait();
-        foldIntoFilm();
-    }
+    // The batch in progress (the render ended, or was stopped by --time or a
+    // signal, inside one): in the image, and kept apart in the state.
+    std::vector<float> pending = pendingSums();
     result.seconds = elapsed();
+    result.spp = cur - begin;
     if (showProgress) std::fprintf(stderr, "\n");
 
-    {
-        VkCommandBuffer cmd = submit.begin();
-        VkBufferCopy region{0, 0, sizeof(RenderCounters)};
-        vkCmdCopyBuffer(cmd, counters.handle(), countersBack.handle(), 1, &region);
-        vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-        submit.submitAndWait();
-        countersBack.invalidate();
-        RenderCounters c;
-        std::memcpy(&c, countersBack.mapped(), sizeof c);
-        result.nonFinite = c.nonFinite + result.film.overflowed;
-        const RayCounts rays = integrator->rays(c);
-        result.closestRays = rays.closest;
-        result.shadowRays = rays.shadow;
+    const RenderCounters c = readCounters();
+    if (run.keep) {
+        result.state = Accumulation{sums, pending, begin, cur - unfolded, cur, c.nonFinite};
+        if (resume) result.state.nonFinite += resume->nonFinite;
     }
+    result.film = std::move(sums);
+    if (!pending.empty()) result.film.fold(pending.data());
+    result.nonFinite = c.nonFinite + result.film.overflowed + (resume ? resume->nonFinite : 0);
+    const RayCounts rays = integrator->rays(c);
+    result.closestRays = rays.closest;
+    result.shadowRays = rays.shadow;
     result.dispatches = integrator->dispatches();
     result.peakDeviceBytes = vk::peakDeviceMemoryBytes();
     return result;

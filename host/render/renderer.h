@@ -16,6 +16,30 @@ namespace strata {
 
 struct RenderResult;
 
+// A render's accumulation as a state file holds it (render/state.h): the
+// complete batches of samples [begin, folded) in `film`, and the device's
+// float32 sums of [folded, end) (a batch not yet complete) in `pending`.
+// Batches are the runs of RenderTuning::maxBatch sample indices starting
+// at multiples of it, so the same samples always make the same batches.
+struct Accumulation {
+    Film film;
+    std::vector<float> pending;  // Film::batchFloats() floats; empty when folded == end
+    std::uint32_t begin = 0, folded = 0, end = 0;
+    std::uint64_t nonFinite = 0;  // samples the device dropped as NaN or Inf (RenderCounters)
+    // The image's sums: film with pending folded in.
+    Film image() const;
+};
+
+// The sample indices a render takes, and its accumulation for state files.
+struct SampleRun {
+    std::uint32_t begin = 0;             // first sample index (a shard's): a multiple of maxBatch
+    std::uint32_t end = 0;               // one past the last; 0: settings.spp
+    const Accumulation* resume = nullptr;  // continue this one (its begin and end replace `begin`)
+    bool keep = false;                   // fill RenderResult::state
+    double checkpointSeconds = 0.0;      // call onCheckpoint this often (wall time), 0: never
+    std::function<void(const Accumulation&)> onCheckpoint;
+};
+
 // Called when the render has taken exactly `checkpoint` spp (ascending values
 // <= spp); submissions are cut so every checkpoint is hit exactly.
 struct Checkpoints {
@@ -25,7 +49,9 @@ struct Checkpoints {
 
 struct RenderResult {
     Film film;
-    std::uint32_t spp = 0;              // samples per pixel actually taken
+    std::uint32_t spp = 0;              // samples per pixel in the image (with a resumed state's)
+    std::uint32_t sppRendered = 0;      // of those, the ones this render took
+    Accumulation state;                 // with SampleRun::keep: the accumulation the image is made of
     int interrupted = 0;                // the SIGINT or SIGTERM that ended the loop early
                                         // (util/interrupt.h), 0 when none
     double seconds = 0.0;               // wall time of the dispatch loop
@@ -54,7 +80,7 @@ struct RenderResult {
     std::uint64_t peakDeviceBytes = 0;  // most device memory the process held at once, by the
                                         // render's end (scene, image, staging: vk::Buffer)
     double msamplesPerSecond() const {
-        return seconds > 0 ? static_cast<double>(film.pixels()) * spp / seconds * 1e-6 : 0.0;
+        return seconds > 0 ? static_cast<double>(film.pixels()) * sppRendered / seconds * 1e-6 : 0.0;
     }
 };
 
@@ -67,9 +93,11 @@ std::uint32_t accumVec4PerPixel(const RenderSettings& settings);
 // first).
 void checkImageFits(const vk::Context& ctx, const RenderSettings& settings, const SceneLimits& limits = {});
 
-// Renders a scene on the device (upload/device_scene.h) through `camera`.
+// Renders a scene on the device (upload/device_scene.h) through `camera`:
+// samples [run.begin, run.end), or on from run.resume. Checkpoints count
+// the image's spp.
 RenderResult render(const vk::Context& ctx, const DeviceScene& scene, const Camera& camera,
                     const RenderSettings& settings, const RenderTuning& tuning = {},
-                    const Checkpoints& checkpoints = {});
+                    const Checkpoints& checkpoints = {}, const SampleRun& run = {});
 
 }  // namespace strata
