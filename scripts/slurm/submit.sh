@@ -6,9 +6,10 @@ set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 
+synopsis="usage: $0 -k SHARDS [-o OUTPUT]... [options] [-- SBATCH_OPTION...]"
 usage() {
   cat <<EOF
-usage: $0 -k SHARDS [-o OUTPUT]... [options] [-- SBATCH_OPTION...]
+$synopsis
 
 Renders \$SCENE as SHARDS Slurm array tasks (strata render --shard I/SHARDS)
 and merges their states into OUTPUT once every task has succeeded. Prints
@@ -36,7 +37,9 @@ environment:
   STRATA_FLAGS  more strata render flags for every shard, split at spaces
 EOF
 }
-bad() { echo "submit.sh: error: $*" >&2; echo "(submit.sh --help for the usage)" >&2; exit 2; }
+# Bad arguments: the error and the synopsis; anything else: the error alone.
+usage_error() { printf 'submit.sh: error: %s\n%s (--help for more)\n' "$*" "$synopsis" >&2; exit 2; }
+bad() { echo "submit.sh: error: $*" >&2; exit 2; }
 
 K=${SHARDS:-}
 outputs=()
@@ -45,25 +48,25 @@ parallel=""
 check=1
 while [ $# -gt 0 ]; do
   case $1 in
-    -k | --shards) [ $# -ge 2 ] || bad "$1 needs a value"; K=$2; shift 2 ;;
+    -k | --shards) [ $# -ge 2 ] || usage_error "$1 needs a value"; K=$2; shift 2 ;;
     --shards=*) K=${1#*=}; shift ;;
-    -o | --output) [ $# -ge 2 ] || bad "$1 needs a value"; outputs+=("$2"); shift 2 ;;
+    -o | --output) [ $# -ge 2 ] || usage_error "$1 needs a value"; outputs+=("$2"); shift 2 ;;
     --output=*) outputs+=("${1#*=}"); shift ;;
-    -p | --parallel) [ $# -ge 2 ] || bad "$1 needs a value"; parallel=$2; shift 2 ;;
+    -p | --parallel) [ $# -ge 2 ] || usage_error "$1 needs a value"; parallel=$2; shift 2 ;;
     --parallel=*) parallel=${1#*=}; shift ;;
-    -m | --merge-sbatch) [ $# -ge 2 ] || bad "$1 needs a value"; merge_opts+=("$2"); shift 2 ;;
+    -m | --merge-sbatch) [ $# -ge 2 ] || usage_error "$1 needs a value"; merge_opts+=("$2"); shift 2 ;;
     --merge-sbatch=*) merge_opts+=("${1#*=}"); shift ;;
     --no-check) check=0; shift ;;
     -h | --help) usage; exit 0 ;;
     --) shift; break ;;
-    *) bad "unknown argument '$1'" ;;
+    *) usage_error "unknown argument '$1'" ;;
   esac
 done
 shard_opts=("$@")
 
-[ -n "$K" ] || bad "no shard count: give -k K (or set SHARDS)"
-[[ $K =~ ^[1-9][0-9]*$ ]] || bad "shard count '$K' is not a positive whole number"
-[ -z "$parallel" ] || [[ $parallel =~ ^[1-9][0-9]*$ ]] || bad "--parallel '$parallel' is not a positive whole number"
+[ -n "$K" ] || usage_error "no shard count: give -k K (or set SHARDS)"
+[[ $K =~ ^[1-9][0-9]*$ ]] || usage_error "shard count '$K' is not a positive whole number"
+[ -z "$parallel" ] || [[ $parallel =~ ^[1-9][0-9]*$ ]] || usage_error "--parallel '$parallel' is not a positive whole number"
 [ -n "${SCENE:-}" ] || bad "SCENE is not set (the glTF scene to render)"
 [ -f "$SCENE" ] || bad "SCENE: '$SCENE' is not a file"
 STRATA=$(command -v "${STRATA:-strata}") || bad "STRATA: '${STRATA:-strata}' is not an executable (set STRATA to strata's path)"
