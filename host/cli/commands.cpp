@@ -35,7 +35,8 @@ std::vector<Flag<RenderCommand>> renderFlags() {
             positive<C>("--checkpoint-every", "SECONDS",
                         "rewrite the .state outputs every SECONDS during the render, so that a crash loses at most "
                         "that much",
-                        1e9, "seconds", STRATA_FIELD(checkpointEvery)),
+                        1e9, "seconds", STRATA_FIELD(checkpointEvery))
+                .withDefault("never"),
             text<C>("--resume", "FILE.state",
                     "continue the render FILE.state holds to --spp N in all; the same scene and settings, the same "
                     "bits as an uninterrupted render",

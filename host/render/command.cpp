@@ -152,7 +152,7 @@ void checkResumable(const RenderCommand& cmd, const RenderState& st, const State
 // result is then statistically equivalent to an uninterrupted render, not
 // the same bits.
 void noteImplementation(const RenderCommand& cmd, const RenderState& st, const StateInfo& here) {
-    if (st.info.implementation != here.implementation && !cmd.quiet)
+    if (!sameImplementation(st.info, here) && !cmd.quiet)
         std::fprintf(stderr,
                      "strata: note: %s was rendered on %s, this render runs on %s: the result is statistically "
                      "equivalent to an uninterrupted render, not the same bits\n",

@@ -67,7 +67,7 @@ int runMerge(const MergeCommand& cmd) {
             if (st.info.spp != merged.info.spp)
                 fail(path, "cannot merge: a render of " + std::to_string(st.info.spp) + " spp, " + cmd.inputs[0] +
                                " of " + std::to_string(merged.info.spp));
-            if (st.info.implementation != merged.info.implementation) {
+            if (!sameImplementation(st.info, merged.info)) {
                 const std::string text = implementationText(st.info.implementation);
                 if (std::find(others.begin(), others.end(), text) == others.end()) others.push_back(text);
             }

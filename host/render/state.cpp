@@ -130,6 +130,11 @@ nlohmann::ordered_json stateImplementation(const std::string& device, const std:
             {"bvh", s.bvhWidth}};
 }
 
+bool sameImplementation(const StateInfo& a, const StateInfo& b) {
+    // A merge of several implementations is the same as none.
+    return a.implementation == b.implementation && !a.implementation.contains("others");
+}
+
 std::string implementationText(const nlohmann::ordered_json& j) {
     std::string text = j.value("device", "?") + " (" + j.value("driver", "?") + "), " +
                        j.value("integrator", "?") + ", bvh " + std::to_string(j.value("bvh", 0));

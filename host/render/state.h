@@ -78,6 +78,10 @@ RenderState readState(const std::string& path);
 // settings, in words naming both files), or "" when they may.
 std::string stateMismatch(const StateInfo& a, const std::string& aName, const StateInfo& b, const std::string& bName);
 
+// Whether two states come from one implementation (device, driver,
+// integrator, BVH width); never for a merge of several ("others").
+bool sameImplementation(const StateInfo& a, const StateInfo& b);
+
 // A one-line description of an implementation ("llvmpipe ... (Mesa ...), bvh 4, ...").
 std::string implementationText(const nlohmann::ordered_json& implementation);
 
