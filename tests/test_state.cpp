@@ -181,6 +181,9 @@ TEST_CASE("state: a state file reads back whole, and every damaged or foreign fi
     std::string json = bytes;
     json[20] = '{';
     expectFails(json, "its header is not readable");
+    std::string format = bytes;  // valid JSON of the wrong type
+    format.replace(format.find("\"strata state\""), 14, "12345678901234");
+    expectFails(format, "its header is not readable");
     CHECK(readError(dir / "missing.state").find("cannot read the state file") != std::string::npos);
 }
 
@@ -222,6 +225,10 @@ TEST_CASE("state: states of another scene or with other settings do not combine,
     b = a;
     b.implementation["device"] = "another device";  // may combine (statistically)
     CHECK(stateMismatch(a, "a.state", b, "b.state").empty());
+    CHECK_FALSE(sameImplementation(a, b));
+    CHECK(sameImplementation(a, a));
+    b.implementation["device"] = 7;  // whatever a header holds reads as text
+    CHECK(implementationText(b.implementation) == "7 (a driver), megakernel, bvh 4");
 }
 
 TEST_SUITE_END();

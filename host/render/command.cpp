@@ -183,8 +183,8 @@ int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l, 
         run.checkpointSeconds = cmd.checkpointEvery;
         run.onCheckpoint = [&](const Accumulation& acc) {
             writeStates(acc);
-            if (!cmd.quiet && !cmd.settings.progress)
-                std::fprintf(stderr, "strata: checkpoint: %u spp\n", acc.end - acc.begin);
+            if (!cmd.quiet)  // on its own line, also under a terminal's progress line
+                std::fprintf(stderr, "\rstrata: checkpoint: %u spp written\n", acc.end - acc.begin);
         };
     }
     RenderResult result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning, {}, run);

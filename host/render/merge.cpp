@@ -30,6 +30,16 @@ std::string missingShards(const StateInfo& in, std::uint32_t begin, std::uint32_
     return out.empty() ? "" : " (shard " + out + ")";
 }
 
+// The implementations an earlier merge of several recorded beside its first.
+std::vector<std::string> otherImplementations(const StateInfo& in) {
+    std::vector<std::string> out;
+    const auto it = in.implementation.find("others");
+    if (it != in.implementation.end() && it->is_array())
+        for (const auto& o : *it)
+            if (o.is_string()) out.push_back(o.get<std::string>());
+    return out;
+}
+
 }  // namespace
 
 int runMerge(const MergeCommand& cmd) {
@@ -59,6 +69,7 @@ int runMerge(const MergeCommand& cmd) {
         RenderState st = readState(path);
         if (parts.empty()) {
             merged.info = st.info;
+            others = otherImplementations(st.info);  // an earlier merge of several
             merged.acc.film = std::move(st.acc.film);
             merged.acc.nonFinite = st.acc.nonFinite;
         } else {
@@ -68,8 +79,12 @@ int runMerge(const MergeCommand& cmd) {
                 fail(path, "cannot merge: a render of " + std::to_string(st.info.spp) + " spp, " + cmd.inputs[0] +
                                " of " + std::to_string(merged.info.spp));
             if (!sameImplementation(st.info, merged.info)) {
-                const std::string text = implementationText(st.info.implementation);
-                if (std::find(others.begin(), others.end(), text) == others.end()) others.push_back(text);
+                std::vector<std::string> texts = otherImplementations(st.info);
+                texts.push_back(implementationText(st.info.implementation));
+                const std::string first = implementationText(merged.info.implementation);
+                for (const std::string& text : texts)
+                    if (text != first && std::find(others.begin(), others.end(), text) == others.end())
+                        others.push_back(text);
             }
             merged.acc.film.add(st.acc.film);
             merged.acc.nonFinite += st.acc.nonFinite;

@@ -136,9 +136,12 @@ bool sameImplementation(const StateInfo& a, const StateInfo& b) {
 }
 
 std::string implementationText(const nlohmann::ordered_json& j) {
-    std::string text = j.value("device", "?") + " (" + j.value("driver", "?") + "), " +
-                       j.value("integrator", "?") + ", bvh " + std::to_string(j.value("bvh", 0));
-    return text;
+    const auto field = [&](const char* key) {  // any JSON a header holds, as text
+        const auto it = j.find(key);
+        if (it == j.end()) return std::string("?");
+        return it->is_string() ? it->get<std::string>() : it->dump();
+    };
+    return field("device") + " (" + field("driver") + "), " + field("integrator") + ", bvh " + field("bvh");
 }
 
 SampleRange shardRange(std::uint32_t spp, std::uint32_t i, std::uint32_t k, std::uint32_t batch) {
@@ -231,7 +234,7 @@ RenderState readState(const std::string& path) {
     std::string header(length, '\0');
     r.bytes(header.data(), length, 16 + std::uint64_t(length));
     const nlohmann::ordered_json h = nlohmann::ordered_json::parse(header, nullptr, false);
-    if (h.is_discarded() || !h.is_object() || h.value("format", "") != "strata state")
+    if (h.is_discarded() || !h.is_object() || !h.contains("format") || h["format"] != "strata state")
         fail(path, "corrupted state file: its header is not readable");
 
     RenderState st;
