@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <doctest/doctest.h>
 
@@ -42,6 +43,27 @@ inline std::size_t lines(const std::string& s) {
     std::size_t n = 0;
     for (char c : s) n += c == '\n';
     return n + (!s.empty() && s.back() != '\n');
+}
+
+// Starts `strata ARGS` (without --quiet) in the background, waits until it
+// has opened its device (its first line on stderr, at most 30 s) and
+// `settle` seconds more, sends it
+// `signals` (kill arguments, e.g. "-INT"), `gap` seconds apart, and waits for
+// it. The output ends with "status=N".
+inline Run signalled(const std::string& args, const std::vector<std::string>& signals, double settle, double gap,
+              const std::string& log) {
+    std::string script = std::string(STRATA_EXE) + " " + args + " 2>" + log + " & p=$!; n=0; " +
+                         "while ! grep -q \"strata: device\" " + log + " && [ $n -lt 600 ]; do sleep 0.05; n=$((n+1)); done; " +
+                         "sleep " + std::to_string(settle) + "; ";
+    for (std::size_t i = 0; i < signals.size(); ++i)
+        script += (i ? "sleep " + std::to_string(gap) + "; " : "") + "kill " + signals[i] + " $p; ";
+    script += "wait $p; echo status=$?";
+    return runShell("sh -c '" + script + "'");
+}
+
+inline int statusOf(const Run& r) {
+    const std::size_t at = r.output.rfind("status=");
+    return at == std::string::npos ? -1 : std::stoi(r.output.substr(at + 7));
 }
 
 struct TempDir {

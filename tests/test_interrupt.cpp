@@ -24,27 +24,6 @@ int headerInt(const Image& img, const std::string& name) {
     return -1;
 }
 
-// Starts `strata ARGS` (without --quiet) in the background, waits until it
-// has opened its device (its first line on stderr, at most 30 s) and
-// `settle` seconds more, sends it
-// `signals` (kill arguments, e.g. "-INT"), `gap` seconds apart, and waits for
-// it. The output ends with "status=N".
-Run signalled(const std::string& args, const std::vector<std::string>& signals, double settle, double gap,
-              const std::string& log) {
-    std::string script = std::string(STRATA_EXE) + " " + args + " 2>" + log + " & p=$!; n=0; " +
-                         "while ! grep -q \"strata: device\" " + log + " && [ $n -lt 600 ]; do sleep 0.05; n=$((n+1)); done; " +
-                         "sleep " + std::to_string(settle) + "; ";
-    for (std::size_t i = 0; i < signals.size(); ++i)
-        script += (i ? "sleep " + std::to_string(gap) + "; " : "") + "kill " + signals[i] + " $p; ";
-    script += "wait $p; echo status=$?";
-    return runShell("sh -c '" + script + "'");
-}
-
-int statusOf(const Run& r) {
-    const std::size_t at = r.output.rfind("status=");
-    return at == std::string::npos ? -1 : std::stoi(r.output.substr(at + 7));
-}
-
 // Files of `dir` whose name holds ".tmp" (an unfinished write).
 int temporaries(const TempDir& dir) {
     int n = 0;

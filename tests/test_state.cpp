@@ -316,14 +316,10 @@ TEST_CASE("state: a render resumed from its state, also one stopped by SIGINT, i
     CHECK(readRgb(d / "merged.exr").rgb == readRgb(d / "full.exr").rgb);
 
     // SIGINT: the state holds the samples reached and resumes to the same bits.
-    const std::string log = d / "log";
-    const Run r = runShell("sh -c '" + std::string(STRATA_EXE) + " render " + kCornell +
-                           " --width 32 --height 32 --spp 1000000 -o " + d / "i.state" + " 2>" + log +
-                           " & p=$!; n=0; while ! grep -q \"strata: device\" " + log +
-                           " && [ $n -lt 600 ]; do sleep 0.05; n=$((n+1)); done; sleep 1; kill -INT $p; wait $p; "
-                           "echo status=$?'");
+    const Run r = signalled(" render " + kCornell + " --width 32 --height 32 --spp 1000000 -o " + d / "i.state",
+                            {"-INT"}, 1.0, 0.0, d / "log");
     CAPTURE(r.output);
-    REQUIRE(r.output.find("status=130") != std::string::npos);
+    REQUIRE(statusOf(r) == 130);
     const RenderState st = readState(d / "i.state");
     CAPTURE(st.acc.end);
     CHECK(st.acc.end > 0);

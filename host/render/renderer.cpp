@@ -314,10 +314,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     if (showProgress) std::fprintf(stderr, "\n");
 
     const RenderCounters c = readCounters();
-    if (run.keep) {
-        result.state = Accumulation{sums, pending, begin, cur - unfolded, cur, c.nonFinite};
-        if (resume) result.state.nonFinite += resume->nonFinite;
-    }
+    if (run.keep) result.state = accumulation(pending);
     result.film = std::move(sums);
     if (!pending.empty()) result.film.fold(pending.data());
     result.nonFinite = c.nonFinite + result.film.overflowed + (resume ? resume->nonFinite : 0);
