@@ -1,12 +1,15 @@
 # Two commands do all set-up on a fresh Debian 12 machine:
 #   make render   installs missing packages, builds, renders scenes/cornell-box.gltf
 #   make test     same set-up, then every test (ctest) on lavapipe
+#   make fuzz     the libFuzzer targets, FUZZ_SECONDS each (scripts/fuzz.sh)
 BUILD ?= build
 JOBS ?= $(shell nproc)
 SPP ?= 64
 SIZE ?= 512
 
-.PHONY: all deps build render test clean
+FUZZ_SECONDS ?= 60
+
+.PHONY: all deps build render test fuzz clean
 
 all: build
 
@@ -27,5 +30,8 @@ render: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j 1
 
+fuzz: deps
+	FUZZ_SECONDS=$(FUZZ_SECONDS) scripts/fuzz.sh
+
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) build-fuzz out

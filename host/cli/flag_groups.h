@@ -180,7 +180,7 @@ inline void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
             badFlag(a + " needs --env or --env-color");
 }
 
-// --variant (the scene's materials), --instancing (its meshes).
+// --variant (the scene's materials), --instancing (its meshes), --restrict-paths (its files).
 template <class T>
 std::vector<Flag<T>> sceneFlags() {
     return {text<T>("--variant", "NAME",
@@ -191,7 +191,11 @@ std::vector<Flag<T>> sceneFlags() {
                                   "placed by instances (on), or flattened into world-space triangles (off); auto: "
                                   "instanced when its placements hold more than 2^20 triangles",
                                   {{"auto", Instancing::Auto}, {"on", Instancing::On}, {"off", Instancing::Off}},
-                                  [](auto& c) -> auto& { return c.instancing; })};
+                                  [](auto& c) -> auto& { return c.instancing; }),
+            text<T>("--restrict-paths", "DIR",
+                    "refuse a scene, an environment map, or a file the scene names that resolves (symlinks "
+                    "followed) outside DIR: for rendering files from elsewhere",
+                    STRATA_FIELD(restrictPaths))};
 }
 
 // --device, --validation.

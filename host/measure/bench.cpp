@@ -294,6 +294,7 @@ int runBench(const BenchCommand& cmd) {
     LoadOptions options;
     options.requireEmitter = false;  // traversal needs no light
     options.variant = cmd.variant;
+    if (!cmd.restrictPaths.empty()) options.restrictPaths = restrictRoot(cmd.restrictPaths);
     options.instancing = cmd.instancing;
     options.motion = motionOptions(cmd.settings);
     auto t0 = std::chrono::steady_clock::now();

@@ -42,6 +42,7 @@ struct BenchCommand {
     int reps = 5;                     // timed passes per ray set (median)
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     std::string variant;                // --variant (KHR_materials_variants)
+    std::string restrictPaths;          // --restrict-paths DIR (as given)
     Instancing instancing = Instancing::Auto;  // --instancing
     int device = -1;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image

@@ -140,6 +140,7 @@ std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd) {
     const RgbImage ref = readReference(cmd.reference);
     LoadOptions load;
     load.variant = cmd.variant;
+    if (!cmd.restrictPaths.empty()) load.restrictPaths = restrictRoot(cmd.restrictPaths);
     load.instancing = cmd.instancing;
     load.motion = motionOptions(cmd.settings);
     Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);

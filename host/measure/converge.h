@@ -30,6 +30,7 @@ struct ConvergeCommand {
     bool allSamplers = false;           // --sampler all: every sampler that suits the spp list
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     std::string variant;                // --variant (KHR_materials_variants)
+    std::string restrictPaths;          // --restrict-paths DIR (as given)
     Instancing instancing = Instancing::Auto;  // --instancing
     int device = -1;
     bool validation = false;

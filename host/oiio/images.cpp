@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "oiio/api.h"
+#include "util/limits.h"
 
 namespace strata::oiio {
 namespace {
@@ -64,6 +65,15 @@ std::string read(const std::string& path, Image& img) {
     for (const OIIO::ParamValue& p : spec.extra_attribs)
         if (p.name().string().rfind("strata:", 0) == 0 && p.type() == OIIO::TypeDesc::INT)
             img.attributes.emplace_back(p.name().string(), p.get_int());
+    if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) return "cannot read image: it has no pixels";
+    if (const std::string tooLarge = limits::imageSizeProblem(std::uint64_t(spec.width), std::uint64_t(spec.height));
+        !tooLarge.empty())
+        return "image of " + tooLarge;
+    const std::uint64_t floats = std::uint64_t(spec.width) * std::uint64_t(spec.height) * std::uint64_t(spec.nchannels);
+    if (floats > limits::kImageFloats)
+        return "cannot read image: " + std::to_string(spec.nchannels) + " channels of " + std::to_string(spec.width) +
+               "x" + std::to_string(spec.height) + " pixels are over the limit of " + std::to_string(limits::kImageFloats) +
+               " values (refused before decoding)";
     img.pixels.resize(static_cast<std::size_t>(img.width) * img.height * img.channels);
     if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
         return readFailure(oneLine(in->geterror()));

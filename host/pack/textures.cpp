@@ -1,6 +1,7 @@
 #include "pack/textures.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -60,9 +61,20 @@ std::uint32_t wrapBits(Wrap w) {
 
 glm::dvec3 meanColor(const TextureImage& image, bool srgb) {
     const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
+    // The 256 decoded 8-bit values, looked up: the same doubles as
+    // srgbToLinear(v / 255.0), without a pow per texel.
+    static const std::array<double, 256> decoded8 = [] {
+        std::array<double, 256> t{};
+        for (int k = 0; k < 256; ++k) t[std::size_t(k)] = srgbToLinear(k / 255.0);
+        return t;
+    }();
     glm::dvec3 sum(0.0);
     for (std::size_t i = 0; i < count; ++i) {
         for (int c = 0; c < 3; ++c) {
+            if (srgb && image.bits != 16) {
+                sum[c] += decoded8[image.data[i * 4 + static_cast<std::size_t>(c)]];
+                continue;
+            }
             const double v = channel(image, i, c);
             sum[c] += srgb ? srgbToLinear(v) : v;
         }

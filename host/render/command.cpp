@@ -64,6 +64,7 @@ Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared, cons
     auto t0 = std::chrono::steady_clock::now();
     LoadOptions options;
     options.variant = cmd.variant;
+    if (!cmd.restrictPaths.empty()) options.restrictPaths = restrictRoot(cmd.restrictPaths);
     options.instancing = cmd.instancing;
     options.motion = motionOptions(cmd.settings);
     options.motion.frames = cmd.frames.enabled;

@@ -42,6 +42,7 @@ struct RenderCommand {
     EnvironmentOptions env;             // --env / --env-color, --env-intensity, --env-rotate
     ViewOptions view;                   // --camera, --look-from, --look-at, --up, --fov
     std::string variant;                // --variant (KHR_materials_variants)
+    std::string restrictPaths;          // --restrict-paths DIR (as given)
     Instancing instancing = Instancing::Auto;  // --instancing
     int device = -1;
     bool quiet = false;

@@ -8,36 +8,56 @@
 
 #include "image/image_io.h"
 #include "util/error.h"
+#include "util/files.h"
 
 namespace strata {
 
-Environment makeEnvironment(const EnvironmentOptions& o) {
+namespace {
+
+// Radiance past the float range would make every sample that sees it Inf
+// and be dropped: a black image.
+void requireFloat(double radiance, const std::string& file, const std::string& what) {
+    if (!(radiance <= double(std::numeric_limits<float>::max()))) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", radiance);
+        fail(file, what + " is " + text + ", beyond the float range (3.4e+38)");
+    }
+}
+
+// An enabled environment with the rotation of `o`, no radiance yet.
+Environment colorlessEnvironment(const EnvironmentOptions& o) {
     Environment env;
-    if (!o.given()) return env;
     env.enabled = true;
     // Reduced to [0, 360) in double first, so whole turns change nothing and
     // a large angle is not carried to the float (1e39 would be inf).
     const double turn = std::fmod(o.rotateDegrees, 360.0);
     env.rotation = static_cast<float>((turn < 0.0 ? turn + 360.0 : turn) * std::numbers::pi / 180.0);
-    // Radiance past the float range would make every sample that sees it
-    // Inf and be dropped: a black image.
-    auto requireFloat = [](double radiance, const std::string& file, const std::string& what) {
-        if (!(radiance <= double(std::numeric_limits<float>::max()))) {
-            char text[32];
-            std::snprintf(text, sizeof text, "%g", radiance);
-            fail(file, what + " is " + text + ", beyond the float range (3.4e+38)");
-        }
-    };
+    return env;
+}
+
+}  // namespace
+
+Environment makeEnvironment(const EnvironmentOptions& o) {
+    if (!o.given()) return Environment{};
     if (o.hasColor) {
+        Environment env = colorlessEnvironment(o);
         env.source = "--env-color";
         env.scale = o.color * o.intensity;
         const double brightest = std::max({double(o.color.r), double(o.color.g), double(o.color.b)});
         requireFloat(brightest * double(o.intensity), "strata", "--env-color times --env-intensity");
         return env;
     }
+    if (!o.restrictPaths.empty()) {
+        if (const std::string outside = outsideRoot(o.file, o.restrictPaths); !outside.empty())
+            fail(o.file, "the environment map resolves to " + outside + ", outside --restrict-paths " + o.restrictPaths);
+    }
+    return environmentFromImage(o, readRgb(o.file));
+}
+
+Environment environmentFromImage(const EnvironmentOptions& o, RgbImage img) {
+    Environment env = colorlessEnvironment(o);
     env.source = o.file;
     env.scale = glm::vec3(o.intensity);
-    RgbImage img = readRgb(o.file);
     if (img.width < 1 || img.height < 1) fail(o.file, "environment map has no texels");
     bool anyLight = false;
     for (std::size_t i = 0; i < img.rgb.size(); ++i) {
@@ -62,7 +82,9 @@ Environment makeEnvironment(const EnvironmentOptions& o) {
 Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options, LoadOptions load) {
     load.externalLight = options.given();
     Scene scene = loadGltf(path, load);
-    if (options.given()) scene.environment = makeEnvironment(options);
+    EnvironmentOptions env = options;
+    env.restrictPaths = load.restrictPaths;
+    if (options.given()) scene.environment = makeEnvironment(env);
     return scene;
 }
 

@@ -10,18 +10,23 @@
 
 namespace strata {
 
+struct RgbImage;  // image/image_io.h
+
 struct EnvironmentOptions {
     std::string file;            // --env: equirectangular .hdr / .exr (anything OpenImageIO reads)
     bool hasColor = false;       // --env-color given
     glm::vec3 color{0.0f};       // constant radiance, components >= 0, not all 0
     float intensity = 1.0f;      // --env-intensity, > 0
     double rotateDegrees = 0.0;  // --env-rotate, about +Y (any finite angle)
+    std::string restrictPaths;   // --restrict-paths (canonical): `file` must resolve into it
     bool given() const { return !file.empty() || hasColor; }
 };
 
 // Reads and checks the map when there is one: every texel finite and >= 0,
 // not all black. Throws strata::Error ("<file>: error: ...") on bad input.
 Environment makeEnvironment(const EnvironmentOptions& options);
+// The same checks of a map already read (`options.file` names it).
+Environment environmentFromImage(const EnvironmentOptions& options, RgbImage image);
 
 // loadGltf with `load` plus the command line's environment: a scene lit only
 // by the environment is valid. The scene is checked before the map is read.

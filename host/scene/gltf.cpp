@@ -21,6 +21,7 @@
 #include "scene/gltf_motion.h"
 #include "scene/scene.h"
 #include "scene/tangents.h"
+#include "util/files.h"
 #include "util/error.h"
 #include "util/files.h"
 #include "util/memory.h"
@@ -90,15 +91,17 @@ public:
             }
             for (const tinygltf::Primitive& prim : model_.meshes[m].primitives)
                 if (!prim.targets.empty()) eligible[m] = 0;  // each node may pose it differently
-            const std::size_t placed = placements[m] * meshTriangles[m];
+            std::size_t placed = 0;
+            if (__builtin_mul_overflow(placements[m], meshTriangles[m], &placed)) placed = SIZE_MAX;
             bool instance = eligible[m] && placements[m] >= 2 && instancing_ != Instancing::Off;
             if (instancing_ == Instancing::Auto) instance = instance && placed > kInstancingMinTriangles;
             // A mesh that moves during the shutter is instanced: its placements carry MotionKeys.
             if (moving[m] && eligible[m]) instance = true;
             if (moving[m] && !eligible[m]) ++stillMoving, targets_.complete = false;
             instanced_[m] = instance;
-            triangles += instance ? 0 : placed;
+            if (!instance && __builtin_add_overflow(triangles, placed, &triangles)) triangles = SIZE_MAX;
         }
+        checkHostMemory(triangles, visits.size());
         if (stillMoving > 0 && timeline_->blurs())
             warn(path_, std::to_string(stillMoving) + " moving mesh(es) emit light, are skinned or have morph targets: "
                         "rendered at the pose at the shutter's open, without motion blur");
@@ -120,6 +123,7 @@ public:
     }
 
     void setInstancing(Instancing mode) { instancing_ = mode; }
+    void setHostMemory(std::uint64_t bytes) { hostMemory_ = bytes; }
     // `frames`: every animated mesh is instanced and the poser's targets recorded.
     void setTimeline(gltf::NodeTimeline& timeline, bool frames) {
         timeline_ = &timeline;
@@ -427,7 +431,22 @@ private:
     const std::string& path_;
     const tinygltf::Model& model_;
     Scene& scene_;
+    // The world-space triangles of the flattened meshes, before any is
+    // made: refused when they would not fit in the host's memory (a small
+    // file can place a mesh many times).
+    void checkHostMemory(std::size_t triangles, std::size_t placements) const {
+        const std::uint64_t budget = hostMemory_ != 0 ? hostMemory_ : hostMemoryBudget();
+        std::uint64_t needed = 0;
+        if (__builtin_mul_overflow(std::uint64_t(triangles), kHostBytesPerTriangle, &needed)) needed = UINT64_MAX;
+        if (budget == 0 || needed <= budget) return;
+        fail(path_, "the scene's " + std::to_string(placements) + " placed nodes flatten into " +
+                        (triangles == SIZE_MAX ? std::string("more than 2^64") : std::to_string(triangles)) +
+                        " triangles, which need about " + bytesText(needed) + " of host memory to load and build; " +
+                        bytesText(budget) + " are available (--instancing on stores a mesh placed many times once)");
+    }
+
     Instancing instancing_ = Instancing::Auto;
+    std::uint64_t hostMemory_ = 0;
     gltf::NodeTimeline* timeline_ = nullptr;
     bool frames_ = false;
     gltf::PoseTargets targets_;
@@ -443,7 +462,15 @@ private:
 }  // namespace
 
 Scene loadGltf(const std::string& path, const LoadOptions& options) {
-    tinygltf::Model model = gltf::parseModel(path);
+    if (!options.restrictPaths.empty()) {
+        if (const std::string outside = outsideRoot(path, options.restrictPaths); !outside.empty())
+            fail(path, "the scene resolves to " + outside + ", outside --restrict-paths " + options.restrictPaths);
+    }
+    return loadGltf(path, gltf::readSceneFile(path), options);
+}
+
+Scene loadGltf(const std::string& path, const std::vector<unsigned char>& bytes, const LoadOptions& options) {
+    tinygltf::Model model = gltf::parseModel(path, bytes, options.restrictPaths, options.hostMemory);
     gltf::checkExtensions(path, model);
     gltf::decodeMeshoptViews(path, model);
 
@@ -473,6 +500,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     gltf::NodeTimeline timeline(path, model, animation ? &*animation : nullptr, options.motion);
     SceneBuilder builder(path, model, scene);
     builder.setInstancing(options.instancing);
+    builder.setHostMemory(options.hostMemory);
     builder.setTimeline(timeline, options.motion.frames && animation);
     builder.walk(sceneIndex);
     if (options.motion.frames && animation && builder.poseTargets().complete)

@@ -18,8 +18,17 @@
 namespace strata::gltf {
 
 // The file parsed by tinygltf (JSON or binary glTF, told apart by the GLB
-// magic), buffers and images resolved next to the file only.
-tinygltf::Model parseModel(const std::string& path);
+// magic), buffers and images resolved next to the file only: relative
+// paths, inside the canonical folder `restrictPaths` unless it is empty.
+// Images are refused before decoding when over limits::imageSizeProblem or
+// when together they would need more than `hostMemory` bytes (0: what the
+// machine has, hostMemoryBudget).
+tinygltf::Model parseModel(const std::string& path, const std::vector<unsigned char>& bytes,
+                           const std::string& restrictPaths, std::uint64_t hostMemory);
+// The bytes of a scene file (a directory or an unreadable file is an error).
+std::vector<unsigned char> readSceneFile(const std::string& path);
+// The file at `path`, without a folder to stay in and with the machine's memory.
+inline tinygltf::Model parseModel(const std::string& path) { return parseModel(path, readSceneFile(path), "", 0); }
 
 // Extensions outside the supported list: in extensionsRequired an error, in
 // extensionsUsed a warning. A supported extension whose decoder this build

@@ -3,6 +3,7 @@
 // one line, and the extensions strata reads.
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include <stb/stb_image.h>
 #if STRATA_WEBP
 #include <webp/decode.h>
 #endif
@@ -17,6 +19,7 @@
 #include "scene/gltf_internal.h"
 #include "util/error.h"
 #include "util/files.h"
+#include "util/limits.h"
 #include "util/memory.h"
 
 namespace strata::gltf {
@@ -40,7 +43,9 @@ std::string supportedList() {
     return out;
 }
 
-std::vector<unsigned char> readFile(const std::string& path) {
+}  // namespace
+
+std::vector<unsigned char> readSceneFile(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) fail(path, "cannot read file: is a directory");
     errno = 0;
@@ -60,6 +65,26 @@ std::vector<unsigned char> readFile(const std::string& path) {
     return bytes;
 }
 
+namespace {
+
+// Why a uri that is not a data: URI is not read, or "": glTF's uris are
+// relative references, and an absolute path or a URI scheme (file:,
+// http:, ...) would let a scene name any file of the machine.
+std::string uriProblem(const std::string& uri) {
+    if (!uri.empty() && (uri[0] == '/' || uri[0] == '\\'))
+        return "is an absolute path; a glTF uri is a path relative to the scene's folder or a data: URI";
+    std::size_t i = 0;
+    while (i < uri.size() && (std::isalnum(static_cast<unsigned char>(uri[i])) || uri[i] == '+' || uri[i] == '-' ||
+                              uri[i] == '.'))
+        ++i;
+    if (i > 0 && i < uri.size() && uri[i] == ':' && std::isalpha(static_cast<unsigned char>(uri[0]))) {
+        if (i == 1) return "is an absolute (drive letter) path; a glTF uri is a path relative to the scene's folder or a data: URI";
+        return "has the scheme " + gltf::quoted(uri.substr(0, i + 1)) +
+               "; strata reads paths relative to the scene's folder and data: URIs only";
+    }
+    return "";
+}
+
 bool hasGlbMagic(const std::vector<unsigned char>& bytes) {
     return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 }
@@ -73,15 +98,34 @@ bool hasGlbExtension(const std::string& path) {
 
 // Files named by uris (buffers, images) are looked up next to the glTF file
 // only (tinygltf also tries the working directory); misses are recorded.
+// glTF uris are relative references or data: URIs (glTF 2.0 section 3.3):
+// an absolute path, a file: URI or any other scheme is refused, and under
+// --restrict-paths so is a path that resolves (symlinks followed) outside
+// that folder.
 struct FsContext {
     std::string prefix;                // base directory ending in '/'
+    std::string root;                  // --restrict-paths, canonical; empty: none
     std::vector<std::string> missing;  // paths looked up and not found
     std::string unreadable;            // the first uri that names a directory or an empty file
+    std::string refused;               // the first uri refused by the rules above
 };
 
 bool fileExists(const std::string& file, void* user) {
     auto* context = static_cast<FsContext*>(user);
     if (file.rfind(context->prefix, 0) != 0) return false;
+    const std::string uri = file.substr(context->prefix.size());
+    if (const std::string why = uriProblem(uri); !why.empty()) {
+        if (context->refused.empty()) context->refused = "uri " + gltf::quoted(uri) + " " + why;
+        return false;
+    }
+    if (!context->root.empty()) {
+        if (const std::string outside = outsideRoot(file, context->root); !outside.empty()) {
+            if (context->refused.empty())
+                context->refused = "uri " + gltf::quoted(uri) + " resolves to " + outside + ", outside --restrict-paths " +
+                                   context->root;
+            return false;
+        }
+    }
     if (tinygltf::FileExists(file, nullptr)) return true;
     context->missing.push_back(file);
     return false;
@@ -110,6 +154,8 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
 // as one message naming the image instead of tinygltf's multi-line text.
 struct ImageContext {
     std::string failure;
+    std::uint64_t budget = 0;   // host memory the decoded images may take (0: no limit)
+    std::uint64_t decoded = 0;  // bytes the images decoded so far claimed
 };
 
 // A WebP file (RIFF container, WEBP form) and a KTX2 file (its 12-byte
@@ -145,6 +191,50 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     // have WebP images without libwebp: left without pixels, so a texture
     // needing one is an error only where a material uses it (textureImage).
     if (isKtx2(bytes, size) || (isWebp(bytes, size) && !STRATA_WEBP)) return true;
+    auto* context = static_cast<ImageContext*>(user);
+    std::string label = "image " + std::to_string(index);
+    if (!image->uri.empty()) {
+        label += " (" + gltf::quoted(image->uri) + ")";
+    } else if (!image->name.empty()) {
+        label += " (" + gltf::quoted(image->name) + ")";
+    }
+    // The size its header claims, checked before the decoder allocates it.
+    int claimedWidth = 0, claimedHeight = 0, channels = 0;
+    bool known = false;
+    // A PNG's IHDR is read here: stb_image's reader refuses a size over
+    // 2^30 bytes with a message of its own, which would hide the limit.
+    static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    const auto bigEndian = [&](int at) {
+        return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 |
+               std::uint32_t(bytes[at + 3]);
+    };
+    std::uint64_t w = 0, h = 0;
+    if (size >= 24 && std::memcmp(bytes, kPng, 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
+        w = bigEndian(16);
+        h = bigEndian(20);
+        known = true;
+    }
+#if STRATA_WEBP
+    else if (isWebp(bytes, size)) known = WebPGetInfo(bytes, std::size_t(size), &claimedWidth, &claimedHeight) != 0;
+#endif
+    else known = stbi_info_from_memory(bytes, size, &claimedWidth, &claimedHeight, &channels) != 0;
+    if (known && w == 0 && h == 0) {
+        w = std::uint64_t(std::max(claimedWidth, 0));
+        h = std::uint64_t(std::max(claimedHeight, 0));
+    }
+    if (known) {
+        std::string tooLarge = limits::imageSizeProblem(w, h);
+        // RGBA of up to 16 bits a channel: 8 bytes a pixel at most.
+        context->decoded += w * h * 8;
+        if (tooLarge.empty() && context->budget != 0 && context->decoded > context->budget)
+            tooLarge = "the images decoded up to this one need up to " + bytesText(context->decoded) +
+                       " of host memory; " + bytesText(context->budget) + " are available (refused before decoding)";
+        if (!tooLarge.empty()) {
+            context->failure = label + ": " + tooLarge;
+            if (err) *err += context->failure + "\n";
+            return false;
+        }
+    }
     bool decoded = false;
     const char* what = "corrupt, too large, or not a PNG/JPEG that stb_image reads";
 #if STRATA_WEBP
@@ -158,13 +248,6 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
         decoded = tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr);
     }
     if (decoded) return true;
-    auto* context = static_cast<ImageContext*>(user);
-    std::string label = "image " + std::to_string(index);
-    if (!image->uri.empty()) {
-        label += " (" + gltf::quoted(image->uri) + ")";
-    } else if (!image->name.empty()) {
-        label += " (" + gltf::quoted(image->name) + ")";
-    }
     context->failure = label + ": cannot decode " + std::to_string(size) + " bytes: " + what;
     if (err) *err += context->failure + "\n";
     return false;
@@ -193,6 +276,29 @@ void checkGlbHeader(const std::string& path, const std::vector<unsigned char>& b
     }
 }
 
+// Fails when JSON objects and arrays nest deeper than limits::kJsonDepth
+// in [begin, end) (brackets inside strings do not count), before a parser
+// that recurses over the nesting sees them.
+void checkJsonDepth(const std::string& path, const unsigned char* begin, const unsigned char* end) {
+    int depth = 0;
+    bool inString = false;
+    for (const unsigned char* p = begin; p < end; ++p) {
+        const unsigned char c = *p;
+        if (inString) {
+            if (c == '\\') ++p;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '{' || c == '[') {
+            if (++depth > limits::kJsonDepth)
+                fail(path, "invalid glTF: JSON nested deeper than " + std::to_string(limits::kJsonDepth) +
+                               " objects and arrays (at byte " + std::to_string(p - begin) + " of the JSON)");
+        } else if (c == '}' || c == ']') {
+            --depth;
+        }
+    }
+}
+
 bool isSupported(const std::string& extension) {
     return std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), extension) !=
            std::end(kSupportedExtensions);
@@ -200,8 +306,8 @@ bool isSupported(const std::string& extension) {
 
 }  // namespace
 
-tinygltf::Model parseModel(const std::string& path) {
-    const std::vector<unsigned char> bytes = readFile(path);
+tinygltf::Model parseModel(const std::string& path, const std::vector<unsigned char>& bytes,
+                           const std::string& restrictPaths, std::uint64_t hostMemory) {
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
         fail(path, "file is larger than 4 GiB");
     }
@@ -221,6 +327,15 @@ tinygltf::Model parseModel(const std::string& path) {
             fail(path, "not a glTF file: neither a JSON object (it does not start with '{') nor binary glTF "
                        "(no 'glTF' magic)");
     }
+    if (binary) {
+        // The JSON chunk: its length at byte 12, its bytes from 20.
+        if (bytes.size() >= 20) {
+            const std::size_t length = std::min<std::size_t>(readU32(bytes, 12), bytes.size() - 20);
+            checkJsonDepth(path, bytes.data() + 20, bytes.data() + 20 + length);
+        }
+    } else {
+        checkJsonDepth(path, bytes.data(), bytes.data() + bytes.size());
+    }
     std::string baseDir = std::filesystem::path(path).parent_path().string();
     if (baseDir.empty()) baseDir = ".";
 
@@ -231,10 +346,12 @@ tinygltf::Model parseModel(const std::string& path) {
 
     FsContext fsContext;
     fsContext.prefix = baseDir.back() == '/' ? baseDir : baseDir + "/";
+    fsContext.root = restrictPaths;
     tinygltf::TinyGLTF context;
     context.SetFsCallbacks(
         {&fileExists, &keepPath, &readWholeFile, &tinygltf::WriteWholeFile, &fsContext});
     ImageContext imageContext;
+    imageContext.budget = hostMemory != 0 ? hostMemory : hostMemoryBudget();
     context.SetImageLoader(&decodeImage, &imageContext);
     tinygltf::Model model;
     std::string err;
@@ -252,6 +369,7 @@ tinygltf::Model parseModel(const std::string& path) {
     } catch (const std::exception& e) {
         fail(path, std::string("invalid glTF: ") + gltf::oneLine(e.what()));
     }
+    if (!fsContext.refused.empty()) fail(path, fsContext.refused);
     if (!fsContext.unreadable.empty()) fail(path, fsContext.unreadable);
     if (!imageContext.failure.empty()) fail(path, imageContext.failure);
     // tinygltf only warns about a missing image file; strata fails on it.

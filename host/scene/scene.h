@@ -364,12 +364,28 @@ struct LoadOptions {
     std::string variant;
     Instancing instancing = Instancing::Auto;
     MotionOptions motion;
+    // --restrict-paths: the canonical folder (restrictRoot) that the scene
+    // file and every file it names must resolve into; empty: no such rule
+    // (uris are still relative paths or data: URIs).
+    std::string restrictPaths;
+    // The host memory the loaded scene may take, in bytes; 0: what the
+    // machine has (hostMemoryBudget). A scene whose flattened triangles need
+    // more (kHostBytesPerTriangle each) is an error before they are made.
+    std::uint64_t hostMemory = 0;
 };
+
+// The host memory a world-space triangle takes from loading to upload
+// (the Scene's arrays, the BVH build, the packed arrays), at its peak,
+// rounded up (docs/security.md: how it was measured).
+inline constexpr std::uint64_t kHostBytesPerTriangle = 128;
 
 // Loads .gltf or .glb (binary when the file starts with the 'glTF' magic).
 // Throws strata::Error with a one-line message naming the file and the
 // problem; warnings (unsupported used extensions, zero-area emitters) go to
 // strata::warn.
 Scene loadGltf(const std::string& path, const LoadOptions& options = {});
+// The same from the file's bytes, read already; `path` names the file in
+// messages, and uris resolve against its folder.
+Scene loadGltf(const std::string& path, const std::vector<unsigned char>& bytes, const LoadOptions& options = {});
 
 }  // namespace strata

@@ -55,4 +55,25 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     }
 }
 
+std::string restrictRoot(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path root = fs::canonical(dir, ec);
+    if (ec || !fs::is_directory(root, ec))
+        fail("strata", "--restrict-paths " + dir + ": not an existing folder");
+    return root.string();
+}
+
+std::string outsideRoot(const std::string& path, const std::string& root) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    if (ec) resolved = fs::absolute(path, ec).lexically_normal();
+    const std::string p = resolved.string();
+    const std::string r = root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
+    const bool inside = p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 &&
+                                   (r == "/" || p[r.size()] == '/'));
+    return inside ? std::string() : p;
+}
+
 }  // namespace strata

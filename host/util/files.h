@@ -22,4 +22,13 @@ Unusable unusableInput(const std::string& path);
 // run does not end in a failed write.
 void checkOutputPath(const std::string& path);
 
+// --restrict-paths: `dir` made canonical (absolute, symlinks resolved),
+// the folder every input must resolve into. Fails (strata: error) when
+// `dir` is not an existing folder.
+std::string restrictRoot(const std::string& dir);
+
+// `path` resolved (absolute, symlinks followed as far as it exists) when
+// that lies outside the canonical folder `root`; "" when inside.
+std::string outsideRoot(const std::string& path, const std::string& root);
+
 }  // namespace strata

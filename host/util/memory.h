@@ -1,7 +1,10 @@
 // Host memory of this process.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include <sys/mman.h>
@@ -50,6 +53,34 @@ template <class T>
 void reserveHuge(std::vector<T>& v, std::size_t n) {
     v.reserve(n);
     adviseHugePages(v.data(), v.capacity() * sizeof(T));
+}
+
+// The host memory this process may still use: the kernel's MemAvailable
+// (/proc/meminfo), lowered by an address-space or data limit (ulimit -v,
+// ulimit -d) where one is set; 0 when none of them can be read.
+inline std::uint64_t hostMemoryBudget() {
+    std::uint64_t budget = 0;
+    if (std::FILE* f = std::fopen("/proc/meminfo", "r")) {
+        char line[256];
+        unsigned long long kib = 0;
+        while (std::fgets(line, sizeof line, f))
+            if (std::sscanf(line, "MemAvailable: %llu kB", &kib) == 1) budget = std::uint64_t(kib) * 1024u;
+        std::fclose(f);
+    }
+    for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+        rlimit limit{};
+        if (getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+            budget = budget == 0 ? std::uint64_t(limit.rlim_cur) : std::min(budget, std::uint64_t(limit.rlim_cur));
+    }
+    return budget;
+}
+
+// Bytes as "3.2 GiB" (or MiB under a GiB).
+inline std::string bytesText(std::uint64_t bytes) {
+    char text[32];
+    if (bytes >= (std::uint64_t(1) << 30)) std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1 << 30));
+    else std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / double(1 << 20));
+    return text;
 }
 
 }  // namespace strata
