@@ -147,6 +147,44 @@ TEST_CASE("scale: strata render of a scene the device cannot hold fails with one
     CHECK(vk::validationMessageCount() == 0);
 }
 
+TEST_CASE("scale: a render whose scene and image need more than the device's memory is one line before any buffer") {
+    TempDir dir;
+    RenderCommand cmd;
+    cmd.scene = sourcePath("scenes/cornell-box.gltf");
+    cmd.outputs = {dir / "box.exr"};
+    cmd.quiet = true;
+    cmd.validation = vk::validationRequestedByEnvironment();
+    cmd.settings.width = 8;
+    cmd.settings.height = 8;
+    cmd.settings.spp = 1;
+    const auto refusal = [&](std::uint64_t memory) {
+        cmd.tuning.limits.memory = memory;
+        try {
+            runRender(cmd);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string message = refusal(1024);
+    CAPTURE(message);
+    const std::string head = cmd.scene + ": error: the render needs ";
+    REQUIRE(message.rfind(head, 0) == 0);
+    CHECK(message.find('\n') == std::string::npos);
+    // 8 x 8 pixels of sums at 32 bytes, twice on lavapipe (the readback copy
+    // is in the same memory).
+    CHECK(message.find(" bytes of device memory (the scene's arrays ") != std::string::npos);
+    CHECK(message.find(", the image's sample sums 4096 bytes), more than the 1024 bytes of ") != std::string::npos);
+    CHECK(message.find("(the limit set)") != std::string::npos);
+    CHECK(dir.empty());
+    // Exactly what it needs renders; a byte less is refused.
+    const std::uint64_t needed = std::stoull(message.substr(head.size()));
+    CHECK(refusal(needed - 1).rfind(head + std::to_string(needed) + " bytes", 0) == 0);
+    CHECK(refusal(needed).empty());
+    CHECK(std::filesystem::exists(dir / "box.exr"));
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("scale: strata render --stats reports the scene's memory, packed and on the device") {
     TempDir dir;
     const std::string scene = sourcePath("scenes/materials-board.gltf");

@@ -349,6 +349,51 @@ TEST_CASE("state: --checkpoint-every leaves a state that survives SIGKILL and re
     CHECK(readRgb(d / "resumed.exr").rgb == readRgb(d / "fresh.exr").rgb);
 }
 
+TEST_CASE("state: a device lost or out of memory during a render is exit 3, one line and no image, "
+          "and the latest checkpoint is kept and resumes to the same bits") {
+    TempDir d;
+    const std::string st = d / "c.state";
+    // STRATA_FAULT (vk/buffer.cpp): the process's 8th submission ends as on
+    // a lost device, and every later one; a checkpoint follows each submission.
+    const Run r = run("render " + kCornell + kSmall + " --spp 1000000 --checkpoint-every 0.001 -o " + d / "c.exr" +
+                          " -o " + st,
+                      "STRATA_FAULT=device-lost:8");
+    CAPTURE(r.output);
+    CHECK(r.status == 3);
+    CHECK(lines(r.output) == 1);
+    CHECK(r.output.rfind("strata: error: the Vulkan device was lost: ", 0) == 0);
+    const RenderState s = readState(st);
+    CAPTURE(s.acc.end);
+    CHECK(s.acc.end > 0);
+    CHECK(r.output.find("; the latest checkpoint (" + std::to_string(s.acc.end) + " spp) is kept in " + st +
+                        ": go on with --resume " + st) != std::string::npos);
+    std::vector<std::string> left;
+    for (const auto& e : std::filesystem::directory_iterator(d.path)) left.push_back(e.path().string());
+    CHECK(left == std::vector<std::string>{st});  // no image, no temporary file
+    const std::string n = std::to_string(s.acc.end + 40);
+    renderOk("--spp " + n + " --resume " + st + " -o " + d / "resumed.exr");
+    renderOk("--spp " + n + " -o " + d / "fresh.exr");
+    CHECK(readRgb(d / "resumed.exr").rgb == readRgb(d / "fresh.exr").rgb);
+
+    // Out of device memory at the first submission: nothing to go on from, nothing written.
+    TempDir e;
+    const Run m = run("render " + kCornell + kSmall + " --spp 64 --checkpoint-every 0.001 -o " + e / "m.exr" + " -o " +
+                          e / "m.state",
+                      "STRATA_FAULT=out-of-device-memory:1");
+    CAPTURE(m.output);
+    CHECK(m.status == 3);
+    CHECK(lines(m.output) == 1);
+    CHECK(m.output.rfind("strata: error: the Vulkan device ran out of memory: ", 0) == 0);
+    CHECK(m.output.find("; no checkpoint was written (--checkpoint-every SECONDS writes them)") != std::string::npos);
+    CHECK(e.empty());
+    // A malformed fault is refused, not ignored.
+    const Run bad = run("render " + kCornell + kSmall + " --spp 1 -o " + e / "b.exr", "STRATA_FAULT=device-lost");
+    CHECK(bad.status == 3);
+    CHECK(bad.output.find("STRATA_FAULT=device-lost: expected device-lost:N or out-of-device-memory:N") !=
+          std::string::npos);
+    CHECK(e.empty());
+}
+
 TEST_CASE("state: mismatched, overlapping, missing and damaged states are refused with one line and no output") {
     TempDir d, out;
     renderOk("--spp 256 --shard 0/4 -o " + d / "s0.state");

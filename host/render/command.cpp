@@ -161,6 +161,17 @@ void noteImplementation(const RenderCommand& cmd, const RenderState& st, const S
                      implementationText(here.implementation).c_str());
 }
 
+// What a render that failed on the device leaves to go on from: the states
+// of its latest checkpoint, or the state it resumed, as it was.
+std::string deviceFailureNote(const RenderCommand& cmd, std::uint32_t checkpointed) {
+    if (checkpointed > 0)
+        return "; the latest checkpoint (" + std::to_string(checkpointed) + " spp) is kept in " + cmd.states[0] +
+               ": go on with --resume " + cmd.states[0];
+    if (!cmd.resume.empty()) return "; " + cmd.resume + " is as it was: go on with --resume " + cmd.resume;
+    if (!cmd.states.empty()) return "; no checkpoint was written (--checkpoint-every SECONDS writes them)";
+    return "";
+}
+
 // Renders the loaded scene and writes the outputs; returns the signal that
 // interrupted the render (the outputs then hold the samples reached), or 0.
 // `resumed`: the state of --resume, read.
@@ -180,15 +191,22 @@ int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l, 
         const RenderState st{info, acc};
         for (const std::string& path : cmd.states) writeState(path, st);
     };
+    std::uint32_t checkpointed = 0;  // samples in the states the latest checkpoint wrote
     if (cmd.checkpointEvery > 0.0) {
         run.checkpointSeconds = cmd.checkpointEvery;
         run.onCheckpoint = [&](const Accumulation& acc) {
             writeStates(acc);
+            checkpointed = acc.end - acc.begin;
             if (!cmd.quiet)  // on its own line, also under a terminal's progress line
                 std::fprintf(stderr, "\rstrata: checkpoint: %u spp written\n", acc.end - acc.begin);
         };
     }
-    RenderResult result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning, {}, run);
+    RenderResult result;
+    try {
+        result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning, {}, run);
+    } catch (const vk::DeviceError& e) {  // lost, out of memory: exit 3, what there is to go on from named
+        throw vk::DeviceError(e.what() + deviceFailureNote(cmd, checkpointed));
+    }
     StatsInput in{&ctx, &l.scene, &l.gpu, &cmd.settings, &result, l.loadMs, l.packMs, l.deviceMs};
     nlohmann::json stats = statsJson(in);
     if (ctx.validation && vk::validationMessageCount() > 0)

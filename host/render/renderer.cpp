@@ -72,13 +72,9 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 
 }  // namespace
 
-std::uint32_t accumVec4PerPixel(const RenderSettings& s) {
-    return gpu::kAccumVec4PerPixel + (s.aov ? gpu::kAovVec4PerPixel : 0u);
-}
-
 void checkImageFits(const vk::Context& ctx, const RenderSettings& s, const SceneLimits& limits) {
     // The sample sums are one device buffer (and one readback buffer).
-    const std::uint64_t bytes = std::uint64_t(s.width) * std::uint64_t(s.height) * accumVec4PerPixel(s) * 16;
+    const std::uint64_t bytes = sampleSumBytes(s);
     const std::uint64_t largest = sceneLimits(ctx, limits).allocation;
     if (bytes > largest)
         throw Error("strata: error: a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
@@ -97,7 +93,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     using namespace gpu;
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
     const std::size_t pixels = static_cast<std::size_t>(s.width) * s.height;
-    const VkDeviceSize accumBytes = pixels * accumVec4PerPixel(s) * 16;
+    const VkDeviceSize accumBytes = sampleSumBytes(s);
     checkImageFits(ctx, s, t.limits);
 
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);

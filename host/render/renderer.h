@@ -84,9 +84,6 @@ struct RenderResult {
     }
 };
 
-// The vec4 per pixel of the device's sums: the image's, and the AOVs' with --aov.
-std::uint32_t accumVec4PerPixel(const RenderSettings& settings);
-
 // Throws strata::Error when the image's sample sums (32 bytes a pixel, 112
 // with AOVs; one buffer) exceed the device's maxMemoryAllocationSize (or limits'). render
 // checks it after the scene's own limits (a scene that does not fit is named

@@ -79,9 +79,20 @@ struct RenderTuning {
                                         // turns it off to time pipeline creation)
 };
 
-// The upload the settings ask for, planned against tuning.limits.
+// The vec4 per pixel of the device's sums: the image's, and the AOVs' with --aov.
+inline std::uint32_t accumVec4PerPixel(const RenderSettings& s) {
+    return gpu::kAccumVec4PerPixel + (s.aov ? gpu::kAovVec4PerPixel : 0u);
+}
+
+// Bytes of the image's sample sums on the device (one buffer).
+inline std::uint64_t sampleSumBytes(const RenderSettings& s) {
+    return std::uint64_t(s.width) * std::uint64_t(s.height) * accumVec4PerPixel(s) * 16u;
+}
+
+// The upload the settings ask for, planned against tuning.limits, with the
+// image's sums counted beside the scene against the device's memory.
 inline UploadOptions uploadOptions(const RenderSettings& s, const RenderTuning& t = {}) {
-    return {s.reads, s.bvhWidth, s.bvhStack, t.limits};
+    return {s.reads, s.bvhWidth, s.bvhStack, t.limits, sampleSumBytes(s)};
 }
 
 }  // namespace strata

@@ -72,15 +72,14 @@ public:
         for (std::size_t k = 0; k < visits.size(); ++k) {
             const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
             const int mesh = node.mesh;
-            gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
             if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshCount) continue;  // visit reports it
             decodedMesh(mesh);  // in the order the meshes are reached (skippedPrimitives)
-            placements[std::size_t(mesh)] += gpu[k].count > 0 ? gpu[k].count : 1;
+            placements[std::size_t(mesh)] += std::max<std::size_t>(1, gltf::gpuInstanceCount(model_, visits[k].node));
             if (node.skin >= 0) eligible[std::size_t(mesh)] = 0;
             if ((timeline_->blurs() || frames_) && timeline_->animated(visits[k].node)) moving[std::size_t(mesh)] = 1;
         }
         std::size_t stillMoving = 0;  // moving meshes that cannot be instanced
-        std::size_t triangles = 0;
+        std::size_t triangles = 0, instances = 0;
         instanced_.assign(meshCount, 0);
         for (std::size_t m = 0; m < meshCount; ++m) {
             if (placements[m] == 0) continue;
@@ -100,8 +99,11 @@ public:
             if (moving[m] && !eligible[m]) ++stillMoving, targets_.complete = false;
             instanced_[m] = instance;
             if (!instance && __builtin_add_overflow(triangles, placed, &triangles)) triangles = SIZE_MAX;
+            if (instance) instances += placements[m];  // at most the file's bytes / 12: no overflow
         }
-        checkHostMemory(triangles, visits.size());
+        checkHostMemory(triangles, instances, visits.size());
+        for (std::size_t k = 0; k < visits.size(); ++k)  // their count checked above
+            gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
         if (stillMoving > 0 && timeline_->blurs())
             warn(path_, std::to_string(stillMoving) + " moving mesh(es) emit light, are skinned or have morph targets: "
                         "rendered at the pose at the shutter's open, without motion blur");
@@ -431,18 +433,28 @@ private:
     const std::string& path_;
     const tinygltf::Model& model_;
     Scene& scene_;
-    // The world-space triangles of the flattened meshes, before any is
-    // made: refused when they would not fit in the host's memory (a small
-    // file can place a mesh many times).
-    void checkHostMemory(std::size_t triangles, std::size_t placements) const {
+    // The world-space triangles of the flattened meshes and the instanced
+    // placements, before any is made: refused when they would not fit in
+    // the host's memory (a small file can place a mesh many times), or past
+    // the instances the instances array can index.
+    void checkHostMemory(std::size_t triangles, std::size_t instances, std::size_t placements) const {
+        if (instances > kMaxInstances)
+            fail(path_, "the scene places its instanced meshes " + std::to_string(instances) + " times, more than the " +
+                            std::to_string(kMaxInstances) + " instances strata can index");
         const std::uint64_t budget = hostMemory_ != 0 ? hostMemory_ : hostMemoryBudget();
         std::uint64_t needed = 0;
         if (__builtin_mul_overflow(std::uint64_t(triangles), kHostBytesPerTriangle, &needed)) needed = UINT64_MAX;
-        if (budget == 0 || needed <= budget) return;
-        fail(path_, "the scene's " + std::to_string(placements) + " placed nodes flatten into " +
-                        (triangles == SIZE_MAX ? std::string("more than 2^64") : std::to_string(triangles)) +
-                        " triangles, which need about " + bytesText(needed) + " of host memory to load and build; " +
-                        bytesText(budget) + " are available (--instancing on stores a mesh placed many times once)");
+        const std::uint64_t forInstances = std::uint64_t(instances) * kHostBytesPerInstance;
+        if (budget == 0 || (needed <= budget && forInstances <= budget - needed)) return;
+        if (forInstances == 0 || needed > budget)
+            fail(path_, "the scene's " + std::to_string(placements) + " placed nodes flatten into " +
+                            (triangles == SIZE_MAX ? std::string("more than 2^64") : std::to_string(triangles)) +
+                            " triangles, which need about " + bytesText(needed) + " of host memory to load and build; " +
+                            bytesText(budget) + " are available (--instancing on stores a mesh placed many times once)");
+        fail(path_, "the scene's " + std::to_string(instances) + " instances" +
+                        (triangles > 0 ? " and " + std::to_string(triangles) + " flattened triangles" : std::string()) +
+                        " need about " + bytesText(needed + forInstances) + " of host memory to load and build; " +
+                        bytesText(budget) + " are available");
     }
 
     Instancing instancing_ = Instancing::Auto;

@@ -15,6 +15,20 @@ glm::dmat4 GpuInstances::local(std::size_t i) const {
                scale.empty() ? glm::dvec3(1.0) : glm::dvec3(scale[i]));
 }
 
+std::size_t gpuInstanceCount(const tinygltf::Model& model, int node) {
+    const tinygltf::Node& n = model.nodes[static_cast<std::size_t>(node)];
+    const auto it = n.extensions.find("EXT_mesh_gpu_instancing");
+    if (it == n.extensions.end() || !it->second.IsObject() || !it->second.Has("attributes")) return 0;
+    const tinygltf::Value& attributes = it->second.Get("attributes");
+    std::size_t count = 0;
+    for (const char* name : {"TRANSLATION", "ROTATION", "SCALE"}) {
+        if (!attributes.IsObject() || !attributes.Has(name) || !attributes.Get(name).IsInt()) continue;
+        const int a = attributes.Get(name).GetNumberAsInt();
+        if (a >= 0 && std::size_t(a) < model.accessors.size()) count = std::max(count, model.accessors[std::size_t(a)].count);
+    }
+    return count;
+}
+
 GpuInstances readGpuInstances(const std::string& path, const tinygltf::Model& model, int node,
                               const std::string& nodeLabel) {
     GpuInstances out;

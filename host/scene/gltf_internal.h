@@ -101,6 +101,12 @@ struct GpuInstances {
 GpuInstances readGpuInstances(const std::string& path, const tinygltf::Model& model, int node,
                               const std::string& nodeLabel);
 
+// The node's instance count as its accessors declare it (the largest
+// `count` among TRANSLATION, ROTATION and SCALE; 0 without the extension),
+// before anything is read: the walk checks the instances' memory with it.
+// readGpuInstances checks the accessors themselves.
+std::size_t gpuInstanceCount(const tinygltf::Model& model, int node);
+
 // A node's translation, rotation (a quaternion of any non-zero length) and
 // scale, the glTF defaults where absent, checked (sizes, rotation length);
 // for a node without `matrix` (gltf_nodes.cpp).

@@ -369,8 +369,9 @@ struct LoadOptions {
     // (uris are still relative paths or data: URIs).
     std::string restrictPaths;
     // The host memory the loaded scene may take, in bytes; 0: what the
-    // machine has (hostMemoryBudget). A scene whose flattened triangles need
-    // more (kHostBytesPerTriangle each) is an error before they are made.
+    // machine has (hostMemoryBudget). A scene whose flattened triangles and
+    // instances need more (kHostBytesPerTriangle, kHostBytesPerInstance each)
+    // is an error before they are made.
     std::uint64_t hostMemory = 0;
 };
 
@@ -378,6 +379,12 @@ struct LoadOptions {
 // (the Scene's arrays, the BVH build, the packed arrays), at its peak,
 // rounded up (docs/security.md: how it was measured).
 inline constexpr std::uint64_t kHostBytesPerTriangle = 128;
+// The same for an instanced placement (its transforms, the top level's
+// build, the packed record and nodes).
+inline constexpr std::uint64_t kHostBytesPerInstance = 256;
+// Instanced placements at most: the instances array's texel indices
+// (top-level nodes, kInstanceTexels per record, motion keys) stay in 32 bits.
+inline constexpr std::uint64_t kMaxInstances = std::uint64_t(1) << 28;
 
 // Loads .gltf or .glb (binary when the file starts with the 'glTF' magic).
 // Throws strata::Error with a one-line message naming the file and the

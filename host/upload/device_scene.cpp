@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "util/error.h"
+#include "util/memory.h"
 
 namespace strata {
 namespace {
@@ -55,6 +56,40 @@ std::string texelLimit(const SceneLimits& l, const ArrayUse& a) {
 
 VkDeviceSize paddedSize(std::size_t bytes) { return std::max<VkDeviceSize>(16, (bytes + 15) & ~VkDeviceSize(15)); }
 
+// The device's largest device-local heap; on a CPU device (lavapipe) its
+// memory is the host's, so at most the host memory budget too.
+struct MemoryLimit {
+    std::uint64_t bytes;
+    const char* what;
+};
+MemoryLimit deviceMemory(const vk::Context& ctx, std::uint64_t override) {
+    MemoryLimit m{0, "its largest device-local heap"};
+    for (std::uint32_t i = 0; i < ctx.memory.memoryHeapCount; ++i)
+        if (ctx.memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            m.bytes = std::max<std::uint64_t>(m.bytes, ctx.memory.memoryHeaps[i].size);
+    const std::uint64_t host = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU ? hostMemoryBudget() : 0;
+    if (host > 0 && (m.bytes == 0 || host < m.bytes)) m = {host, "the host memory available: a CPU device's memory is the host's"};
+    if (override > 0 && (m.bytes == 0 || override < m.bytes)) m = {override, "the limit set"};
+    return m;
+}
+
+// Every buffer of the render before the first is made: the scene's arrays
+// (the traversed tree's) and the image's sample sums, against the device's
+// memory (twice the sums on a CPU device, whose readback copy is in the same
+// memory). A scene past it is a one-line error naming what it needs.
+void checkDeviceMemory(const vk::Context& ctx, const GpuScene& scene, bool wide, const UploadOptions& options) {
+    const MemoryLimit limit = deviceMemory(ctx, options.limits.memory);
+    if (limit.bytes == 0) return;
+    std::uint64_t arrays = 0;
+    for (const ArrayUse& a : arrayUses(scene, wide)) arrays += paddedSize(a.bytes);
+    const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    const std::uint64_t sums = options.imageBytes * (cpu ? 2u : 1u);
+    if (arrays + sums <= limit.bytes) return;
+    fail(scene.source, "the render needs " + sizeText(arrays + sums) + " of device memory (the scene's arrays " +
+                           sizeText(arrays) + ", the image's sample sums " + sizeText(sums) + "), more than the " +
+                           sizeText(limit.bytes) + " of " + ctx.info.name + " (" + limit.what + ")");
+}
+
 template <class T>
 void release(std::vector<T>& v) {
     std::vector<T>().swap(v);
@@ -77,6 +112,7 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
     const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     DeviceScene d;
     d.reads = chooseReads(limits, scene, options.reads, wide, cpu);
+    checkDeviceMemory(ctx, scene, wide, options);
     d.wide = wide;
     d.bvhRegs = wide ? regs : 16u;
     d.memoryStack = wide && (stack == BvhStack::Memory || (stack == BvhStack::Auto && !cpu));
@@ -145,7 +181,7 @@ SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides) {
     };
     return {lower(l.maxStorageBufferRange, overrides.storageRange),
             lower(l.maxTexelBufferElements, overrides.texelElements),
-            lower(m3.maxMemoryAllocationSize, overrides.allocation)};
+            lower(m3.maxMemoryAllocationSize, overrides.allocation), deviceMemory(ctx, overrides.memory).bytes};
 }
 
 std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, ReadMode mode, bool wide,

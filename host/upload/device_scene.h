@@ -35,6 +35,8 @@ struct SceneLimits {
     std::uint64_t storageRange = 0;   // bytes of one storage descriptor (maxStorageBufferRange)
     std::uint64_t texelElements = 0;  // texels of one texel view (maxTexelBufferElements)
     std::uint64_t allocation = 0;     // bytes of one buffer (maxMemoryAllocationSize)
+    std::uint64_t memory = 0;         // bytes of all buffers: the largest device-local heap, on
+                                      // a CPU device at most the host memory budget
 };
 
 SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {});
@@ -107,6 +109,8 @@ struct UploadOptions {
                        // packSceneAndRelease for width 4 has none: std::logic_error)
     BvhStack stack = BvhStack::Auto;  // the four-wide traversal's
     SceneLimits limits;               // overrides, as sceneLimits
+    std::uint64_t imageBytes = 0;     // the render's sample sums (RenderSettings: sampleSumBytes),
+                                      // counted with the scene's arrays against limits.memory
 };
 
 DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, const UploadOptions& options = {});

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 #include <utility>
 
 #include "util/memory.h"
@@ -20,6 +22,37 @@ void countAllocation(std::uint64_t bytes) {
     std::uint64_t peak = gPeakDeviceBytes.load();
     while (now > peak && !gPeakDeviceBytes.compare_exchange_weak(peak, now)) {
     }
+}
+
+// STRATA_FAULT=device-lost:N or out-of-device-memory:N makes the process's
+// Nth submission (counted from 1) end in that VkResult once the device has
+// run it, and, for a lost device, every later one too. No driver loses a
+// device or runs out of memory on request, so the tests of the failure path
+// (docs/testing.md) inject it here; unset, it costs one comparison.
+VkResult injectedFault() {
+    struct Fault {
+        VkResult result = VK_SUCCESS;
+        unsigned long at = 0;
+    };
+    static const Fault fault = [] {
+        Fault f;
+        const char* env = std::getenv("STRATA_FAULT");
+        if (!env || !*env) return f;
+        const std::string s = env;
+        const std::size_t colon = s.find(':');
+        const std::string kind = s.substr(0, colon);
+        char* end = nullptr;
+        const unsigned long at = colon == std::string::npos ? 0 : std::strtoul(s.c_str() + colon + 1, &end, 10);
+        if (at == 0 || *end != '\0' || (kind != "device-lost" && kind != "out-of-device-memory"))
+            throw DeviceError("STRATA_FAULT=" + s + ": expected device-lost:N or out-of-device-memory:N, N >= 1");
+        f.result = kind == "device-lost" ? VK_ERROR_DEVICE_LOST : VK_ERROR_OUT_OF_DEVICE_MEMORY;
+        f.at = at;
+        return f;
+    }();
+    if (fault.at == 0) return VK_SUCCESS;
+    static std::atomic<unsigned long> submissions{0};
+    const unsigned long n = ++submissions;
+    return n == fault.at || (n > fault.at && fault.result == VK_ERROR_DEVICE_LOST) ? fault.result : VK_SUCCESS;
 }
 
 }  // namespace
@@ -154,7 +187,8 @@ void OneShot::submitAndWait(double timeoutSeconds) {
     if (r == VK_TIMEOUT)
         throw DeviceError("the device did not finish a submission within " +
                           std::to_string(static_cast<int>(timeoutSeconds)) + " s (hung device?)");
-    VK_CHECK(r);
+    if (r == VK_SUCCESS) r = injectedFault();
+    if (r != VK_SUCCESS) throwVkError(r, "vkWaitForFences", __FILE__, __LINE__);
 }
 
 Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage,

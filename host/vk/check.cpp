@@ -40,6 +40,8 @@ void throwVkError(VkResult result, const char* call, const char* file, int line)
                        " (" + std::filesystem::path(file).filename().string() + ":" +
                        std::to_string(line) + ")";
     if (result == VK_ERROR_DEVICE_LOST) what = "the Vulkan device was lost: " + what;
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY) what = "the Vulkan device ran out of memory: " + what;
+    if (result == VK_ERROR_OUT_OF_HOST_MEMORY) what = "the Vulkan driver ran out of host memory: " + what;
     throw DeviceError(what);
 }
 

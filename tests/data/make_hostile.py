@@ -84,6 +84,21 @@ def main():
         "buffers": [{"byteLength": 36 + len(idx), "uri": data_uri(pos + idx)}],
     })
 
+    # EXT_mesh_gpu_instancing: nodes sharing one accessor of 2^20 zeros as
+    # TRANSLATION and SCALE (no bufferView; 2^20 is what any file may have).
+    # 257 of them place the triangle 269,484,032 times, past the 2^28
+    # instances strata indexes; 200 of them 209,715,200 times, 50 GiB of
+    # instances, whose transforms alone (5 GB) were once read before the
+    # memory was checked.
+    for name, nodes in (("instance-count.gltf", 257), ("instance-bomb.gltf", 200)):
+        write(name, triangle({
+            "extensionsUsed": ["EXT_mesh_gpu_instancing"],
+            "scenes": [{"nodes": list(range(nodes))}],
+            "nodes": [{"mesh": 0, "extensions": {"EXT_mesh_gpu_instancing": {
+                "attributes": {"TRANSLATION": 1, "SCALE": 1}}}}] * nodes,
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 0]},
+                          {"componentType": 5126, "count": 1 << 20, "type": "VEC3"}]}))
 
 if __name__ == "__main__":
     main()
