@@ -32,6 +32,7 @@ struct Writer {
     Hash64 hash;
     bool ok = true;
     void bytes(const void* p, std::size_t n) {
+        if (n == 0) return;  // an empty array's data() may be null, which fwrite must not get
         hash.add(p, n);
         ok = ok && std::fwrite(p, 1, n, f) == n;
     }
@@ -46,6 +47,7 @@ struct Reader {
     std::uint64_t offset = 0;
     Hash64 hash;
     void bytes(void* p, std::size_t n, std::uint64_t expected) {
+        if (n == 0) return;  // as Writer::bytes
         if (offset + n > size || std::fread(p, 1, n, f) != n)
             fail(path, "truncated state file: " + std::to_string(size) + " bytes, its header describes " +
                            std::to_string(expected));
