@@ -2,6 +2,7 @@
 #   make render   installs missing packages, builds, renders scenes/cornell-box.gltf
 #   make test     same set-up, then every test (ctest) on lavapipe
 #   make fuzz     the libFuzzer targets, FUZZ_SECONDS each (scripts/fuzz.sh)
+#   make test-sanitize  every test with ASan and UBSan (scripts/test_sanitize.sh)
 BUILD ?= build
 JOBS ?= $(shell nproc)
 SPP ?= 64
@@ -9,7 +10,7 @@ SIZE ?= 512
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: all deps build render test fuzz clean
+.PHONY: all deps build render test test-sanitize fuzz clean
 
 all: build
 
@@ -30,8 +31,11 @@ render: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j 1
 
+test-sanitize: deps
+	scripts/test_sanitize.sh
+
 fuzz: deps
 	FUZZ_SECONDS=$(FUZZ_SECONDS) scripts/fuzz.sh
 
 clean:
-	rm -rf $(BUILD) build-fuzz out
+	rm -rf $(BUILD) build-fuzz build-sanitize out
