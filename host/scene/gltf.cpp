@@ -99,7 +99,7 @@ public:
             if (moving[m] && !eligible[m]) ++stillMoving, targets_.complete = false;
             instanced_[m] = instance;
             if (!instance && __builtin_add_overflow(triangles, placed, &triangles)) triangles = SIZE_MAX;
-            if (instance) instances += placements[m];  // at most the file's bytes / 12: no overflow
+            if (instance) instances += placements[m];  // a node adds at most max(2^20, its buffers' bytes): no overflow
         }
         checkHostMemory(triangles, instances, visits.size());
         for (std::size_t k = 0; k < visits.size(); ++k)  // their count checked above

@@ -181,7 +181,7 @@ SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides) {
     };
     return {lower(l.maxStorageBufferRange, overrides.storageRange),
             lower(l.maxTexelBufferElements, overrides.texelElements),
-            lower(m3.maxMemoryAllocationSize, overrides.allocation), deviceMemory(ctx, overrides.memory).bytes};
+            lower(m3.maxMemoryAllocationSize, overrides.allocation), overrides.memory};
 }
 
 std::uint32_t chooseReads(const SceneLimits& limits, const GpuScene& scene, ReadMode mode, bool wide,

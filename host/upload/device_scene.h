@@ -35,8 +35,9 @@ struct SceneLimits {
     std::uint64_t storageRange = 0;   // bytes of one storage descriptor (maxStorageBufferRange)
     std::uint64_t texelElements = 0;  // texels of one texel view (maxTexelBufferElements)
     std::uint64_t allocation = 0;     // bytes of one buffer (maxMemoryAllocationSize)
-    std::uint64_t memory = 0;         // bytes of all buffers: the largest device-local heap, on
-                                      // a CPU device at most the host memory budget
+    std::uint64_t memory = 0;         // bytes of all the render's buffers, an override only (the
+                                      // upload finds the device's: its largest device-local heap,
+                                      // on a CPU device at most the host memory budget)
 };
 
 SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {});
