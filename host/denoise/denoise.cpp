@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include <strata_spirv.h>
+#include "spirv/cache.h"
 
 #include "../../shaders/shared/denoise.h"
 #include "util/error.h"
@@ -21,7 +21,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using Spirv = std::span<const std::uint32_t>;
-#define STRATA_DENOISE_SPIRV(name) Spirv(kSpirvPtr_##name, kSpirvSize_##name / 4)
+Spirv denoiseModule(spirv::KernelId id) { return spirv::moduleFor({id, 0}); }
 
 // Below this albedo a channel is not demodulated (its factor is 1).
 constexpr float kDarkAlbedo = 0.01f;
@@ -294,11 +294,11 @@ Denoised runNfor(const vk::Context& ctx, Passes& passes, const DenoiseInput& in,
     const Image& features = prefilter ? featOut : feat;
     Image fA1 = blank(ctx, n), fB1 = blank(ctx, n), fA2 = blank(ctx, n), fB2 = blank(ctx, n), out = blank(ctx, n);
 
-    vk::Kernel* pre = prefilter ? &passes.add(STRATA_DENOISE_SPIRV(denoise_features), {&feat, &featVar}, {&featOut})
+    vk::Kernel* pre = prefilter ? &passes.add(denoiseModule(spirv::KernelId::DenoiseFeatures), {&feat, &featVar}, {&featOut})
                                 : nullptr;
-    vk::Kernel& nfor = passes.add(STRATA_DENOISE_SPIRV(denoise_nfor), {&gA, &gB, &cA, &cB, &features},
+    vk::Kernel& nfor = passes.add(denoiseModule(spirv::KernelId::DenoiseNfor), {&gA, &gB, &cA, &cB, &features},
                                   {&fA1, &fB1, &fA2, &fB2});
-    vk::Kernel& select = passes.add(STRATA_DENOISE_SPIRV(denoise_select), {&fA1, &fB1, &fA2, &fB2, &cA, &cB}, {&out});
+    vk::Kernel& select = passes.add(denoiseModule(spirv::KernelId::DenoiseSelect), {&fA1, &fB1, &fA2, &fB2, &cA, &cB}, {&out});
     const Run run = submit(ctx, out, n, [&](VkCommandBuffer cmd) {
         if (pre) {
             gpu::DenoiseParams p = passes.params();
@@ -347,12 +347,12 @@ Denoised runFast(const vk::Context& ctx, Passes& passes, const DenoiseInput& in,
         for (int it = 0; it < kAtrousIterations; ++it) {
             const Image& src = it % 2 == 0 ? ping[h] : pong[h];
             const Image& dst = it % 2 == 0 ? pong[h] : ping[h];
-            steps[h].push_back(&passes.add(STRATA_DENOISE_SPIRV(denoise_atrous), {&src, &feat, &neighbour}, {&dst}));
+            steps[h].push_back(&passes.add(denoiseModule(spirv::KernelId::DenoiseAtrous), {&src, &feat, &neighbour}, {&dst}));
         }
     const Image& fA = kAtrousIterations % 2 == 1 ? pong[0] : ping[0];
     const Image& fB = kAtrousIterations % 2 == 1 ? pong[1] : ping[1];
     const Image out = blank(ctx, n);
-    vk::Kernel& select = passes.add(STRATA_DENOISE_SPIRV(denoise_select), {&fA, &fB, &fA, &fB, &cA, &cB}, {&out});
+    vk::Kernel& select = passes.add(denoiseModule(spirv::KernelId::DenoiseSelect), {&fA, &fB, &fA, &fB, &cA, &cB}, {&out});
     const Run run = submit(ctx, out, n, [&](VkCommandBuffer cmd) {
         for (int h = 0; h < 2; ++h)
             for (int it = 0; it < kAtrousIterations; ++it) {

@@ -2,60 +2,22 @@
 
 #include <algorithm>
 
-#include <strata_spirv.h>
-
+#include "spirv/cache.h"
 #include "../../shaders/shared/bindings.h"
 
 namespace strata {
 
+spirv::VariantInputs variantInputs(const DeviceScene& scene, bool aov, bool cameraEffects) {
+    return {scene.features.bits, scene.wide, scene.memoryStack, aov, cameraEffects};
+}
+
 std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov, bool motion) {
-    using Span = std::span<const std::uint32_t>;
-#define STRATA_SPIRV(name) Span(kSpirvPtr_##name, kSpirvSize_##name / 4)
-    // 0: no layers, 1: the layers, 2: the layers with the thin film.
-    const int layers = !pathtrace ? 0
-                       : (scene.features.bits & gpu::kFeatureIridescence) != 0u ? 2
-                       : (scene.features.bits & gpu::kFeaturesLayers) != 0u     ? 1
-                                                                                : 0;
-    const bool inst = (scene.features.bits & gpu::kFeatureInstancing) != 0u;
-    // [instancing][layers][traversal: bvh4 registers, bvh2, bvh4 memory], and
-    // with the AOVs, the camera effects, or both
-#define STRATA_PATHS(aov)                                                                                          \
-    {{{STRATA_SPIRV(pathtrace##aov), STRATA_SPIRV(pathtrace_bvh2##aov), STRATA_SPIRV(pathtrace_bvh4m##aov)},        \
-      {STRATA_SPIRV(pathtrace_layers##aov), STRATA_SPIRV(pathtrace_bvh2_layers##aov),                                \
-       STRATA_SPIRV(pathtrace_bvh4m_layers##aov)},                                                                   \
-      {STRATA_SPIRV(pathtrace_film##aov), STRATA_SPIRV(pathtrace_bvh2_film##aov),                                    \
-       STRATA_SPIRV(pathtrace_bvh4m_film##aov)}},                                                                    \
-     {{STRATA_SPIRV(pathtrace_inst##aov), STRATA_SPIRV(pathtrace_bvh2_inst##aov),                                    \
-       STRATA_SPIRV(pathtrace_bvh4m_inst##aov)},                                                                     \
-      {STRATA_SPIRV(pathtrace_layers_inst##aov), STRATA_SPIRV(pathtrace_bvh2_layers_inst##aov),                      \
-       STRATA_SPIRV(pathtrace_bvh4m_layers_inst##aov)},                                                              \
-      {STRATA_SPIRV(pathtrace_film_inst##aov), STRATA_SPIRV(pathtrace_bvh2_film_inst##aov),                          \
-       STRATA_SPIRV(pathtrace_bvh4m_film_inst##aov)}}}
-    const Span path[2][3][3] = STRATA_PATHS();
-    const Span pathAov[2][3][3] = STRATA_PATHS(_aov);
-    const Span pathMotion[2][3][3] = STRATA_PATHS(_motion);
-    const Span pathMotionAov[2][3][3] = STRATA_PATHS(_motion_aov);
-#undef STRATA_PATHS
-    const Span trace[2][3] = {{STRATA_SPIRV(trace), STRATA_SPIRV(trace_bvh2), STRATA_SPIRV(trace_bvh4m)},
-                              {STRATA_SPIRV(trace_inst), STRATA_SPIRV(trace_bvh2_inst), STRATA_SPIRV(trace_bvh4m_inst)}};
-#undef STRATA_SPIRV
-    const int traversal = !scene.wide ? 1 : scene.memoryStack ? 2 : 0;
-    if (!pathtrace) return trace[inst][traversal];
-    if (motion) return aov ? pathMotionAov[inst][layers][traversal] : pathMotion[inst][layers][traversal];
-    return aov ? pathAov[inst][layers][traversal] : path[inst][layers][traversal];
+    const spirv::KernelId kernel = pathtrace ? spirv::KernelId::Pathtrace : spirv::KernelId::Trace;
+    return spirv::moduleFor(spirv::chooseVariant(kernel, variantInputs(scene, aov, motion)));
 }
 
 std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene) {
-    using Span = std::span<const std::uint32_t>;
-    const bool inst = (scene.features.bits & gpu::kFeatureInstancing) != 0u;
-    if ((scene.features.bits & gpu::kFeatureIridescence) != 0u)
-        return inst ? Span(kSpirvPtr_wavefront_film_inst, kSpirvSize_wavefront_film_inst / 4)
-                    : Span(kSpirvPtr_wavefront_film, kSpirvSize_wavefront_film / 4);
-    if ((scene.features.bits & gpu::kFeaturesLayers) != 0u)
-        return inst ? Span(kSpirvPtr_wavefront_layers_inst, kSpirvSize_wavefront_layers_inst / 4)
-                    : Span(kSpirvPtr_wavefront_layers, kSpirvSize_wavefront_layers / 4);
-    return inst ? Span(kSpirvPtr_wavefront_inst, kSpirvSize_wavefront_inst / 4)
-                : Span(kSpirvPtr_wavefront, kSpirvSize_wavefront / 4);
+    return spirv::moduleFor(spirv::chooseVariant(spirv::KernelId::Wavefront, variantInputs(scene, false, false)));
 }
 
 void setTraversalSpec(const DeviceScene& scene, std::vector<std::uint32_t>& spec) {

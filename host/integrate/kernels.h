@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/settings.h"
+#include "spirv/features.h"
 #include "upload/device_scene.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
@@ -17,16 +18,16 @@
 
 namespace strata {
 
-// The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp built for the
-// scene's traversal: BVH2, four-wide with registers, or four-wide with an
-// array stack; the path tracer with the material layers (STRATA_LAYERS) when
-// the scene has one (gpu::kFeaturesLayers); with `aov` the path tracer that
-// also sums the AOVs (STRATA_AOV, `--aov`); with `motion` the path tracer
-// with the camera effects (STRATA_MOTION: time and the thin lens).
+// The module's inputs from the uploaded scene and the render's settings
+// (the AOV sums, the camera effects): spirv/features.h's table picks the
+// axes from them.
+spirv::VariantInputs variantInputs(const DeviceScene& scene, bool aov, bool cameraEffects);
+
+// The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp, and of
+// wavefront.comp, for the scene: the table's module (spirv::chooseVariant),
+// compiled or taken from the shader cache (spirv::moduleFor).
 std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov = false,
                                                bool motion = false);
-
-// The SPIR-V of wavefront.comp, with the material layers when the scene has one.
 std::span<const std::uint32_t> wavefrontShader(const DeviceScene& scene);
 
 // The specialization constants that pick the traversal (SPEC_TEXEL_FETCH,

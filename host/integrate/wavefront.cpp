@@ -4,7 +4,6 @@
 #include <span>
 #include <vector>
 
-#include <strata_spirv.h>
 
 #include "../../shaders/shared/bindings.h"
 #include "integrate/kernels.h"
@@ -63,7 +62,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     auto list = [&](VkDeviceSize bytes) { return vk::Buffer(ctx, n * bytes, kListUsage, vk::MemoryUse::Device); };
     m.state = list(sizeof(PathState));
     m.hits = list(sizeof(TraceHit));
-    m.hitInstances = list(4);  // read only by the *_inst shaders
+    m.hitInstances = list(4);  // read only with the inst axis (STRATA_INSTANCING)
     m.shadowRays = list(sizeof(TraceRay));
     m.contrib = list(16);
     m.shadowSlots = list(4);

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include <strata_spirv.h>
+#include "spirv/cache.h"
 
 #include "../../shaders/shared/bindings.h"
 #include "../../shaders/shared/types.h"
@@ -43,7 +43,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     std::vector<std::uint32_t> spec(4, 0u);
     spec[SPEC_SAMPLER] = sampler;
     spec[SPEC_FEATURES] = scene.features.bits | features;
-    vk::Kernel kernel(ctx, {kSpirvPtr_sample_test, kSpirvSize_sample_test / 4},
+    vk::Kernel kernel(ctx, spirv::moduleFor({spirv::KernelId::SampleTest, 0}),
                       {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},

@@ -20,7 +20,7 @@ struct SceneFeatures {
 
 struct GpuScene {
     std::string source;                     // Scene::path, for messages
-    std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; the *_bvh2 shaders)
+    std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; the bvh2 axis)
     std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h)
     std::uint32_t wideDepth = 0;            // WideBvh::maxDepth
     double wideSahCost = 0.0;               // WideBvh::sahCost

@@ -41,7 +41,7 @@ struct RenderSettings {
     std::uint32_t mis = gpu::kMisPower; // gpu::kMis*: light and BSDF sampling by the power
                                         // heuristic, or one technique alone (for comparisons)
     IntegratorKind integrator = IntegratorKind::Megakernel;
-    // The camera effects (the pathtrace*_motion variants, lib/camera.glsl):
+    // The camera effects (the motion axis, lib/camera.glsl):
     float lensRadius = 0.0f;            // --lens-radius (world units): 0 is a pinhole
     float focusDistance = 1.0f;         // --focus-distance: the plane in focus, along the view direction
     std::uint32_t apertureBlades = 0;   // --aperture-blades: 0 a round aperture, 3 or more a polygon
@@ -52,7 +52,7 @@ struct RenderSettings {
     // Whether the render needs the camera effects' shader variants: a lens,
     // or a shutter interval (motion blur).
     bool cameraEffects() const { return lensRadius > 0.0f || (shutter && shutterClose > shutterOpen); }
-    bool aov = false;                   // --aov: the AOV sums as well (pathtrace*_aov; Film::aovSum);
+    bool aov = false;                   // --aov: the AOV sums as well (the aov axis; Film::aovSum);
                                         // the megakernel only
 };
 

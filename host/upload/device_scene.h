@@ -87,9 +87,9 @@ struct DeviceScene {
     DeviceArray envTables;            // sampling tables (16 bytes without a map)
     vk::TexelView envTexelView;       // RGBA32F over envTexels
     std::uint32_t reads = gpu::kReadsStorage;  // SPEC_TEXEL_FETCH
-    bool wide = false;   // `nodes` holds GpuScene::wide, else the BVH2 (the *_bvh2 shaders)
+    bool wide = false;   // `nodes` holds GpuScene::wide, else the BVH2 (the bvh2 axis)
     std::uint32_t bvhRegs = 16;  // SPEC_BVH_REGS with `wide`
-    bool memoryStack = false;    // with `wide`: the *_bvh4m shaders (stack in an array)
+    bool memoryStack = false;    // with `wide`: the bvh4m axis (stack in an array)
     std::uint64_t triangles = 0;  // counts of what was uploaded (the GpuScene's
     std::uint64_t nodeCount = 0;  // arrays may be released since)
     std::uint64_t packedBytes = 0;  // bytes of the arrays uploaded, as packed

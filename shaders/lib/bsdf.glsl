@@ -38,9 +38,9 @@
 // coat's frame, with |cos| of its own normal.
 //
 // The layers and the specular colour are compiled only with STRATA_LAYERS
-// (the *_layers shader variants, lib/features.glsl), and then each under its
+// (the layers axis, host/spirv/features.cpp), and then each under its
 // feature bit; KHR_materials_iridescence's thin film (kFeatureIridescence)
-// only with STRATA_IRIDESCENCE as well (the *_film variants), which mixes
+// only with STRATA_IRIDESCENCE as well (the iridescence axis), which mixes
 // the film's Fresnel (thinFilmFresnel) into the dielectric's and the metal's
 // by its factor.
 //

@@ -3,8 +3,8 @@
 // watertight triangle test, slab test, nearer-child-first order and tie rule,
 // equal t: lowest BVH-order triangle index), or the same tree collapsed four
 // wide (host/bvh/wide.h), which finds the same hits. Compile-time defines
-// select the traversal: STRATA_BVH2 (the *_bvh2 shader variants) the binary
-// one (lib/bvh2.glsl), STRATA_BVH4_MEMSTACK (*_bvh4m) the four-wide one with
+// select the traversal: STRATA_BVH2 (the bvh2 axis, host/spirv/features.cpp) the binary
+// one (lib/bvh2.glsl), STRATA_BVH4_MEMSTACK (the bvh4m axis) the four-wide one with
 // an array stack (GPUs), neither the four-wide one with a register stack (CPU
 // devices; both in lib/bvh4.glsl). The unused ones are compiled out rather
 // than folded by a specialization constant: pipeline creation on lavapipe
@@ -47,7 +47,7 @@ uint gHitInstance = kNoInstance;
 
 // Closest (anyHit false) or any hit: the bottom-level traversal chosen by
 // define, called once. Without STRATA_INSTANCING the scene is one BVH,
-// traversed from root 0. With it (the *_inst shader variants, for scenes
+// traversed from root 0. With it (the inst axis, for scenes
 // with kFeatureInstancing), the top level (a BVH2 over the placements' world
 // boxes, lib/scene.glsl) hands out the instances the ray enters within the
 // closest hit so far, and each is traversed with the ray taken to its space

@@ -1,4 +1,4 @@
-// The binary traversal (STRATA_BVH2, the *_bvh2 shader variants) of the
+// The binary traversal (STRATA_BVH2, the bvh2 axis) of the
 // flattened BVH2, mirroring host/bvh/traverse.cpp step for step: the same
 // slab test, nearer child first, and the tie rule of bvhLeaf.
 #ifndef STRATA_LIB_BVH2_GLSL

@@ -2,7 +2,7 @@
 // which find the closest hit bvhTrace2 finds: the boxes, the slab test and
 // the tie rule are the same, and the result does not depend on the visiting
 // order. bvhTrace4 keeps its stack in registers (CPU devices); with
-// STRATA_BVH4_MEMSTACK (the *_bvh4m shader variants, GPUs) bvhTrace4Sorted
+// STRATA_BVH4_MEMSTACK (the bvh4m axis, GPUs) bvhTrace4Sorted
 // keeps it in an indexed array.
 #ifndef STRATA_LIB_BVH4_GLSL
 #define STRATA_LIB_BVH4_GLSL
@@ -130,7 +130,7 @@ bool bvhTrace4(BvhRay r, uint root, float tmin, float tmax, uint rayHash, const 
 #define BVH_CX(ka, ca, kb, cb) { bool sw = kb < ka; float tk = ka; uint tc = ca; \
     ka = sw ? kb : ka; ca = sw ? cb : ca; kb = sw ? tk : kb; cb = sw ? tc : cb; }
 
-// The four-wide traversal for GPUs (STRATA_BVH4_MEMSTACK, the *_bvh4m
+// The four-wide traversal for GPUs (STRATA_BVH4_MEMSTACK, the bvh4m
 // shaders): a stack of child references in an indexed array (local memory),
 // a node's entered children sorted by entry distance, the nearest visited
 // next and the others pushed farthest first, at most 3 per wide level. A

@@ -1,5 +1,5 @@
-// The camera effects of Cook et al. 1984 (STRATA_MOTION, the *_motion
-// variants): a time for each camera sample within the shutter, the camera's
+// The camera effects of Cook et al. 1984 (STRATA_MOTION, the motion
+// axis): a time for each camera sample within the shutter, the camera's
 // pose at that time (an animated camera node), and a thin lens for depth of
 // field. Each takes its own sampler pair, apart from the path's
 // (lib/path.glsl), so stratification and Sobol reach them too. Included by

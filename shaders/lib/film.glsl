@@ -59,7 +59,7 @@ void accumulateSample(uint pixelIndex, vec3 L) {
 }
 
 #ifdef STRATA_AOV
-// The AOVs of one path (STRATA_AOV: the pathtrace*_aov variants), recorded at its first non-delta vertex:
+// The AOVs of one path (STRATA_AOV: the aov axis), recorded at its first non-delta vertex:
 // the camera ray and the mirror and smooth-glass vertices it meets first are
 // followed, their sampled weights multiplied into `tint`.
 struct AovPath {

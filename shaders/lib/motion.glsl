@@ -1,4 +1,4 @@
-// Time for motion blur (STRATA_MOTION, the *_motion variants): the time of
+// Time for motion blur (STRATA_MOTION, the motion axis): the time of
 // the path being traced, quaternions, and the pose of a moving instance at
 // that time from its MotionKeys (shared/types.h). Included by lib/scene.glsl.
 #ifndef STRATA_LIB_MOTION_GLSL

@@ -11,7 +11,7 @@ namespace strata::gpu {
 #endif
 
 STRATA_BINDING(BINDING_FRAME, 0);         // uniform FrameUniforms
-STRATA_BINDING(BINDING_NODES, 1);         // storage uvec4[]: BvhNode4, or BvhNode in the *_bvh2 shaders
+STRATA_BINDING(BINDING_NODES, 1);         // storage uvec4[]: BvhNode4, or BvhNode with STRATA_BVH2
 STRATA_BINDING(BINDING_TRIS, 2);          // storage TriVerts[]
 STRATA_BINDING(BINDING_SHADING, 3);       // storage TriShading[]
 STRATA_BINDING(BINDING_MATERIALS, 4);     // storage Material[]

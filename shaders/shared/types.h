@@ -141,7 +141,7 @@ STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the c
 STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
 STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular colour or textures
 STRATA_CONST(uint, kFeatureIridescence, 32768u);    // KHR_materials_iridescence: a thin film on the Fresnel
-// The material layers: compiled only into the *_layers shader variants
+// The material layers: compiled only into the modules with the layers axis
 // (STRATA_LAYERS, lib/features.glsl).
 STRATA_CONST(uint, kFeaturesLayers,
              kFeatureClearcoat | kFeatureSheen | kFeatureSpecularColor | kFeatureIridescence);
@@ -313,7 +313,7 @@ struct Emitter {
 // of finite samples (in .w), then the sum of squared rgb (.w unused).
 STRATA_CONST(uint, kAccumVec4PerPixel, 2u);
 
-// With AOVs (--aov, the pathtrace*_aov variants) the accumulation buffer goes on, after the two vec4
+// With AOVs (--aov, the aov axis) the accumulation buffer goes on, after the two vec4
 // of every pixel, with kAovVec4PerPixel vec4 per pixel, summed over the same
 // samples (lib/film.glsl, accumulateAov): the even-indexed samples' rgb and
 // their count; albedo rgb and depth; the camera-space normal and the
@@ -338,7 +338,7 @@ struct FrameUniforms {
     vec4 envRotation;   // x, y: cos, sin of the rotation about +Y; zw unused
     uvec4 envInfo;      // x: the environment's emitter index (kNoLight: none);
                         // y, z: map width, height (0 without a map); w unused
-    // The camera effects (STRATA_MOTION, the *_motion variants; lib/motion.glsl).
+    // The camera effects (STRATA_MOTION, the motion axis; lib/motion.glsl).
     // lens: x: lens radius (0: a pinhole), y: focus distance along the view
     // direction (world units), z: aperture blades (0: a disk), w unused.
     vec4 lens;
