@@ -86,7 +86,7 @@ TEST_CASE("denoise: both methods reduce the error of a noisy synthetic image, an
     // fits a constant, so the irradiance gradient biases it where its
     // window is one-sided; a blurred edge would be off by about 0.3). NFOR
     // measured 0.031 with its 9x9 window (under 0.02 with 15x15, which did worse
-    // on the rendered scenes at 1024 spp: docs/experiments.md).
+    // on the rendered scenes at 1024 spp: docs/experiments/denoiser.md).
     struct Case {
         DenoiseMethod method;
         bool featureVariance;

@@ -21,7 +21,7 @@ inline constexpr std::uint32_t kBvhMaxRegs = gpu::kBvhMaxWideDepth;
 
 // SAH cost of a wide node visit, in triangle tests: higher than a node
 // pass's instruction count alone suggests, for fewer and fuller nodes over
-// somewhat larger leaves (docs/experiments.md, the collapse).
+// somewhat larger leaves (docs/experiments/bvh.md, the collapse).
 inline constexpr float kWideNodeCost = 3.0f;
 // Most triangles in a leaf made from a BVH2 subtree (the BVH2's own leaves
 // keep their size).

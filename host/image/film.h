@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "../../shaders/shared/types.h"
+
 namespace strata {
 
 // A sum in units of 2^-kFixedFracBits, in a 128-bit integer: 2^-48 to
@@ -16,6 +18,7 @@ namespace strata {
 // Inf, NaN) become +-kFixedInf, which adding keeps: they read back as
 // infinite.
 using FixedSum = __int128;
+static_assert(sizeof(FixedSum) == 16, "FixedSum is the 128-bit integer the comment above states");
 inline constexpr int kFixedFracBits = 48;
 inline constexpr double kFixedLimit = 0x1p79;
 inline constexpr FixedSum kFixedInf = ~(static_cast<FixedSum>(1) << 127);  // the largest value
@@ -41,6 +44,7 @@ struct Film {
     bool aov = false;
     std::vector<FixedSum> aovSum;
     static constexpr int kAovSums = 20;
+    static_assert(kAovSums == 4 * gpu::kAovVec4PerPixel, "kAovSums: the device's kAovVec4PerPixel vec4 a pixel");
 
     Film() = default;
     Film(int w, int h, bool withAov = false);
@@ -48,6 +52,7 @@ struct Film {
     // The floats of a device batch: gpu::kAccumVec4PerPixel vec4 a pixel, then
     // with AOVs kAovSums more.
     std::size_t batchFloats() const { return pixels() * (8 + (aov ? kAovSums : 0)); }
+    static_assert(4 * gpu::kAccumVec4PerPixel == 8, "batchFloats and fold read two vec4 (8 floats) a pixel");
 
     // Adds a device batch: per pixel two vec4 (sum rgb + count, sumSq rgb + 0),
     // the layout of gpu::kAccumVec4PerPixel, then with AOVs the AOV sums. A

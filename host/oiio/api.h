@@ -1,9 +1,10 @@
 // The OpenImageIO side of strata, built as a module (libstrata_oiio.so) that
 // image/image_io.cpp loads on the first image read or written, so that
 // commands touching no image do not run the static initialisers of the
-// libraries Debian's OpenImageIO pulls in (docs/experiments.md). The
-// interface is plain data (image/image.h, image/chart.h) and function
-// pointers: the module and strata share no other header.
+// libraries Debian's OpenImageIO pulls in
+// (docs/experiments/scale-and-startup.md). The interface is plain data
+// (image/image.h, image/chart.h) and function pointers: the module and
+// strata share no other header.
 //
 // Functions return "" on success, else the error (one line, no file name).
 #pragma once

@@ -1,6 +1,7 @@
 // The progressive render loop: the image in tiles, one sample of a tile at
 // a time taken by the integrator (integrate/integrator.h), samples batched
-// into submissions, float32 batch sums folded into a double Film.
+// into submissions, float32 batch sums folded into a Film of 128-bit
+// fixed-point sums (image/film.h, toFixed).
 #pragma once
 #include <cstdint>
 #include <functional>

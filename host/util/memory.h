@@ -24,7 +24,8 @@ inline std::uint64_t peakRssBytes() {
 // "madvise" mode, Debian's default, only memory so advised gets them): a
 // large array then takes one page fault per 2 MiB instead of one per 4 KiB
 // when first written (on 4 KiB pages the faults cost more than the filling:
-// docs/experiments.md). Advice only; arrays under 2 MiB are left alone.
+// docs/experiments/scale-and-startup.md). Advice only; arrays under 2 MiB
+// are left alone.
 inline void adviseHugePages(const void* p, std::size_t bytes) {
 #ifdef MADV_HUGEPAGE
     constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;

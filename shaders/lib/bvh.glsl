@@ -9,7 +9,7 @@
 // devices; both in lib/bvh4.glsl). The unused ones are compiled out rather
 // than folded by a specialization constant: pipeline creation on lavapipe
 // translates every branch of the module before the constants fold
-// (docs/experiments.md).
+// (docs/experiments/traversal.md, kernel and compiler).
 //
 // The including shader defines, before including this file:
 //   BvhNode bvhFetchNode(uint index);    // with STRATA_BVH2

@@ -84,11 +84,11 @@ bool bvhTrace4(BvhRay r, uint root, float tmin, float tmax, uint rayHash, const 
     // lanes in every iteration, whichever a lane needs, and runs the leaf
     // loop's first pass each time, so an iteration for a leaf alone costs a
     // node pass, and an iteration of one node pass costs a triangle pass per
-    // node (docs/experiments.md compares one, two and three passes). A lane
-    // whose first pass entered a leaf or nothing pops for its second pass; if
-    // that meets a second leaf, the node goes back on the stack with it
-    // (re-tested after the first). Popped entries are always wide nodes
-    // (leaves are never pushed).
+    // node (docs/experiments/traversal.md compares one, two and three
+    // passes). A lane whose first pass entered a leaf or nothing pops for its
+    // second pass; if that meets a second leaf, the node goes back on the
+    // stack with it (re-tested after the first). Popped entries are always
+    // wide nodes (leaves are never pushed).
     uint ref = (root << 4) | 15u;  // the next node entry to visit, the root first; 0: pop one
     for (;;) {
         gBvhTicks += 2u;
@@ -136,7 +136,8 @@ bool bvhTrace4(BvhRay r, uint root, float tmin, float tmax, uint rayHash, const 
 // next and the others pushed farthest first, at most 3 per wide level. A
 // push or pop is one local-memory access where bvhTrace4 shifts 16-32
 // registers; on lavapipe an indexed array is a per-lane scalar loop, so CPU
-// devices take bvhTrace4 (docs/experiments.md has the figures of both).
+// devices take bvhTrace4 (docs/experiments/traversal.md and nvidia-h200.md
+// have the figures of both).
 // The arguments and result are bvhTrace4's.
 bool bvhTrace4Sorted(BvhRay r, uint root, float tmin, float tmax, uint rayHash, const bool anyHit,
                      inout float bestT, inout uint bestTri, inout float bestU, inout float bestV) {
