@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "render/sampler_kind.h"
+#include "spirv/cache.h"
 #include "util/interrupt.h"
 #include "util/memory.h"
 #include "vk/buffer.h"
@@ -42,6 +43,12 @@ nlohmann::json statsJson(const StatsInput& in) {
     const RenderResult& r = *in.result;
     j["startup"] = {{"load_ms", in.loadMs},        {"bvh_build_ms", b.buildMs}, {"pack_ms", in.packMs},
                     {"device_init_ms", in.deviceMs}, {"upload_ms", r.uploadMs}, {"pipeline_ms", r.pipelineMs}};
+    // The process's shader modules so far (spirv/cache.h): compiled, or read from the cache.
+    const spirv::ShaderCacheStats sc = spirv::shaderCacheStats();
+    j["startup"]["shaders_compiled"] = sc.compiled;
+    j["startup"]["shaders_cached"] = sc.loaded;
+    j["startup"]["shader_compile_ms"] = sc.compileMs;
+    j["startup"]["shader_load_ms"] = sc.loadMs;
     j["render"] = {{"width", s.width},
                    {"height", s.height},
                    {"spp_requested", s.spp},
@@ -109,7 +116,10 @@ std::string statsText(const nlohmann::json& j) {
                   b["bytes"].get<double>() / (1024.0 * 1024.0));
     o << line;
     const auto& su = j["startup"];
-    std::snprintf(line, sizeof line, ", pipeline %.1f ms\n", su["pipeline_ms"].get<double>());
+    std::snprintf(line, sizeof line, ", shaders %u compiled (%.1f ms) %u cached (%.1f ms), pipeline %.1f ms\n",
+                  su["shaders_compiled"].get<unsigned>(), su["shader_compile_ms"].get<double>(),
+                  su["shaders_cached"].get<unsigned>(), su["shader_load_ms"].get<double>(),
+                  su["pipeline_ms"].get<double>());
     o << "start-up   " << startupText(su) << line;
     const auto& r = j["render"];
     std::snprintf(line, sizeof line,

@@ -116,26 +116,20 @@ TriShading sceneShading(uint triangle) {
     return shading[triangle];
 }
 
-TriTexcoords sceneTexcoords(uint triangle) {
-    if (!kTexelAll) return texcoords[triangle];
-    uvec4 t[kTriTexcoordsTexels] = texels3(texcoordsTexel, triangle);
-    return TriTexcoords(TEXEL_VEC4(t, kTriTexcoordsWordUv0), TEXEL_VEC4(t, kTriTexcoordsWordUv1),
-                        TEXEL_VEC4(t, kTriTexcoordsWordUv2));
-}
-
-TriTangents sceneTangents(uint triangle) {
-    if (!kTexelAll) return tangents[triangle];
-    uvec4 t[kTriTangentsTexels] = texels3(tangentsTexel, triangle);
-    return TriTangents(TEXEL_VEC4(t, kTriTangentsWordT0), TEXEL_VEC4(t, kTriTangentsWordT1),
-                       TEXEL_VEC4(t, kTriTangentsWordT2));
-}
-
-TriColors sceneColors(uint triangle) {
-    if (!kTexelAll) return colors[triangle];
-    uvec4 t[kTriColorsTexels] = texels3(colorsTexel, triangle);
-    return TriColors(TEXEL_VEC4(t, kTriColorsWordC0), TEXEL_VEC4(t, kTriColorsWordC1),
-                     TEXEL_VEC4(t, kTriColorsWordC2));
-}
+// The per-triangle arrays of one vec4 per vertex (Type: TriTexcoords,
+// TriTangents, TriColors; its words kType##Word##W0..W2 in texel_layout.h):
+// `array` from storage, or through `view` with kTexelAll.
+#define STRATA_TRI_VEC4_READER(Type, fn, array, view, W0, W1, W2)                                  \
+    Type fn(uint triangle) {                                                                   \
+        if (!kTexelAll) return array[triangle];                                                \
+        uvec4 t[k##Type##Texels] = texels3(view, triangle);                                    \
+        return Type(TEXEL_VEC4(t, k##Type##Word##W0), TEXEL_VEC4(t, k##Type##Word##W1),        \
+                    TEXEL_VEC4(t, k##Type##Word##W2));                                         \
+    }
+STRATA_TRI_VEC4_READER(TriTexcoords, sceneTexcoords, texcoords, texcoordsTexel, Uv0, Uv1, Uv2)
+STRATA_TRI_VEC4_READER(TriTangents, sceneTangents, tangents, tangentsTexel, T0, T1, T2)
+STRATA_TRI_VEC4_READER(TriColors, sceneColors, colors, colorsTexel, C0, C1, C2)
+#undef STRATA_TRI_VEC4_READER
 
 // materials[i], through its RGBA32UI texel view with kTexelAll: on lavapipe
 // a storage-buffer load with a different index per lane is a loop over the
