@@ -83,6 +83,54 @@ TEST_CASE("bad flags are one-line errors with exit 2 and write nothing" * doctes
     }
 }
 
+TEST_CASE("conflicting flags are refused while parsing: before the missing scene, image or state is read"
+          * doctest::test_suite("unit")) {
+    TempDir out;
+    const std::string missing = "/nonexistent/";
+    struct Case {
+        std::string args, line;  // the command line, and the one error line it gives
+    };
+    const std::string aov = " needs the megakernel integrator (--integrator megakernel); the wavefront integrator "
+                            "keeps no AOVs";
+    const std::vector<Case> cases = {
+        {"render " + missing + "s.gltf --denoise --integrator wavefront -o " + out / "a.exr",
+         "strata: error: --denoise" + aov},
+        {"render " + missing + "s.gltf --aov --integrator wavefront -o " + out / "a.exr", "strata: error: --aov" + aov},
+        {"reference " + missing + "s.gltf --spp 4 --denoise --integrator wavefront -o " + out / "r.exr",
+         "strata: error: --denoise" + aov},
+        {"render " + missing + "s.gltf --resume " + missing + "a.state --frames 0:1 -o " + out / "a_#.exr",
+         "strata: error: --frames renders frame by frame: .state outputs, --resume and --shard are for one image"},
+        {"render " + missing + "s.gltf --checkpoint-every 5 -o " + out / "a.exr",
+         "strata: error: --checkpoint-every rewrites the .state outputs: add -o FILE.state"},
+        {"render " + missing + "s.gltf --sampler bluenoise --spp 12 -o " + out / "a.exr",
+         "strata: error: --sampler bluenoise needs a power-of-two spp, got 12"},
+        {"render " + missing + "s.gltf -o " + out / "a.jpg",
+         out / "a.jpg" + ": error: unsupported output format '.jpg' (use .exr or .png)"},
+        {"converge " + missing + "s.gltf --reference " + missing + "r.exr -o " + out / "c.txt",
+         out / "c.txt" + ": error: converge report must be .csv or .json"},
+        {"bench " + missing + "s.gltf --json " + out / "b.txt", out / "b.txt" + ": error: bench report must be .json"},
+        {"compare " + missing + "a.exr " + missing + "b.exr --json " + out / "m.txt",
+         out / "m.txt" + ": error: compare report must be .json"},
+        {"denoise " + missing + "in.exr -o " + out / "d.jpg",
+         out / "d.jpg" + ": error: unsupported output format '.jpg' (use .exr or .png)"},
+        {"merge " + missing + "a.state -o " + out / "m.jpg",
+         out / "m.jpg" + ": error: unsupported output format '.jpg' (use .exr or .png)"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.args);
+        const Run r = run(c.args);
+        CAPTURE(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output == c.line + "\n");
+        CHECK(r.output.find(missing) == std::string::npos);  // no file named by it was read
+    }
+    // Without the conflict the same lines get as far as the missing file.
+    const Run plain = run("render " + missing + "s.gltf --denoise -o " + out / "a.exr");
+    CHECK(plain.status == 2);
+    CHECK(plain.output.rfind(missing + "s.gltf: error: ", 0) == 0);
+    CHECK(out.empty());
+}
+
 TEST_CASE("an output that cannot be written fails before any work, and nothing is written" * doctest::test_suite("unit")) {
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
     TempDir out;

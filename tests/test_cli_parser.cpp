@@ -198,4 +198,53 @@ TEST_CASE("cli: --denoise takes an optional method and turns the AOVs on, and --
     CHECK(d.method == DenoiseMethod::Fast);
 }
 
+TEST_CASE("cli checks: combinations the flags alone refuse are one-line errors of the parser") {
+    const std::string wavefrontAov =
+        " needs the megakernel integrator (--integrator megakernel); the wavefront integrator keeps no AOVs";
+    const std::vector<std::pair<Args, std::string>> render = {
+        {{"s.gltf", "--denoise", "--integrator", "wavefront"}, "strata: error: --denoise" + wavefrontAov},
+        {{"s.gltf", "--integrator", "wavefront", "--aov"}, "strata: error: --aov" + wavefrontAov},
+        {{"s.gltf", "-o", "a.jpg"}, "a.jpg: error: unsupported output format '.jpg' (use .exr or .png)"},
+        {{"s.gltf", "--sampler", "regular", "--spp", "10"},
+         "strata: error: --sampler regular needs a square spp (n x n grid), got 10; try 9 or 16"},
+        {{"s.gltf", "--checkpoint-every", "60", "-o", "a.exr"},
+         "strata: error: --checkpoint-every rewrites the .state outputs: add -o FILE.state"},
+        {{"s.gltf", "--resume", "a.state", "--frames", "0:2", "-o", "a_#.exr"},
+         "strata: error: --frames renders frame by frame: .state outputs, --resume and --shard are for one image"},
+        {{"s.gltf", "--resume", "a.exr"}, "strata: error: --resume takes a .state file, got 'a.exr'"},
+    };
+    for (const auto& [args, what] : render) {
+        CAPTURE(what);
+        CHECK(errorOf(cli::parseRender, args) == what);
+    }
+    CHECK(errorOf(cli::parseReference, {"s.gltf", "--spp", "16", "-o", "r.exr", "--denoise", "--integrator",
+                                        "wavefront"}) == "strata: error: --denoise" + wavefrontAov);
+    CHECK(errorOf(cli::parseRender, {"s.gltf", "--spp", "100", "--shard", "2/4"}).find("fewer than 4 shards") !=
+          std::string::npos);
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.txt"}) ==
+          "r.txt: error: converge report must be .csv or .json");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--plot", "p.jpg"}) ==
+          "p.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--sampler", "regular",
+                                       "--spp", "4,8"}) ==
+          "strata: error: --sampler regular needs a square spp (n x n grid), got 8; try 4 or 9");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--sampler", "all",
+                                       "--spp", "4,8"}) == "");
+    CHECK(errorOf(cli::parseEdges, {"-o", "t.txt"}) == "t.txt: error: edges table must be .csv");
+    CHECK(errorOf(cli::parseEdges, {"--plot", "p.jpg"}) ==
+          "p.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    CHECK(errorOf(cli::parseEdges, {"--sampler", "regular", "--spp", "10"})
+              .rfind("strata: error: no requested sampler suits --spp 10 (regular: skipped: ", 0) == 0);
+    CHECK(errorOf(cli::parseBench, {"s.gltf", "--json", "b.txt"}) == "b.txt: error: bench report must be .json");
+    CHECK(errorOf(cli::parseCompare, {"a.exr", "b.exr", "--json", "m.txt"}) ==
+          "m.txt: error: compare report must be .json");
+    CHECK(errorOf(cli::parseDenoise, {"a.exr", "-o", "b.jpg"}) ==
+          "b.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    CHECK(errorOf(cli::parseMerge, {"a.state", "-o", "b.jpg"}) ==
+          "b.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    // What the flags allow still parses.
+    CHECK(errorOf(cli::parseRender, {"s.gltf", "--aov", "--sampler", "regular", "--spp", "16", "-o", "a.state",
+                                     "--checkpoint-every", "60", "-o", "a.EXR"}) == "");
+}
+
 TEST_SUITE_END();

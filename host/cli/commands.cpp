@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "../../shaders/shared/types.h"
+#include "cli/checks.h"
 #include "cli/flag_groups.h"
 #include "cli/flags.h"
 #include "denoise/command.h"
@@ -162,38 +163,13 @@ std::vector<std::string> withoutDenoiseMethod(const std::vector<std::string>& gi
     return args;
 }
 
-// --frames excludes --shutter and sets the shutter per frame; --fps and
-// --shutter-angle need it; every output it writes names the frame.
-void checkFrameFlags(const Parsed& parsed, RenderCommand& cmd) {
-    const auto given = [&](const char* flag) {
-        return std::find(parsed.given.begin(), parsed.given.end(), flag) != parsed.given.end();
-    };
-    if (!cmd.frames.enabled) {
-        for (const char* f : {"--fps", "--shutter-angle"})
-            if (given(f)) badFlag(std::string(f) + " needs --frames");
-        return;
-    }
-    if (cmd.settings.shutter) badFlag("--frames sets each frame's shutter (--fps, --shutter-angle); leave out --shutter");
-    for (const std::string& out : cmd.outputs)
-        if (out.find('#') == std::string::npos)
-            badFlag("with --frames each output names its frame by a run of '#', e.g. out_####.exr; got '" + out + "'");
-    if (!cmd.statsJson.empty() && cmd.statsJson.find('#') == std::string::npos)
-        badFlag("with --frames --stats-json names its frame by a run of '#', e.g. stats_####.json");
+// --frames sets the shutter per frame (render/command.cpp); the first
+// frame's here, so that the checks see a render with a shutter.
+void setFirstFrameShutter(RenderCommand& cmd) {
+    if (!cmd.frames.enabled) return;
     cmd.settings.shutter = true;  // posed by the animation (renderer: frame by frame)
     cmd.settings.shutterOpen = cmd.frames.open(cmd.frames.first);
     cmd.settings.shutterClose = cmd.frames.close(cmd.frames.first);
-}
-
-// .state outputs, --checkpoint-every, --resume and --shard: one render, not
-// a sequence of frames; a checkpoint needs a state to write.
-void checkStateFlags(const RenderCommand& cmd) {
-    if (cmd.checkpointEvery > 0.0 && cmd.states.empty())
-        badFlag("--checkpoint-every rewrites the .state outputs: add -o FILE.state");
-    if (cmd.frames.enabled && (!cmd.states.empty() || !cmd.resume.empty() || cmd.shards))
-        badFlag("--frames renders frame by frame: .state outputs, --resume and --shard are for one image");
-    if (!cmd.resume.empty() && lowerExtension(cmd.resume) != ".state")
-        badFlag("--resume takes a .state file, got '" + cmd.resume + "'");
-    if (cmd.shards) shardRange(cmd.settings.spp, cmd.shard, cmd.shards, cmd.tuning.maxBatch);
 }
 
 // Parses a render-like command's flags and positional scene.
@@ -207,11 +183,8 @@ RenderCommand parseRenderLike(const std::string& name, const std::vector<std::st
         badFlag("unexpected argument '" + parsed.positional[1] + "' (one scene per " + name + ")");
     if (parsed.positional.empty()) badFlag(name + " needs a scene file (see 'strata " + name + " --help')");
     cmd.scene = parsed.positional[0];
-    checkEnvFlags(parsed, cmd.env);
-    checkViewFlags(cmd.view);
-    checkFrameFlags(parsed, cmd);
-    checkLensFlags(cmd.settings);
-    checkStateFlags(cmd);
+    setFirstFrameShutter(cmd);
+    checkRenderFlags(parsed, cmd);
     if (cmd.outputs.empty() && cmd.states.empty()) {
         const std::string stem = std::filesystem::path(cmd.scene).stem().string() + (cmd.frames.enabled ? "_####" : "");
         cmd.outputs = {stem + ".exr", stem + ".png"};
@@ -488,6 +461,7 @@ CompareArgs parseCompare(const std::vector<std::string>& args) {
     if (parsed.positional.size() != 2) badFlag("compare needs IMAGE and REFERENCE");
     a.image = parsed.positional[0];
     a.reference = parsed.positional[1];
+    checkCompareFlags(a);
     return a;
 }
 
@@ -511,6 +485,7 @@ ConvergeCommand parseConverge(const std::vector<std::string>& given) {
     if (fast) cmd.method = DenoiseMethod::Fast;
     if (cmd.reference.empty()) badFlag("converge needs --reference REF.exr");
     if (cmd.report.empty()) badFlag("converge needs -o REPORT.csv or REPORT.json");
+    checkConvergeFlags(cmd);
     return cmd;
 }
 
@@ -518,10 +493,15 @@ EdgesCommand parseEdges(const std::vector<std::string>& args) {
     EdgesCommand cmd = edgesSpec().init;
     const Parsed parsed = parseFlags(edgesSpec(), args, cmd);
     if (!parsed.positional.empty()) badFlag("unexpected argument '" + parsed.positional[0] + "'");
+    checkEdgesFlags(cmd);
     return cmd;
 }
 
-BenchCommand parseBench(const std::vector<std::string>& args) { return parseSceneCommand(benchSpec(), args); }
+BenchCommand parseBench(const std::vector<std::string>& args) {
+    BenchCommand cmd = parseSceneCommand(benchSpec(), args);
+    checkBenchFlags(cmd);
+    return cmd;
+}
 
 MergeCommand parseMerge(const std::vector<std::string>& args) {
     MergeCommand cmd = mergeSpec().init;
@@ -531,6 +511,7 @@ MergeCommand parseMerge(const std::vector<std::string>& args) {
         if (lowerExtension(in) != ".state") badFlag("merge takes .state files, got '" + in + "'");
     if (cmd.outputs.empty() && cmd.states.empty()) badFlag("merge needs -o OUT.exr, OUT.png or OUT.state");
     cmd.inputs = parsed.positional;
+    checkMergeFlags(cmd);
     return cmd;
 }
 
@@ -541,6 +522,7 @@ DenoiseCommand parseDenoise(const std::vector<std::string>& args) {
     if (parsed.positional.empty()) badFlag("denoise needs an EXR rendered with --aov");
     if (cmd.outputs.empty()) badFlag("denoise needs -o OUT.exr or OUT.png");
     cmd.input = parsed.positional[0];
+    checkDenoiseFlags(cmd);
     return cmd;
 }
 

@@ -31,9 +31,10 @@ const CommandInfo* findCommand(const std::string& name);
 std::string overview();
 
 // The parsers: `args` are the words after the command's name. They check
-// every value and the combinations (throwing strata::Error, one line) and
-// fill in what the flags leave to a default (render's outputs). Help flags
-// are not theirs to handle.
+// every value and every combination the flags alone decide (cli/checks.h),
+// throwing strata::Error, one line, before anything is read, and fill in
+// what the flags leave to a default (render's outputs). Help flags are not
+// theirs to handle.
 struct CompareArgs {
     std::string image, reference, json;
 };

@@ -158,28 +158,6 @@ std::vector<Flag<T>> envFlags() {
     };
 }
 
-inline void checkViewFlags(const ViewOptions& view) {
-    if (view.lookFrom.has_value() != view.lookAt.has_value())
-        badFlag(view.lookFrom ? "--look-from needs --look-at" : "--look-at needs --look-from");
-    if (view.up && !view.lookFrom) badFlag("--up needs --look-from and --look-at");
-}
-
-inline void checkLensFlags(const RenderSettings& s) {
-    if (s.apertureBlades == 1 || s.apertureBlades == 2)
-        badFlag("--aperture-blades must be 0 (round) or 3 or more, got " + std::to_string(s.apertureBlades));
-    if (!s.animation.empty() && !s.shutter) badFlag("--animation needs --shutter (or --frames)");
-    if (s.cameraEffects() && s.integrator == IntegratorKind::Wavefront)
-        badFlag("--lens-radius and a --shutter interval need the megakernel integrator; the wavefront integrator "
-                "has no lens and no time");
-}
-
-inline void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
-    if (!env.file.empty() && env.hasColor) badFlag("--env and --env-color exclude each other");
-    for (const std::string& a : parsed.given)
-        if ((a == "--env-intensity" || a == "--env-rotate") && !env.given())
-            badFlag(a + " needs --env or --env-color");
-}
-
 // --variant (the scene's materials), --instancing (its meshes), --restrict-paths (its files).
 template <class T>
 std::vector<Flag<T>> sceneFlags() {
