@@ -304,16 +304,28 @@ TEST_CASE("COMMAND --help prints the command's usage and every flag of its table
         const Run r = runOneStream(c.name + " --help");
         CHECK(r.status == 0);
         CHECK(r.output.rfind("usage: strata " + c.name, 0) == 0);
+        const std::string tuning = c.tuningHelp().empty() ? "" : runOneStream(c.name + " --help-tuning").output;
+        CHECK(tuning == c.tuningHelp());
         for (const std::string& flag : c.flags()) {
             CAPTURE(flag);
-            CHECK(r.output.find(flag) != std::string::npos);
+            CHECK((r.output.find(flag) != std::string::npos || tuning.find(flag) != std::string::npos));
         }
         CHECK(run("help " + c.name).output == r.output);
         CHECK(run(c.name + " -h").output == r.output);
     }
     const std::string render = run("render --help").output;
-    for (const char* flag : {"--spp N", "--reads auto|texel|storage", "--env MAP", "-o, --output FILE"})
+    for (const char* flag : {"--spp N", "--integrator megakernel|wavefront", "--env MAP", "-o, --output FILE"})
         CHECK(render.find(flag) != std::string::npos);
+    CHECK(render.find("--reads auto|texel|storage") == std::string::npos);
+    const Run tuning = runOneStream("render --help-tuning");
+    CHECK(tuning.status == 0);
+    for (const char* flag : {"--reads auto|texel|storage", "--traversal auto|texel|storage", "--bvh 2|4",
+                             "--bvh-stack auto|registers|memory"})
+        CHECK(tuning.output.find(flag) != std::string::npos);
+    CHECK(tuning.output.find("--spp") == std::string::npos);
+    CHECK(run("reference --help-tuning").output == run("reference --help-tuning /nonexistent/scene.gltf --bogus").output);
+    CHECK(run("bench s.gltf --help-tuning").output ==
+          "strata: error: unknown option '--help-tuning' (see 'strata bench --help')\n");
     CHECK(run("converge --help").output.find("--reference REF.exr") != std::string::npos);
     // Help ignores the rest of the line: no scene is loaded, no value checked,
     // no device opened, nothing written.
@@ -321,6 +333,7 @@ TEST_CASE("COMMAND --help prints the command's usage and every flag of its table
     for (const std::string& args : std::vector<std::string>{
              "render /nonexistent/scene.gltf --spp 0 --bogus -o " + out / "a.exr" + " --help",
              "reference --help /nonexistent/scene.gltf", "bench /nonexistent/scene.gltf -h --json " + out / "b.json",
+             "render --help-tuning /nonexistent/scene.gltf --spp 0 -o " + out / "a.exr",
              "converge --device 99 --help", "edges --spp 0 -h -o " + out / "t.csv", "devices --help",
              "compare --help"}) {
         CAPTURE(args);

@@ -3,6 +3,7 @@
 // the help of each command lists every flag its table has.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ std::string flat(const std::string& text) {
         else if (!out.empty() && out.back() != ' ') out += ' ';
     }
     return out;
+}
+
+// Whether flat help text lists the flag `name` as a row ("NAME METAVAR",
+// "-o, --output"; the usage line and the help of other flags do not name a
+// flag followed by a space).
+bool lists(const std::string& help, const std::string& name) {
+    return help.find(" " + name + " ") != std::string::npos || help.find(" " + name + ", ") != std::string::npos;
 }
 
 }  // namespace
@@ -154,20 +162,23 @@ TEST_CASE("cli help: each command's help shows every flag of its table, with met
     CHECK(cli::commands().size() == 9);
     for (const cli::CommandInfo& c : cli::commands()) {
         CAPTURE(c.name);
-        const std::string help = flat(c.help());
+        const std::string help = flat(c.help()), tuning = flat(c.tuningHelp());
+        const std::vector<std::string> knobs = c.tuningFlags();
         CHECK(help.rfind("usage: strata " + c.name, 0) == 0);
         for (const std::string& name : c.flags()) {
             CAPTURE(name);
-            CHECK((help.find(name + " ") != std::string::npos || help.find(name + ", ") != std::string::npos));
+            const bool knob = std::find(knobs.begin(), knobs.end(), name) != knobs.end();
+            CHECK(lists(knob ? tuning : help, name));
         }
         CHECK(help.find("-h, --help") != std::string::npos);
     }
     const std::string render = flat(cli::findCommand("render")->help());
     CHECK(render.find("--spp N ") != std::string::npos);
     CHECK(render.find("in [1, 1073741824] (default: 64)") != std::string::npos);
-    CHECK(render.find("--reads auto|texel|storage") != std::string::npos);
-    CHECK(render.find("--traversal auto|texel|storage") != std::string::npos);
-    CHECK(render.find("(old name of --reads)") != std::string::npos);
+    const std::string renderTuning = flat(cli::findCommand("render")->tuningHelp());
+    CHECK(renderTuning.find("--reads auto|texel|storage") != std::string::npos);
+    CHECK(renderTuning.find("--traversal auto|texel|storage") != std::string::npos);
+    CHECK(renderTuning.find("(old name of --reads)") != std::string::npos);
     CHECK(render.find("(default: sobol)") != std::string::npos);
     CHECK(flat(cli::findCommand("converge")->help()).find("(default: 1,2,4,8,16,32,64,128,256)") != std::string::npos);
     CHECK(flat(cli::findCommand("edges")->help()).find("(default: all)") != std::string::npos);
@@ -245,6 +256,40 @@ TEST_CASE("cli checks: combinations the flags alone refuse are one-line errors o
     // What the flags allow still parses.
     CHECK(errorOf(cli::parseRender, {"s.gltf", "--aov", "--sampler", "regular", "--spp", "16", "-o", "a.state",
                                      "--checkpoint-every", "60", "-o", "a.EXR"}) == "");
+}
+
+TEST_CASE("cli help: --help leaves the tuning flags to --help-tuning, and they parse as before") {
+    const Args knobs = {"--bvh", "--bvh-stack", "--reads", "--traversal"};
+    for (const char* name : {"render", "reference"}) {
+        CAPTURE(name);
+        const cli::CommandInfo& c = *cli::findCommand(name);
+        const std::string help = c.help(), tuning = c.tuningHelp();
+        CHECK(c.tuningFlags() == knobs);
+        for (const std::string& knob : knobs) {
+            CAPTURE(knob);
+            CHECK_FALSE(lists(flat(help), knob));
+            CHECK(lists(flat(tuning), knob));
+        }
+        CHECK(lists(flat(help), "--integrator"));
+        // The help's last line points at the tuning flags.
+        const std::string last = help.substr(help.rfind('\n', help.size() - 2) + 1);
+        CHECK(last == "Tuning flags, for measurements and tests: 'strata " + std::string(name) + " --help-tuning'.\n");
+        CHECK(tuning.rfind("usage: strata " + std::string(name), 0) == 0);
+        CHECK(tuning.find("-h, --help") == std::string::npos);
+    }
+    // bench measures them: its own help lists them, and it has no tuning part.
+    const cli::CommandInfo& bench = *cli::findCommand("bench");
+    CHECK(bench.tuningHelp().empty());
+    CHECK(bench.tuningFlags().empty());
+    for (const std::string& knob : knobs) CHECK(lists(flat(bench.help()), knob));
+    for (const cli::CommandInfo& c : cli::commands())
+        CHECK((c.help().find("--help-tuning") == std::string::npos || !c.tuningHelp().empty()));
+    const RenderCommand r = cli::parseRender({"s.gltf", "--bvh", "2", "--bvh-stack", "memory", "--reads", "storage"});
+    CHECK(r.settings.bvhWidth == 2);
+    CHECK(r.settings.bvhStack == BvhStack::Memory);
+    CHECK(r.settings.reads == ReadMode::Storage);
+    CHECK(cli::parseReference({"s.gltf", "--spp", "4", "-o", "r.exr", "--traversal", "texel"}).settings.reads ==
+          ReadMode::Texel);
 }
 
 TEST_SUITE_END();

@@ -124,9 +124,9 @@ std::vector<Flag<RenderCommand>> renderFlags() {
                       [](C& c) { c.denoise = true, c.settings.aov = true; }),
         },
         pathFlags<C>(settings),
-        traceFlags<C>(settings),
+        traceFlags<C>(settings, true),
         envFlags<C>(),
-            sceneFlags<C>(),
+        sceneFlags<C>(),
         deviceFlags<C>(),
     });
 }
@@ -363,7 +363,7 @@ const CommandSpec<BenchCommand>& benchSpec() {
                 text<C>("--json", "FILE", "also write the results to FILE as JSON", STRATA_FIELD(json)),
             },
             pathFlags<C>(settings),
-            traceFlags<C>(settings),
+            traceFlags<C>(settings, false),
             envFlags<C>(),
             sceneFlags<C>(),
             deviceFlags<C>(),
@@ -416,19 +416,29 @@ int listDevices(const std::vector<std::string>& args) {
     return 0;
 }
 
+// Every name of the flags (aliases, old names), or of the tuning flags alone.
+template <class T>
+std::vector<std::string> flagNames(const CommandSpec<T>& spec, bool tuningOnly) {
+    std::vector<std::string> names;
+    for (const Flag<T>& f : spec.flags)
+        if (f.tuning || !tuningOnly)
+            for (const std::string* n : {&f.alias, &f.name, &f.oldName})
+                if (!n->empty()) names.push_back(*n);
+    return names;
+}
+
 template <class T>
 CommandInfo command(const CommandSpec<T>& spec, std::function<int(const std::vector<std::string>&)> run) {
-    return {spec.name, spec.summary, [&spec] { return helpText(spec); },
-            [&spec] {
-                std::vector<std::string> names;
-                for (const Flag<T>& f : spec.flags)
-                    for (const std::string* n : {&f.alias, &f.name, &f.oldName})
-                        if (!n->empty()) names.push_back(*n);
-                return names;
-            },
+    return {spec.name,
+            spec.summary,
+            [&spec] { return helpText(spec); },
+            [&spec] { return hasTuning(flagTexts(spec)) ? helpText(spec, HelpPart::Tuning) : std::string(); },
+            [&spec] { return flagNames(spec, false); },
+            [&spec] { return flagNames(spec, true); },
             [&spec, run](const std::vector<std::string>& args) {
-                if (helpRequested(flagTexts(spec), args)) {
-                    std::fputs(helpText(spec).c_str(), stdout);
+                const HelpPart part = helpRequested(flagTexts(spec), args);
+                if (part != HelpPart::None) {
+                    std::fputs(helpText(spec, part).c_str(), stdout);
                     return 0;
                 }
                 return run(args);

@@ -18,7 +18,9 @@ struct CommandInfo {
     std::string name;
     std::string summary;                           // one line
     std::function<std::string()> help;             // `strata NAME --help`
+    std::function<std::string()> tuningHelp;       // `strata NAME --help-tuning`; empty: no tuning flags
     std::function<std::vector<std::string>()> flags;  // every name its table accepts (aliases, old names)
+    std::function<std::vector<std::string>()> tuningFlags;  // those --help-tuning lists instead of --help
     // Prints the help and returns 0 when the arguments ask for it; parses and
     // runs the command otherwise.
     std::function<int(const std::vector<std::string>& args)> run;

@@ -108,19 +108,24 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
     };
 }
 
-// --bvh, --bvh-stack, --reads (formerly --traversal), --integrator.
+// --bvh, --bvh-stack, --reads (formerly --traversal), --integrator. The
+// first three change how the scene is traversed and read, not the image:
+// with `tuning` they are lab knobs, listed by --help-tuning (render), else
+// in the help (bench, which measures them).
 template <class T, class Settings>
-std::vector<Flag<T>> traceFlags(Settings settings) {
+std::vector<Flag<T>> traceFlags(Settings settings, bool tuning) {
     return {
         choice<T, int>("--bvh", "traverse the four-wide BVH, or the binary one it is collapsed from; the same hits",
-                       {{"2", 2}, {"4", 4}}, [settings](auto& c) -> auto& { return settings(c).bvhWidth; }),
+                       {{"2", 2}, {"4", 4}}, [settings](auto& c) -> auto& { return settings(c).bvhWidth; })
+            .inTuning(tuning),
         choice<T, BvhStack>("--bvh-stack",
                             "the four-wide traversal's stack: registers, or memory (an array, the children entered "
                             "nearest first); the same hits; auto: registers on CPU devices, memory elsewhere",
                             {{"auto", BvhStack::Auto},
                              {"registers", BvhStack::Registers},
                              {"memory", BvhStack::Memory}},
-                            [settings](auto& c) -> auto& { return settings(c).bvhStack; }),
+                            [settings](auto& c) -> auto& { return settings(c).bvhStack; })
+            .inTuning(tuning),
         choice<T, ReadMode>("--reads",
                              "how the scene arrays are read: texel (the BVH through texel views, the rest through "
                              "storage buffers) or storage (every array through storage buffers); auto: every array "
@@ -128,7 +133,8 @@ std::vector<Flag<T>> traceFlags(Settings settings) {
                              "past the storage range",
                              {{"auto", ReadMode::Auto}, {"texel", ReadMode::Texel}, {"storage", ReadMode::Storage}},
                              [settings](auto& c) -> auto& { return settings(c).reads; })
-            .withOldName("--traversal"),
+            .withOldName("--traversal")
+            .inTuning(tuning),
         choice<T, IntegratorKind>("--integrator",
                               "one path per invocation (megakernel), or stages with ray lists on the device "
                               "(wavefront); the same image",
