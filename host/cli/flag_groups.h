@@ -10,6 +10,7 @@
 #include "cli/flags.h"
 #include "render/filter.h"
 #include "render/sampler_kind.h"
+#include "util/files.h"
 
 namespace strata::cli {
 
@@ -191,6 +192,17 @@ std::vector<Flag<T>> deviceFlags() {
         toggle<T>("--validation", "turn on the Vulkan validation layers, as STRATA_VALIDATION=1 does",
                   [](T& c) { c.validation = true; }),
     };
+}
+
+// -o, --output FILE, repeatable: a FILE.state goes to the command's states,
+// any other to its images (render, merge).
+template <class T>
+Flag<T> outputFlag(std::string help) {
+    return flag<T>("--output", "FILE", std::move(help),
+                   [](T& c, const std::string&, const std::string& v) {
+                       (lowerExtension(v) == ".state" ? c.states : c.outputs).push_back(v);
+                   })
+        .withAlias("-o");
 }
 
 template <class T>
