@@ -83,6 +83,54 @@ TEST_CASE("bad flags are one-line errors with exit 2 and write nothing" * doctes
     }
 }
 
+TEST_CASE("conflicting flags are refused while parsing: before the missing scene, image or state is read"
+          * doctest::test_suite("unit")) {
+    TempDir out;
+    const std::string missing = "/nonexistent/";
+    struct Case {
+        std::string args, line;  // the command line, and the one error line it gives
+    };
+    const std::string aov = " needs the megakernel integrator (--integrator megakernel); the wavefront integrator "
+                            "keeps no AOVs";
+    const std::vector<Case> cases = {
+        {"render " + missing + "s.gltf --denoise --integrator wavefront -o " + out / "a.exr",
+         "strata: error: --denoise" + aov},
+        {"render " + missing + "s.gltf --aov --integrator wavefront -o " + out / "a.exr", "strata: error: --aov" + aov},
+        {"reference " + missing + "s.gltf --spp 4 --denoise --integrator wavefront -o " + out / "r.exr",
+         "strata: error: --denoise" + aov},
+        {"render " + missing + "s.gltf --resume " + missing + "a.state --frames 0:1 -o " + out / "a_#.exr",
+         "strata: error: --frames renders frame by frame: .state outputs, --resume and --shard are for one image"},
+        {"render " + missing + "s.gltf --checkpoint-every 5 -o " + out / "a.exr",
+         "strata: error: --checkpoint-every rewrites the .state outputs: add -o FILE.state"},
+        {"render " + missing + "s.gltf --sampler bluenoise --spp 12 -o " + out / "a.exr",
+         "strata: error: --sampler bluenoise needs a power-of-two spp, got 12"},
+        {"render " + missing + "s.gltf -o " + out / "a.jpg",
+         out / "a.jpg" + ": error: unsupported output format '.jpg' (use .exr or .png)"},
+        {"converge " + missing + "s.gltf --reference " + missing + "r.exr -o " + out / "c.txt",
+         out / "c.txt" + ": error: converge report must be .csv or .json"},
+        {"bench " + missing + "s.gltf --json " + out / "b.txt", out / "b.txt" + ": error: bench report must be .json"},
+        {"compare " + missing + "a.exr " + missing + "b.exr --json " + out / "m.txt",
+         out / "m.txt" + ": error: compare report must be .json"},
+        {"denoise " + missing + "in.exr -o " + out / "d.jpg",
+         out / "d.jpg" + ": error: unsupported output format '.jpg' (use .exr or .png)"},
+        {"merge " + missing + "a.state -o " + out / "m.jpg",
+         out / "m.jpg" + ": error: unsupported output format '.jpg' (use .exr or .png)"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.args);
+        const Run r = run(c.args);
+        CAPTURE(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output == c.line + "\n");
+        CHECK(r.output.find(missing) == std::string::npos);  // no file named by it was read
+    }
+    // Without the conflict the same lines get as far as the missing file.
+    const Run plain = run("render " + missing + "s.gltf --denoise -o " + out / "a.exr");
+    CHECK(plain.status == 2);
+    CHECK(plain.output.rfind(missing + "s.gltf: error: ", 0) == 0);
+    CHECK(out.empty());
+}
+
 TEST_CASE("an output that cannot be written fails before any work, and nothing is written" * doctest::test_suite("unit")) {
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
     TempDir out;
@@ -256,16 +304,28 @@ TEST_CASE("COMMAND --help prints the command's usage and every flag of its table
         const Run r = runOneStream(c.name + " --help");
         CHECK(r.status == 0);
         CHECK(r.output.rfind("usage: strata " + c.name, 0) == 0);
+        const std::string tuning = c.tuningHelp().empty() ? "" : runOneStream(c.name + " --help-tuning").output;
+        CHECK(tuning == c.tuningHelp());
         for (const std::string& flag : c.flags()) {
             CAPTURE(flag);
-            CHECK(r.output.find(flag) != std::string::npos);
+            CHECK((r.output.find(flag) != std::string::npos || tuning.find(flag) != std::string::npos));
         }
         CHECK(run("help " + c.name).output == r.output);
         CHECK(run(c.name + " -h").output == r.output);
     }
     const std::string render = run("render --help").output;
-    for (const char* flag : {"--spp N", "--reads auto|texel|storage", "--env MAP", "-o, --output FILE"})
+    for (const char* flag : {"--spp N", "--integrator megakernel|wavefront", "--env MAP", "-o, --output FILE"})
         CHECK(render.find(flag) != std::string::npos);
+    CHECK(render.find("--reads auto|texel|storage") == std::string::npos);
+    const Run tuning = runOneStream("render --help-tuning");
+    CHECK(tuning.status == 0);
+    for (const char* flag : {"--reads auto|texel|storage", "--traversal auto|texel|storage", "--bvh 2|4",
+                             "--bvh-stack auto|registers|memory"})
+        CHECK(tuning.output.find(flag) != std::string::npos);
+    CHECK(tuning.output.find("--spp") == std::string::npos);
+    CHECK(run("reference --help-tuning").output == run("reference --help-tuning /nonexistent/scene.gltf --bogus").output);
+    CHECK(run("bench s.gltf --help-tuning").output ==
+          "strata: error: unknown option '--help-tuning' (see 'strata bench --help')\n");
     CHECK(run("converge --help").output.find("--reference REF.exr") != std::string::npos);
     // Help ignores the rest of the line: no scene is loaded, no value checked,
     // no device opened, nothing written.
@@ -273,6 +333,7 @@ TEST_CASE("COMMAND --help prints the command's usage and every flag of its table
     for (const std::string& args : std::vector<std::string>{
              "render /nonexistent/scene.gltf --spp 0 --bogus -o " + out / "a.exr" + " --help",
              "reference --help /nonexistent/scene.gltf", "bench /nonexistent/scene.gltf -h --json " + out / "b.json",
+             "render --help-tuning /nonexistent/scene.gltf --spp 0 -o " + out / "a.exr",
              "converge --device 99 --help", "edges --spp 0 -h -o " + out / "t.csv", "devices --help",
              "compare --help"}) {
         CAPTURE(args);

@@ -3,6 +3,7 @@
 // the help of each command lists every flag its table has.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ std::string flat(const std::string& text) {
         else if (!out.empty() && out.back() != ' ') out += ' ';
     }
     return out;
+}
+
+// Whether flat help text lists the flag `name` as a row ("NAME METAVAR",
+// "-o, --output"; the usage line and the help of other flags do not name a
+// flag followed by a space).
+bool lists(const std::string& help, const std::string& name) {
+    return help.find(" " + name + " ") != std::string::npos || help.find(" " + name + ", ") != std::string::npos;
 }
 
 }  // namespace
@@ -154,20 +162,23 @@ TEST_CASE("cli help: each command's help shows every flag of its table, with met
     CHECK(cli::commands().size() == 9);
     for (const cli::CommandInfo& c : cli::commands()) {
         CAPTURE(c.name);
-        const std::string help = flat(c.help());
+        const std::string help = flat(c.help()), tuning = flat(c.tuningHelp());
+        const std::vector<std::string> knobs = c.tuningFlags();
         CHECK(help.rfind("usage: strata " + c.name, 0) == 0);
         for (const std::string& name : c.flags()) {
             CAPTURE(name);
-            CHECK((help.find(name + " ") != std::string::npos || help.find(name + ", ") != std::string::npos));
+            const bool knob = std::find(knobs.begin(), knobs.end(), name) != knobs.end();
+            CHECK(lists(knob ? tuning : help, name));
         }
         CHECK(help.find("-h, --help") != std::string::npos);
     }
     const std::string render = flat(cli::findCommand("render")->help());
     CHECK(render.find("--spp N ") != std::string::npos);
     CHECK(render.find("in [1, 1073741824] (default: 64)") != std::string::npos);
-    CHECK(render.find("--reads auto|texel|storage") != std::string::npos);
-    CHECK(render.find("--traversal auto|texel|storage") != std::string::npos);
-    CHECK(render.find("(old name of --reads)") != std::string::npos);
+    const std::string renderTuning = flat(cli::findCommand("render")->tuningHelp());
+    CHECK(renderTuning.find("--reads auto|texel|storage") != std::string::npos);
+    CHECK(renderTuning.find("--traversal auto|texel|storage") != std::string::npos);
+    CHECK(renderTuning.find("(old name of --reads)") != std::string::npos);
     CHECK(render.find("(default: sobol)") != std::string::npos);
     CHECK(flat(cli::findCommand("converge")->help()).find("(default: 1,2,4,8,16,32,64,128,256)") != std::string::npos);
     CHECK(flat(cli::findCommand("edges")->help()).find("(default: all)") != std::string::npos);
@@ -196,6 +207,89 @@ TEST_CASE("cli: --denoise takes an optional method and turns the AOVs on, and --
     const DenoiseCommand d = cli::parseDenoise({"in.exr", "-o", "out.exr", "--method", "fast"});
     CHECK(d.input == "in.exr");
     CHECK(d.method == DenoiseMethod::Fast);
+}
+
+TEST_CASE("cli checks: combinations the flags alone refuse are one-line errors of the parser") {
+    const std::string wavefrontAov =
+        " needs the megakernel integrator (--integrator megakernel); the wavefront integrator keeps no AOVs";
+    const std::vector<std::pair<Args, std::string>> render = {
+        {{"s.gltf", "--denoise", "--integrator", "wavefront"}, "strata: error: --denoise" + wavefrontAov},
+        {{"s.gltf", "--integrator", "wavefront", "--aov"}, "strata: error: --aov" + wavefrontAov},
+        {{"s.gltf", "-o", "a.jpg"}, "a.jpg: error: unsupported output format '.jpg' (use .exr or .png)"},
+        {{"s.gltf", "--sampler", "regular", "--spp", "10"},
+         "strata: error: --sampler regular needs a square spp (n x n grid), got 10; try 9 or 16"},
+        {{"s.gltf", "--checkpoint-every", "60", "-o", "a.exr"},
+         "strata: error: --checkpoint-every rewrites the .state outputs: add -o FILE.state"},
+        {{"s.gltf", "--resume", "a.state", "--frames", "0:2", "-o", "a_#.exr"},
+         "strata: error: --frames renders frame by frame: .state outputs, --resume and --shard are for one image"},
+        {{"s.gltf", "--resume", "a.exr"}, "strata: error: --resume takes a .state file, got 'a.exr'"},
+    };
+    for (const auto& [args, what] : render) {
+        CAPTURE(what);
+        CHECK(errorOf(cli::parseRender, args) == what);
+    }
+    CHECK(errorOf(cli::parseReference, {"s.gltf", "--spp", "16", "-o", "r.exr", "--denoise", "--integrator",
+                                        "wavefront"}) == "strata: error: --denoise" + wavefrontAov);
+    CHECK(errorOf(cli::parseRender, {"s.gltf", "--spp", "100", "--shard", "2/4"}).find("fewer than 4 shards") !=
+          std::string::npos);
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.txt"}) ==
+          "r.txt: error: converge report must be .csv or .json");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--plot", "p.jpg"}) ==
+          "p.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--sampler", "regular",
+                                       "--spp", "4,8"}) ==
+          "strata: error: --sampler regular needs a square spp (n x n grid), got 8; try 4 or 9");
+    CHECK(errorOf(cli::parseConverge, {"s.gltf", "--reference", "r.exr", "-o", "r.csv", "--sampler", "all",
+                                       "--spp", "4,8"}) == "");
+    CHECK(errorOf(cli::parseEdges, {"-o", "t.txt"}) == "t.txt: error: edges table must be .csv");
+    CHECK(errorOf(cli::parseEdges, {"--plot", "p.jpg"}) ==
+          "p.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    CHECK(errorOf(cli::parseEdges, {"--sampler", "regular", "--spp", "10"})
+              .rfind("strata: error: no requested sampler suits --spp 10 (regular: skipped: ", 0) == 0);
+    CHECK(errorOf(cli::parseBench, {"s.gltf", "--json", "b.txt"}) == "b.txt: error: bench report must be .json");
+    CHECK(errorOf(cli::parseCompare, {"a.exr", "b.exr", "--json", "m.txt"}) ==
+          "m.txt: error: compare report must be .json");
+    CHECK(errorOf(cli::parseDenoise, {"a.exr", "-o", "b.jpg"}) ==
+          "b.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    CHECK(errorOf(cli::parseMerge, {"a.state", "-o", "b.jpg"}) ==
+          "b.jpg: error: unsupported output format '.jpg' (use .exr or .png)");
+    // What the flags allow still parses.
+    CHECK(errorOf(cli::parseRender, {"s.gltf", "--aov", "--sampler", "regular", "--spp", "16", "-o", "a.state",
+                                     "--checkpoint-every", "60", "-o", "a.EXR"}) == "");
+}
+
+TEST_CASE("cli help: --help leaves the tuning flags to --help-tuning, and they parse as before") {
+    const Args knobs = {"--bvh", "--bvh-stack", "--reads", "--traversal"};
+    for (const char* name : {"render", "reference"}) {
+        CAPTURE(name);
+        const cli::CommandInfo& c = *cli::findCommand(name);
+        const std::string help = c.help(), tuning = c.tuningHelp();
+        CHECK(c.tuningFlags() == knobs);
+        for (const std::string& knob : knobs) {
+            CAPTURE(knob);
+            CHECK_FALSE(lists(flat(help), knob));
+            CHECK(lists(flat(tuning), knob));
+        }
+        CHECK(lists(flat(help), "--integrator"));
+        // The help's last line points at the tuning flags.
+        const std::string last = help.substr(help.rfind('\n', help.size() - 2) + 1);
+        CHECK(last == "Tuning flags, for measurements and tests: 'strata " + std::string(name) + " --help-tuning'.\n");
+        CHECK(tuning.rfind("usage: strata " + std::string(name), 0) == 0);
+        CHECK(tuning.find("-h, --help") == std::string::npos);
+    }
+    // bench measures them: its own help lists them, and it has no tuning part.
+    const cli::CommandInfo& bench = *cli::findCommand("bench");
+    CHECK(bench.tuningHelp().empty());
+    CHECK(bench.tuningFlags().empty());
+    for (const std::string& knob : knobs) CHECK(lists(flat(bench.help()), knob));
+    for (const cli::CommandInfo& c : cli::commands())
+        CHECK((c.help().find("--help-tuning") == std::string::npos || !c.tuningHelp().empty()));
+    const RenderCommand r = cli::parseRender({"s.gltf", "--bvh", "2", "--bvh-stack", "memory", "--reads", "storage"});
+    CHECK(r.settings.bvhWidth == 2);
+    CHECK(r.settings.bvhStack == BvhStack::Memory);
+    CHECK(r.settings.reads == ReadMode::Storage);
+    CHECK(cli::parseReference({"s.gltf", "--spp", "4", "-o", "r.exr", "--traversal", "texel"}).settings.reads ==
+          ReadMode::Texel);
 }
 
 TEST_SUITE_END();

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "../../shaders/shared/types.h"
+#include "cli/checks.h"
 #include "cli/flag_groups.h"
 #include "cli/flags.h"
 #include "denoise/command.h"
@@ -18,19 +19,76 @@
 namespace strata::cli {
 namespace {
 
+// The commands' help texts: name, usage, one-line summary, the notes after the flags.
+const CommandText kRenderText{"render", "SCENE.gltf|.glb [options]", "Render a glTF scene to EXR and/or PNG.",
+    "Files appear whole or not at all: after an error, none is written.\n"};
+
+const CommandText kReferenceText{"reference", "SCENE.gltf|.glb --spp N -o REF.exr [options]",
+    "Render a reference: EXR with each pixel's variance of the mean.",
+    "--spp and an .exr output are required. The EXR gets channels variance.R/G/B\n"
+    "(the variance of each pixel's mean), which compare, converge and the tests use.\n"};
+
+const CommandText kCompareText{"compare", "IMAGE.exr REFERENCE.exr [options]",
+    "Print the error of an image against a reference.",
+    "Prints RMSE, relMSE = mean (x - r)^2 / (r^2 + 0.01), relMSE with the largest\n"
+    "0.1% of terms dropped, MAPE, SMAPE, the largest absolute error and the count of\n"
+    "non-finite values. The images must have the same size and R, G, B channels.\n"};
+
+const CommandText kMergeText{"merge", "A.state B.state ... -o OUT.exr|.png|.state [options]",
+    "Sum the states of a render's shards into one image or state.",
+    "The states must be of one scene with the same settings, and their sample\n"
+    "ranges must not overlap. An image needs every sample of the render (--spp of\n"
+    "the shards); a .state output alone may hold a contiguous part, to be merged\n"
+    "again. The sums are exact: shards from one device merge to the bits a single\n"
+    "render makes (docs/distributed.md). States with AOVs give the AOV layers.\n"};
+
+const CommandText kConvergeText{"converge", "SCENE.gltf|.glb --reference REF.exr -o REPORT.csv|.json [options]",
+    "Measure the error against a reference by spp and by device time.",
+    "Each seed is one render; the image at every listed spp is taken along the way.\n"
+    "Per spp: device seconds, relMSE (mean and standard deviation over the seeds) and\n"
+    "efficiency 1 / (relMSE x seconds); then the log-log slopes of relMSE against spp\n"
+    "and seconds, the floor b^2 of relMSE(N) = b^2 + c / N and the reference's own\n"
+    "noise floor.\n"};
+
+const CommandText kEdgesText{"edges", "[options]", "Measure how well each sampler estimates an edge's coverage.",
+    "Samples are drawn by the GLSL samplers on the device. Per sampler and edge angle:\n"
+    "the distinct estimates (shades) as the edge slides across the pixel, the RMSE\n"
+    "against the exact coverage, and the RMSE independent samples would have.\n"};
+
+const CommandText kBenchText{"bench", "SCENE.gltf|.glb [options]",
+    "Measure traversal, path tracing, dispatch and start-up speed.",
+    "Sections: traversal (primary, diffuse and occlusion rays, the ray sets of\n"
+    "shared/peers/embree-rays), path tracing (Msamples/s, rays/s, relMSE against\n"
+    "--reference), dispatch throughput, start-up. Device time from Vulkan\n"
+    "timestamps, warm-up excluded.\n"};
+
+const CommandText kDenoiseText{"denoise", "IN.exr -o OUT.exr [-o OUT.png] [options]",
+    "Denoise an EXR rendered with --aov.",
+    "IN.exr needs R, G, B and the layers of 'render --aov': variance, halfA, halfB,\n"
+    "albedo, normal, depth and emitter (noisy.R/G/B, when present, is the image\n"
+    "denoised). OUT.exr gets the denoised R, G, B, the input in noisy.R/G/B and the\n"
+    "layers. The same input gives the same bits as 'render --denoise'.\n"};
+
+const CommandText kDevicesText{"devices", "", "List the Vulkan devices.",
+    "One line per device: index, name, type, driver and Vulkan version; --device takes the index.\n"};
+
+// The spec of the command `text` names, made on first use from its flags
+// and its starting value (the command struct's own without `init`) and kept:
+// the parser and the help share it.
+template <const CommandText& text, class T>
+const CommandSpec<T>& kept(std::vector<Flag<T>> (*flags)(), T (*init)() = nullptr) {
+    static const CommandSpec<T> spec = makeSpec<T>(text, flags(), init ? init() : T{});
+    return spec;
+}
+
 std::vector<Flag<RenderCommand>> renderFlags() {
     using C = RenderCommand;
     const auto settings = [](auto& c) -> auto& { return c.settings; };
     return concat<C>({
         {
-            flag<C>("--output", "FILE",
-                    "write the image to FILE: .exr (linear float) or .png (sRGB, 8 bits), or the whole "
-                    "accumulation to FILE.state, to resume or merge (docs/distributed.md); may be given more "
-                    "than once",
-                    [](C& c, const std::string&, const std::string& v) {
-                        (lowerExtension(v) == ".state" ? c.states : c.outputs).push_back(v);
-                    })
-                .withAlias("-o")
+            outputFlag<C>("write the image to FILE: .exr (linear float) or .png (sRGB, 8 bits), or the whole "
+                          "accumulation to FILE.state, to resume or merge (docs/distributed.md); may be given more "
+                          "than once")
                 .withDefault("SCENE.exr and SCENE.png in the current directory"),
             positive<C>("--checkpoint-every", "SECONDS",
                         "rewrite the .state outputs every SECONDS during the render, so that a crash loses at most "
@@ -123,9 +181,9 @@ std::vector<Flag<RenderCommand>> renderFlags() {
                       [](C& c) { c.denoise = true, c.settings.aov = true; }),
         },
         pathFlags<C>(settings),
-        traceFlags<C>(settings),
+        traceFlags<C>(settings, true),
         envFlags<C>(),
-            sceneFlags<C>(),
+        sceneFlags<C>(),
         deviceFlags<C>(),
     });
 }
@@ -137,17 +195,8 @@ RenderCommand renderInit() {
 }
 
 const CommandSpec<RenderCommand>& renderSpec(const std::string& name) {
-    static const auto render =
-        makeSpec<RenderCommand>({"render", "SCENE.gltf|.glb [options]", "Render a glTF scene to EXR and/or PNG.",
-                                 "Files appear whole or not at all: after an error, none is written.\n"},
-                                renderFlags(), renderInit());
-    static const auto reference = makeSpec<RenderCommand>(
-        {"reference", "SCENE.gltf|.glb --spp N -o REF.exr [options]",
-         "Render a reference: EXR with each pixel's variance of the mean.",
-         "--spp and an .exr output are required. The EXR gets channels variance.R/G/B\n"
-         "(the variance of each pixel's mean), which compare, converge and the tests use.\n"},
-        renderFlags(), renderInit());
-    return name == "render" ? render : reference;
+    return name == "render" ? kept<kRenderText>(renderFlags, renderInit)
+                            : kept<kReferenceText>(renderFlags, renderInit);
 }
 
 // --denoise takes an optional method, '--denoise fast' (or nfor): `args`
@@ -162,38 +211,13 @@ std::vector<std::string> withoutDenoiseMethod(const std::vector<std::string>& gi
     return args;
 }
 
-// --frames excludes --shutter and sets the shutter per frame; --fps and
-// --shutter-angle need it; every output it writes names the frame.
-void checkFrameFlags(const Parsed& parsed, RenderCommand& cmd) {
-    const auto given = [&](const char* flag) {
-        return std::find(parsed.given.begin(), parsed.given.end(), flag) != parsed.given.end();
-    };
-    if (!cmd.frames.enabled) {
-        for (const char* f : {"--fps", "--shutter-angle"})
-            if (given(f)) badFlag(std::string(f) + " needs --frames");
-        return;
-    }
-    if (cmd.settings.shutter) badFlag("--frames sets each frame's shutter (--fps, --shutter-angle); leave out --shutter");
-    for (const std::string& out : cmd.outputs)
-        if (out.find('#') == std::string::npos)
-            badFlag("with --frames each output names its frame by a run of '#', e.g. out_####.exr; got '" + out + "'");
-    if (!cmd.statsJson.empty() && cmd.statsJson.find('#') == std::string::npos)
-        badFlag("with --frames --stats-json names its frame by a run of '#', e.g. stats_####.json");
+// --frames sets the shutter per frame (render/command.cpp); the first
+// frame's here, so that the checks see a render with a shutter.
+void setFirstFrameShutter(RenderCommand& cmd) {
+    if (!cmd.frames.enabled) return;
     cmd.settings.shutter = true;  // posed by the animation (renderer: frame by frame)
     cmd.settings.shutterOpen = cmd.frames.open(cmd.frames.first);
     cmd.settings.shutterClose = cmd.frames.close(cmd.frames.first);
-}
-
-// .state outputs, --checkpoint-every, --resume and --shard: one render, not
-// a sequence of frames; a checkpoint needs a state to write.
-void checkStateFlags(const RenderCommand& cmd) {
-    if (cmd.checkpointEvery > 0.0 && cmd.states.empty())
-        badFlag("--checkpoint-every rewrites the .state outputs: add -o FILE.state");
-    if (cmd.frames.enabled && (!cmd.states.empty() || !cmd.resume.empty() || cmd.shards))
-        badFlag("--frames renders frame by frame: .state outputs, --resume and --shard are for one image");
-    if (!cmd.resume.empty() && lowerExtension(cmd.resume) != ".state")
-        badFlag("--resume takes a .state file, got '" + cmd.resume + "'");
-    if (cmd.shards) shardRange(cmd.settings.spp, cmd.shard, cmd.shards, cmd.tuning.maxBatch);
 }
 
 // Parses a render-like command's flags and positional scene.
@@ -207,11 +231,8 @@ RenderCommand parseRenderLike(const std::string& name, const std::vector<std::st
         badFlag("unexpected argument '" + parsed.positional[1] + "' (one scene per " + name + ")");
     if (parsed.positional.empty()) badFlag(name + " needs a scene file (see 'strata " + name + " --help')");
     cmd.scene = parsed.positional[0];
-    checkEnvFlags(parsed, cmd.env);
-    checkViewFlags(cmd.view);
-    checkFrameFlags(parsed, cmd);
-    checkLensFlags(cmd.settings);
-    checkStateFlags(cmd);
+    setFirstFrameShutter(cmd);
+    checkRenderFlags(parsed, cmd);
     if (cmd.outputs.empty() && cmd.states.empty()) {
         const std::string stem = std::filesystem::path(cmd.scene).stem().string() + (cmd.frames.enabled ? "_####" : "");
         cmd.outputs = {stem + ".exr", stem + ".png"};
@@ -234,40 +255,25 @@ std::vector<std::uint32_t> parseSppList(const std::string& value) {
     return out;
 }
 
-const CommandSpec<CompareArgs>& compareSpec() {
-    static const auto spec = makeSpec<CompareArgs>(
-        {"compare", "IMAGE.exr REFERENCE.exr [options]", "Print the error of an image against a reference.",
-         "Prints RMSE, relMSE = mean (x - r)^2 / (r^2 + 0.01), relMSE with the largest\n"
-         "0.1% of terms dropped, MAPE, SMAPE, the largest absolute error and the count of\n"
-         "non-finite values. The images must have the same size and R, G, B channels.\n"},
-        {text<CompareArgs>("--json", "FILE", "also write the metrics to FILE as JSON", STRATA_FIELD(json))});
-    return spec;
+std::vector<Flag<CompareArgs>> compareFlags() {
+    return {text<CompareArgs>("--json", "FILE", "also write the metrics to FILE as JSON", STRATA_FIELD(json))};
 }
 
-const CommandSpec<MergeCommand>& mergeSpec() {
+const CommandSpec<CompareArgs>& compareSpec() { return kept<kCompareText>(compareFlags); }
+
+std::vector<Flag<MergeCommand>> mergeFlags() {
     using C = MergeCommand;
-    static const auto spec = makeSpec<C>(
-        {"merge", "A.state B.state ... -o OUT.exr|.png|.state [options]",
-         "Sum the states of a render's shards into one image or state.",
-         "The states must be of one scene with the same settings, and their sample\n"
-         "ranges must not overlap. An image needs every sample of the render (--spp of\n"
-         "the shards); a .state output alone may hold a contiguous part, to be merged\n"
-         "again. The sums are exact: shards from one device merge to the bits a single\n"
-         "render makes (docs/distributed.md). States with AOVs give the AOV layers.\n"},
-        {
-            flag<C>("--output", "FILE", "write FILE: .exr, .png or .state; may be given more than once",
-                    [](C& c, const std::string&, const std::string& v) {
-                        (lowerExtension(v) == ".state" ? c.states : c.outputs).push_back(v);
-                    })
-                .withAlias("-o"),
-            toggle<C>("--variance", "EXR outputs get variance.R/G/B, the variance of each pixel's mean",
-                      [](C& c) { c.variance = true; }),
-            toggle<C>("--quiet", "print no timing or names of the files written", [](C& c) { c.quiet = true; }),
-            toggle<C>("--dry-run", "check the flags and outputs, print what would be merged, and stop",
-                      [](C& c) { c.dryRun = true; }),
-        });
-    return spec;
+    return {
+        outputFlag<C>("write FILE: .exr, .png or .state; may be given more than once"),
+        toggle<C>("--variance", "EXR outputs get variance.R/G/B, the variance of each pixel's mean",
+                  [](C& c) { c.variance = true; }),
+        toggle<C>("--quiet", "print no timing or names of the files written", [](C& c) { c.quiet = true; }),
+        toggle<C>("--dry-run", "check the flags and outputs, print what would be merged, and stop",
+                  [](C& c) { c.dryRun = true; }),
+    };
 }
+
+const CommandSpec<MergeCommand>& mergeSpec() { return kept<kMergeText>(mergeFlags); }
 
 ConvergeCommand convergeInit() {
     ConvergeCommand c;
@@ -275,165 +281,138 @@ ConvergeCommand convergeInit() {
     return c;
 }
 
-const CommandSpec<ConvergeCommand>& convergeSpec() {
+std::vector<Flag<ConvergeCommand>> convergeFlags() {
     using C = ConvergeCommand;
-    static const auto spec = makeSpec<C>(
-        {"converge", "SCENE.gltf|.glb --reference REF.exr -o REPORT.csv|.json [options]",
-         "Measure the error against a reference by spp and by device time.",
-         "Each seed is one render; the image at every listed spp is taken along the way.\n"
-         "Per spp: device seconds, relMSE (mean and standard deviation over the seeds) and\n"
-         "efficiency 1 / (relMSE x seconds); then the log-log slopes of relMSE against spp\n"
-         "and seconds, the floor b^2 of relMSE(N) = b^2 + c / N and the reference's own\n"
-         "noise floor.\n"},
-        concat<C>({
-            {
-                text<C>("--reference", "REF.exr",
-                        "the reference (from 'strata reference'); its size is the render size",
-                        STRATA_FIELD(reference)),
-                text<C>("--output", "REPORT", "write the report to REPORT: .csv or .json", STRATA_FIELD(report))
-                    .withAlias("-o"),
-                flag<C>(
-                    "--spp", "N,N,...", "the spp at which the error is measured, ascending, each in [1, 1073741824]",
-                    [](C& c, const std::string&, const std::string& v) { c.spp = parseSppList(v); },
-                    [](const C& c) {
-                        std::vector<std::string> items;
-                        for (std::uint32_t n : c.spp) items.push_back(std::to_string(n));
-                        return joined(items, ",");
-                    }),
-                integer<C>("--seeds", "K", "renders, each with its own seed (--seed, --seed + 1, ...)", 1, 1000,
-                           STRATA_FIELD(seeds)),
-                text<C>("--plot", "PLOT.png", "draw relMSE against spp and against device seconds",
-                        STRATA_FIELD(plot)),
-                flag<C>(
-                    "--sampler", joined(samplerNames(), "|") + "|all",
-                    std::string(kSamplerHelp) + "; all: every sampler that suits the spp list",
-                    [](C& c, const std::string&, const std::string& v) {
-                        if (v == "all") c.allSamplers = true;
-                        else c.settings.sampler = samplerByName(v).kind;
-                    },
-                    [](const C& c) {
-                        return std::string(c.allSamplers ? "all" : samplerByKind(c.settings.sampler).name);
-                    }),
-                toggle<C>("--quiet", "print no device line or progress", [](C& c) { c.quiet = true; }),
-                toggle<C>("--denoise",
-                          "also denoise each image and measure it (sampler name +nfor, or +fast with "
-                          "'--denoise fast'); its seconds include the denoiser's",
-                          [](C& c) { c.denoise = true; }),
-            },
-            pathFlags<C>([](auto& c) -> auto& { return c.settings; }),
-            envFlags<C>(),
-            sceneFlags<C>(),
-            deviceFlags<C>(),
-        }),
-        convergeInit());
-    return spec;
+    return concat<C>({
+        {
+            text<C>("--reference", "REF.exr",
+                    "the reference (from 'strata reference'); its size is the render size",
+                    STRATA_FIELD(reference)),
+            text<C>("--output", "REPORT", "write the report to REPORT: .csv or .json", STRATA_FIELD(report))
+                .withAlias("-o"),
+            flag<C>(
+                "--spp", "N,N,...", "the spp at which the error is measured, ascending, each in [1, 1073741824]",
+                [](C& c, const std::string&, const std::string& v) { c.spp = parseSppList(v); },
+                [](const C& c) {
+                    std::vector<std::string> items;
+                    for (std::uint32_t n : c.spp) items.push_back(std::to_string(n));
+                    return joined(items, ",");
+                }),
+            integer<C>("--seeds", "K", "renders, each with its own seed (--seed, --seed + 1, ...)", 1, 1000,
+                       STRATA_FIELD(seeds)),
+            text<C>("--plot", "PLOT.png", "draw relMSE against spp and against device seconds",
+                    STRATA_FIELD(plot)),
+            flag<C>(
+                "--sampler", joined(samplerNames(), "|") + "|all",
+                std::string(kSamplerHelp) + "; all: every sampler that suits the spp list",
+                [](C& c, const std::string&, const std::string& v) {
+                    if (v == "all") c.allSamplers = true;
+                    else c.settings.sampler = samplerByName(v).kind;
+                },
+                [](const C& c) {
+                    return std::string(c.allSamplers ? "all" : samplerByKind(c.settings.sampler).name);
+                }),
+            toggle<C>("--quiet", "print no device line or progress", [](C& c) { c.quiet = true; }),
+            toggle<C>("--denoise",
+                      "also denoise each image and measure it (sampler name +nfor, or +fast with "
+                      "'--denoise fast'); its seconds include the denoiser's",
+                      [](C& c) { c.denoise = true; }),
+        },
+        pathFlags<C>([](auto& c) -> auto& { return c.settings; }),
+        envFlags<C>(),
+        sceneFlags<C>(),
+        deviceFlags<C>(),
+    });
 }
 
-const CommandSpec<EdgesCommand>& edgesSpec() {
+const CommandSpec<ConvergeCommand>& convergeSpec() { return kept<kConvergeText>(convergeFlags, convergeInit); }
+
+std::vector<Flag<EdgesCommand>> edgesFlags() {
     using C = EdgesCommand;
-    static const auto spec = makeSpec<C>(
-        {"edges", "[options]", "Measure how well each sampler estimates an edge's coverage.",
-         "Samples are drawn by the GLSL samplers on the device. Per sampler and edge angle:\n"
-         "the distinct estimates (shades) as the edge slides across the pixel, the RMSE\n"
-         "against the exact coverage, and the RMSE independent samples would have.\n"},
-        concat<C>({
-            {
-                text<C>("--output", "TABLE.csv", "write the table to TABLE.csv", STRATA_FIELD(table)).withAlias("-o"),
-                text<C>("--plot", "PLOT.png|.exr", "draw estimate against exact coverage", STRATA_FIELD(plot)),
-                integer<C>("--spp", "N", "samples per pixel", 1, 1u << 16, STRATA_FIELD(settings.spp)),
-                seedFlag<C>([](auto& c) -> auto& { return c.settings; }),
-                flag<C>(
-                    "--sampler", joined(samplerNames(), "|") + "|all",
-                    "the samplers measured; all: every one that suits --spp",
-                    [](C& c, const std::string&, const std::string& v) {
-                        c.settings.samplers.clear();
-                        if (v != "all") c.settings.samplers.push_back(samplerByName(v).kind);
-                    },
-                    [](const C& c) {
-                        std::vector<std::string> names;
-                        for (std::uint32_t k : c.settings.samplers) names.push_back(samplerByKind(k).name);
-                        return names.empty() ? std::string("all") : joined(names, ",");
-                    }),
-            },
-            deviceFlags<C>(),
-        }));
-    return spec;
+    return concat<C>({
+        {
+            text<C>("--output", "TABLE.csv", "write the table to TABLE.csv", STRATA_FIELD(table)).withAlias("-o"),
+            text<C>("--plot", "PLOT.png|.exr", "draw estimate against exact coverage", STRATA_FIELD(plot)),
+            integer<C>("--spp", "N", "samples per pixel", 1, 1u << 16, STRATA_FIELD(settings.spp)),
+            seedFlag<C>([](auto& c) -> auto& { return c.settings; }),
+            flag<C>(
+                "--sampler", joined(samplerNames(), "|") + "|all",
+                "the samplers measured; all: every one that suits --spp",
+                [](C& c, const std::string&, const std::string& v) {
+                    c.settings.samplers.clear();
+                    if (v != "all") c.settings.samplers.push_back(samplerByName(v).kind);
+                },
+                [](const C& c) {
+                    std::vector<std::string> names;
+                    for (std::uint32_t k : c.settings.samplers) names.push_back(samplerByKind(k).name);
+                    return names.empty() ? std::string("all") : joined(names, ",");
+                }),
+        },
+        deviceFlags<C>(),
+    });
 }
 
-const CommandSpec<BenchCommand>& benchSpec() {
+const CommandSpec<EdgesCommand>& edgesSpec() { return kept<kEdgesText>(edgesFlags); }
+
+std::vector<Flag<BenchCommand>> benchFlags() {
     using C = BenchCommand;
     const auto settings = [](auto& c) -> auto& { return c.settings; };
-    static const auto spec = makeSpec<C>(
-        {"bench", "SCENE.gltf|.glb [options]", "Measure traversal, path tracing, dispatch and start-up speed.",
-         "Sections: traversal (primary, diffuse and occlusion rays, the ray sets of\n"
-         "shared/peers/embree-rays), path tracing (Msamples/s, rays/s, relMSE against\n"
-         "--reference), dispatch throughput, start-up. Device time from Vulkan\n"
-         "timestamps, warm-up excluded.\n"},
-        concat<C>({
-            {
-                integer<C>("--width", "W", "image width in pixels", 1, 16384, STRATA_FIELD(settings.width)),
-                integer<C>("--height", "H", "image height in pixels", 1, 16384, STRATA_FIELD(settings.height)),
-                integer<C>("--reps", "R", "timed passes per ray set (the median is reported)", 1, 1000,
-                           STRATA_FIELD(reps)),
-                integer<C>("--spp", "N", "samples per pixel of the path-tracing section", 1, 1u << 20,
-                           STRATA_FIELD(settings.spp)),
-                text<C>("--reference", "REF.exr",
-                        "a reference of the same size: the relMSE of the path-tracing image",
-                        STRATA_FIELD(reference)),
-                toggle<C>("--quick", "a small dispatch section and short path-tracing timings",
-                          [](C& c) { c.quick = true; }),
-                flag<C>("--only", "traversal", "run only the start-up, BVH and traversal sections",
-                        [](C& c, const std::string&, const std::string& v) {
-                            c.only = v;
-                            if (c.only != "traversal") badFlag("--only takes 'traversal' (got '" + c.only + "')");
-                        }),
-                text<C>("--json", "FILE", "also write the results to FILE as JSON", STRATA_FIELD(json)),
-            },
-            pathFlags<C>(settings),
-            traceFlags<C>(settings),
-            envFlags<C>(),
-            sceneFlags<C>(),
-            deviceFlags<C>(),
-        }));
-    return spec;
+    return concat<C>({
+        {
+            integer<C>("--width", "W", "image width in pixels", 1, 16384, STRATA_FIELD(settings.width)),
+            integer<C>("--height", "H", "image height in pixels", 1, 16384, STRATA_FIELD(settings.height)),
+            integer<C>("--reps", "R", "timed passes per ray set (the median is reported)", 1, 1000,
+                       STRATA_FIELD(reps)),
+            integer<C>("--spp", "N", "samples per pixel of the path-tracing section", 1, 1u << 20,
+                       STRATA_FIELD(settings.spp)),
+            text<C>("--reference", "REF.exr",
+                    "a reference of the same size: the relMSE of the path-tracing image",
+                    STRATA_FIELD(reference)),
+            toggle<C>("--quick", "a small dispatch section and short path-tracing timings",
+                      [](C& c) { c.quick = true; }),
+            flag<C>("--only", "traversal", "run only the start-up, BVH and traversal sections",
+                    [](C& c, const std::string&, const std::string& v) {
+                        c.only = v;
+                        if (c.only != "traversal") badFlag("--only takes 'traversal' (got '" + c.only + "')");
+                    }),
+            text<C>("--json", "FILE", "also write the results to FILE as JSON", STRATA_FIELD(json)),
+        },
+        pathFlags<C>(settings),
+        traceFlags<C>(settings, false),
+        envFlags<C>(),
+        sceneFlags<C>(),
+        deviceFlags<C>(),
+    });
 }
 
-const CommandSpec<DenoiseCommand>& denoiseSpec() {
+const CommandSpec<BenchCommand>& benchSpec() { return kept<kBenchText>(benchFlags); }
+
+std::vector<Flag<DenoiseCommand>> denoiseFlags() {
     using C = DenoiseCommand;
-    static const auto spec = makeSpec<C>(
-        {"denoise", "IN.exr -o OUT.exr [-o OUT.png] [options]",
-         "Denoise an EXR rendered with --aov.",
-         "IN.exr needs R, G, B and the layers of 'render --aov': variance, halfA, halfB,\n"
-         "albedo, normal, depth and emitter (noisy.R/G/B, when present, is the image\n"
-         "denoised). OUT.exr gets the denoised R, G, B, the input in noisy.R/G/B and the\n"
-         "layers. The same input gives the same bits as 'render --denoise'.\n"},
-        concat<C>({
-            {
-                flag<C>("--output", "FILE", "write the denoised image to FILE: .exr or .png; may be given more than once",
-                        [](C& c, const std::string&, const std::string& v) { c.outputs.push_back(v); })
-                    .withAlias("-o"),
-                choice<C, DenoiseMethod>("--method",
-                                         "nfor: first-order regression on the AOVs, the bandwidth chosen per pixel "
-                                         "by the half-buffers' error; fast: the edge-aware a-trous filter",
-                                         {{"nfor", DenoiseMethod::Nfor}, {"fast", DenoiseMethod::Fast}},
-                                         STRATA_FIELD(method)),
-                toggle<C>("--quiet", "print no device line or names of the files written",
-                          [](C& c) { c.quiet = true; }),
-            },
-            deviceFlags<C>(),
-        }));
-    return spec;
+    return concat<C>({
+        {
+            flag<C>("--output", "FILE", "write the denoised image to FILE: .exr or .png; may be given more than once",
+                    [](C& c, const std::string&, const std::string& v) { c.outputs.push_back(v); })
+                .withAlias("-o"),
+            choice<C, DenoiseMethod>("--method",
+                                     "nfor: first-order regression on the AOVs, the bandwidth chosen per pixel "
+                                     "by the half-buffers' error; fast: the edge-aware a-trous filter",
+                                     {{"nfor", DenoiseMethod::Nfor}, {"fast", DenoiseMethod::Fast}},
+                                     STRATA_FIELD(method)),
+            toggle<C>("--quiet", "print no device line or names of the files written",
+                      [](C& c) { c.quiet = true; }),
+        },
+        deviceFlags<C>(),
+    });
 }
+
+const CommandSpec<DenoiseCommand>& denoiseSpec() { return kept<kDenoiseText>(denoiseFlags); }
 
 struct NoArgs {};
 
-const CommandSpec<NoArgs>& devicesSpec() {
-    static const auto spec = makeSpec<NoArgs>(
-        {"devices", "", "List the Vulkan devices.",
-         "One line per device: index, name, type, driver and Vulkan version; --device takes the index.\n"},
-        {});
-    return spec;
-}
+std::vector<Flag<NoArgs>> noFlags() { return {}; }
+
+const CommandSpec<NoArgs>& devicesSpec() { return kept<kDevicesText>(noFlags); }
 
 int listDevices(const std::vector<std::string>& args) {
     if (!args.empty()) badFlag("devices takes no arguments");
@@ -443,19 +422,29 @@ int listDevices(const std::vector<std::string>& args) {
     return 0;
 }
 
+// Every name of the flags (aliases, old names), or of the tuning flags alone.
+template <class T>
+std::vector<std::string> flagNames(const CommandSpec<T>& spec, bool tuningOnly) {
+    std::vector<std::string> names;
+    for (const Flag<T>& f : spec.flags)
+        if (f.tuning || !tuningOnly)
+            for (const std::string* n : {&f.alias, &f.name, &f.oldName})
+                if (!n->empty()) names.push_back(*n);
+    return names;
+}
+
 template <class T>
 CommandInfo command(const CommandSpec<T>& spec, std::function<int(const std::vector<std::string>&)> run) {
-    return {spec.name, spec.summary, [&spec] { return helpText(spec); },
-            [&spec] {
-                std::vector<std::string> names;
-                for (const Flag<T>& f : spec.flags)
-                    for (const std::string* n : {&f.alias, &f.name, &f.oldName})
-                        if (!n->empty()) names.push_back(*n);
-                return names;
-            },
+    return {spec.name,
+            spec.summary,
+            [&spec] { return helpText(spec); },
+            [&spec] { return hasTuning(flagTexts(spec)) ? helpText(spec, HelpPart::Tuning) : std::string(); },
+            [&spec] { return flagNames(spec, false); },
+            [&spec] { return flagNames(spec, true); },
             [&spec, run](const std::vector<std::string>& args) {
-                if (helpRequested(flagTexts(spec), args)) {
-                    std::fputs(helpText(spec).c_str(), stdout);
+                const HelpPart part = helpRequested(flagTexts(spec), args);
+                if (part != HelpPart::None) {
+                    std::fputs(helpText(spec, part).c_str(), stdout);
                     return 0;
                 }
                 return run(args);
@@ -488,6 +477,7 @@ CompareArgs parseCompare(const std::vector<std::string>& args) {
     if (parsed.positional.size() != 2) badFlag("compare needs IMAGE and REFERENCE");
     a.image = parsed.positional[0];
     a.reference = parsed.positional[1];
+    checkCompareFlags(a);
     return a;
 }
 
@@ -511,6 +501,7 @@ ConvergeCommand parseConverge(const std::vector<std::string>& given) {
     if (fast) cmd.method = DenoiseMethod::Fast;
     if (cmd.reference.empty()) badFlag("converge needs --reference REF.exr");
     if (cmd.report.empty()) badFlag("converge needs -o REPORT.csv or REPORT.json");
+    checkConvergeFlags(cmd);
     return cmd;
 }
 
@@ -518,10 +509,15 @@ EdgesCommand parseEdges(const std::vector<std::string>& args) {
     EdgesCommand cmd = edgesSpec().init;
     const Parsed parsed = parseFlags(edgesSpec(), args, cmd);
     if (!parsed.positional.empty()) badFlag("unexpected argument '" + parsed.positional[0] + "'");
+    checkEdgesFlags(cmd);
     return cmd;
 }
 
-BenchCommand parseBench(const std::vector<std::string>& args) { return parseSceneCommand(benchSpec(), args); }
+BenchCommand parseBench(const std::vector<std::string>& args) {
+    BenchCommand cmd = parseSceneCommand(benchSpec(), args);
+    checkBenchFlags(cmd);
+    return cmd;
+}
 
 MergeCommand parseMerge(const std::vector<std::string>& args) {
     MergeCommand cmd = mergeSpec().init;
@@ -531,6 +527,7 @@ MergeCommand parseMerge(const std::vector<std::string>& args) {
         if (lowerExtension(in) != ".state") badFlag("merge takes .state files, got '" + in + "'");
     if (cmd.outputs.empty() && cmd.states.empty()) badFlag("merge needs -o OUT.exr, OUT.png or OUT.state");
     cmd.inputs = parsed.positional;
+    checkMergeFlags(cmd);
     return cmd;
 }
 
@@ -541,6 +538,7 @@ DenoiseCommand parseDenoise(const std::vector<std::string>& args) {
     if (parsed.positional.empty()) badFlag("denoise needs an EXR rendered with --aov");
     if (cmd.outputs.empty()) badFlag("denoise needs -o OUT.exr or OUT.png");
     cmd.input = parsed.positional[0];
+    checkDenoiseFlags(cmd);
     return cmd;
 }
 

@@ -18,7 +18,9 @@ struct CommandInfo {
     std::string name;
     std::string summary;                           // one line
     std::function<std::string()> help;             // `strata NAME --help`
+    std::function<std::string()> tuningHelp;       // `strata NAME --help-tuning`; empty: no tuning flags
     std::function<std::vector<std::string>()> flags;  // every name its table accepts (aliases, old names)
+    std::function<std::vector<std::string>()> tuningFlags;  // those --help-tuning lists instead of --help
     // Prints the help and returns 0 when the arguments ask for it; parses and
     // runs the command otherwise.
     std::function<int(const std::vector<std::string>& args)> run;
@@ -31,9 +33,10 @@ const CommandInfo* findCommand(const std::string& name);
 std::string overview();
 
 // The parsers: `args` are the words after the command's name. They check
-// every value and the combinations (throwing strata::Error, one line) and
-// fill in what the flags leave to a default (render's outputs). Help flags
-// are not theirs to handle.
+// every value and every combination the flags alone decide (cli/checks.h),
+// throwing strata::Error, one line, before anything is read, and fill in
+// what the flags leave to a default (render's outputs). Help flags are not
+// theirs to handle.
 struct CompareArgs {
     std::string image, reference, json;
 };

@@ -10,6 +10,7 @@
 #include "cli/flags.h"
 #include "render/filter.h"
 #include "render/sampler_kind.h"
+#include "util/files.h"
 
 namespace strata::cli {
 
@@ -108,19 +109,24 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
     };
 }
 
-// --bvh, --bvh-stack, --reads (formerly --traversal), --integrator.
+// --bvh, --bvh-stack, --reads (formerly --traversal), --integrator. The
+// first three change how the scene is traversed and read, not the image:
+// with `tuning` they are lab knobs, listed by --help-tuning (render), else
+// in the help (bench, which measures them).
 template <class T, class Settings>
-std::vector<Flag<T>> traceFlags(Settings settings) {
+std::vector<Flag<T>> traceFlags(Settings settings, bool tuning) {
     return {
         choice<T, int>("--bvh", "traverse the four-wide BVH, or the binary one it is collapsed from; the same hits",
-                       {{"2", 2}, {"4", 4}}, [settings](auto& c) -> auto& { return settings(c).bvhWidth; }),
+                       {{"2", 2}, {"4", 4}}, [settings](auto& c) -> auto& { return settings(c).bvhWidth; })
+            .inTuning(tuning),
         choice<T, BvhStack>("--bvh-stack",
                             "the four-wide traversal's stack: registers, or memory (an array, the children entered "
                             "nearest first); the same hits; auto: registers on CPU devices, memory elsewhere",
                             {{"auto", BvhStack::Auto},
                              {"registers", BvhStack::Registers},
                              {"memory", BvhStack::Memory}},
-                            [settings](auto& c) -> auto& { return settings(c).bvhStack; }),
+                            [settings](auto& c) -> auto& { return settings(c).bvhStack; })
+            .inTuning(tuning),
         choice<T, ReadMode>("--reads",
                              "how the scene arrays are read: texel (the BVH through texel views, the rest through "
                              "storage buffers) or storage (every array through storage buffers); auto: every array "
@@ -128,7 +134,8 @@ std::vector<Flag<T>> traceFlags(Settings settings) {
                              "past the storage range",
                              {{"auto", ReadMode::Auto}, {"texel", ReadMode::Texel}, {"storage", ReadMode::Storage}},
                              [settings](auto& c) -> auto& { return settings(c).reads; })
-            .withOldName("--traversal"),
+            .withOldName("--traversal")
+            .inTuning(tuning),
         choice<T, IntegratorKind>("--integrator",
                               "one path per invocation (megakernel), or stages with ray lists on the device "
                               "(wavefront); the same image",
@@ -158,28 +165,6 @@ std::vector<Flag<T>> envFlags() {
     };
 }
 
-inline void checkViewFlags(const ViewOptions& view) {
-    if (view.lookFrom.has_value() != view.lookAt.has_value())
-        badFlag(view.lookFrom ? "--look-from needs --look-at" : "--look-at needs --look-from");
-    if (view.up && !view.lookFrom) badFlag("--up needs --look-from and --look-at");
-}
-
-inline void checkLensFlags(const RenderSettings& s) {
-    if (s.apertureBlades == 1 || s.apertureBlades == 2)
-        badFlag("--aperture-blades must be 0 (round) or 3 or more, got " + std::to_string(s.apertureBlades));
-    if (!s.animation.empty() && !s.shutter) badFlag("--animation needs --shutter (or --frames)");
-    if (s.cameraEffects() && s.integrator == IntegratorKind::Wavefront)
-        badFlag("--lens-radius and a --shutter interval need the megakernel integrator; the wavefront integrator "
-                "has no lens and no time");
-}
-
-inline void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
-    if (!env.file.empty() && env.hasColor) badFlag("--env and --env-color exclude each other");
-    for (const std::string& a : parsed.given)
-        if ((a == "--env-intensity" || a == "--env-rotate") && !env.given())
-            badFlag(a + " needs --env or --env-color");
-}
-
 // --variant (the scene's materials), --instancing (its meshes), --restrict-paths (its files).
 template <class T>
 std::vector<Flag<T>> sceneFlags() {
@@ -207,6 +192,17 @@ std::vector<Flag<T>> deviceFlags() {
         toggle<T>("--validation", "turn on the Vulkan validation layers, as STRATA_VALIDATION=1 does",
                   [](T& c) { c.validation = true; }),
     };
+}
+
+// -o, --output FILE, repeatable: a FILE.state goes to the command's states,
+// any other to its images (render, merge).
+template <class T>
+Flag<T> outputFlag(std::string help) {
+    return flag<T>("--output", "FILE", std::move(help),
+                   [](T& c, const std::string&, const std::string& v) {
+                       (lowerExtension(v) == ".state" ? c.states : c.outputs).push_back(v);
+                   })
+        .withAlias("-o");
 }
 
 template <class T>

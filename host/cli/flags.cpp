@@ -98,6 +98,7 @@ constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
 bool isOption(const std::string& arg) { return !arg.empty() && arg[0] == '-'; }
 bool isHelp(const std::string& arg) { return arg == "-h" || arg == "--help"; }
+constexpr const char* kHelpTuning = "--help-tuning";
 
 std::size_t findFlag(const std::vector<const FlagText*>& table, const std::string& arg) {
     for (std::size_t k = 0; k < table.size(); ++k)
@@ -141,13 +142,18 @@ void addRow(std::string& out, const std::string& left, const std::string& help) 
 
 }  // namespace
 
-bool helpRequested(const std::vector<const FlagText*>& table, const std::vector<std::string>& args) {
+bool hasTuning(const std::vector<const FlagText*>& table) {
+    return std::any_of(table.begin(), table.end(), [](const FlagText* f) { return f->tuning; });
+}
+
+HelpPart helpRequested(const std::vector<const FlagText*>& table, const std::vector<std::string>& args) {
     for (std::size_t i = 0; i < args.size(); ++i) {
-        if (isHelp(args[i])) return true;
+        if (isHelp(args[i])) return HelpPart::Main;
+        if (args[i] == kHelpTuning && hasTuning(table)) return HelpPart::Tuning;
         const std::size_t k = findFlag(table, args[i]);
         if (k != kNone && table[k]->takesValue()) ++i;
     }
-    return false;
+    return HelpPart::None;
 }
 
 Parsed scanArgs(const std::string& command, const std::vector<const FlagText*>& table,
@@ -180,18 +186,29 @@ Parsed scanArgs(const std::string& command, const std::vector<const FlagText*>& 
 }
 
 std::string formatHelp(const CommandText& command, const std::vector<const FlagText*>& table,
-                       const std::vector<std::string>& defaults) {
+                       const std::vector<std::string>& defaults, HelpPart part) {
+    const bool tuning = part == HelpPart::Tuning;
+    const std::string summary =
+        tuning ? joined(wrapped("The tuning flags of 'strata " + command.name + "', for measurements and tests: "
+                                "each gives the same image, and the defaults suit the device.",
+                                79),
+                        "\n")
+               : command.summary;
     std::string out = "usage: strata " + command.name + (command.usage.empty() ? "" : " " + command.usage) +
-                      "\n\n" + command.summary + "\n\noptions:\n";
+                      "\n\n" + summary + "\n\noptions:\n";
     for (std::size_t k = 0; k < table.size(); ++k) {
         const FlagText& f = *table[k];
+        if (f.tuning != tuning) continue;
         const std::string value = f.takesValue() ? " " + f.metavar : "";
         const std::string def = defaults[k].empty() ? "" : " (default: " + defaults[k] + ")";
         addRow(out, "  " + (f.alias.empty() ? "" : f.alias + ", ") + f.name + value, f.help + def);
         if (!f.oldName.empty()) addRow(out, "  " + f.oldName + value, "(old name of " + f.name + ")");
     }
+    if (tuning) return out;
     addRow(out, "  -h, --help", "print this help and do nothing else");
     if (!command.notes.empty()) out += "\n" + command.notes;
+    if (hasTuning(table))
+        out += "\nTuning flags, for measurements and tests: 'strata " + command.name + " " + kHelpTuning + "'.\n";
     return out;
 }
 

@@ -39,6 +39,7 @@ struct FlagText {
     std::string alias;     // a short form ("-o"), or empty
     std::string oldName;   // a former name still accepted ("--traversal"), or empty
     bool applyLast = false;  // applied after every other flag given, whatever the order
+    bool tuning = false;     // a lab knob: listed by --help-tuning, not --help
     bool takesValue() const { return !metavar.empty(); }
     bool names(const std::string& arg) const {
         return arg == name || (!alias.empty() && arg == alias) || (!oldName.empty() && arg == oldName);
@@ -61,6 +62,7 @@ struct Flag : FlagText {
         return f;
     }
     Flag appliedLast() const { Flag f = *this; f.applyLast = true; return f; }
+    Flag inTuning(bool on = true) const { Flag f = *this; f.tuning = on; return f; }
 };
 
 // What a command is, without its flags.
@@ -92,12 +94,18 @@ using Apply = std::function<void(std::size_t flag, const std::string& given, con
 // applyLast after the rest.
 Parsed scanArgs(const std::string& command, const std::vector<const FlagText*>& table,
                 const std::vector<std::string>& args, const Apply& apply);
-// True when -h or --help stands where a flag may: help ignores the rest of the line.
-bool helpRequested(const std::vector<const FlagText*>& table, const std::vector<std::string>& args);
-// "usage: strata NAME ...", the summary, every flag with its metavar, help
-// and default (defaults[i] for table[i], empty: none), then the notes.
+// Which help a command line asks for: none, the flags a user sets (-h,
+// --help), or the lab knobs (--help-tuning, where the table has any).
+enum class HelpPart { None, Main, Tuning };
+bool hasTuning(const std::vector<const FlagText*>& table);
+// The first help flag that stands where a flag may: help ignores the rest of the line.
+HelpPart helpRequested(const std::vector<const FlagText*>& table, const std::vector<std::string>& args);
+// "usage: strata NAME ...", the summary, every flag of `part` (the tuning
+// flags or the others) with its metavar, help and default (defaults[i] for
+// table[i], empty: none), then the notes; the main help ends with a line
+// naming --help-tuning where the table has tuning flags.
 std::string formatHelp(const CommandText& command, const std::vector<const FlagText*>& table,
-                       const std::vector<std::string>& defaults);
+                       const std::vector<std::string>& defaults, HelpPart part = HelpPart::Main);
 
 template <class T>
 std::vector<const FlagText*> flagTexts(const CommandSpec<T>& spec) {
@@ -115,10 +123,10 @@ Parsed parseFlags(const CommandSpec<T>& spec, const std::vector<std::string>& ar
 }
 
 template <class T>
-std::string helpText(const CommandSpec<T>& spec) {
+std::string helpText(const CommandSpec<T>& spec, HelpPart part = HelpPart::Main) {
     std::vector<std::string> defaults;
     for (const Flag<T>& f : spec.flags) defaults.push_back(f.show ? f.show(spec.init) : std::string());
-    return formatHelp(spec, flagTexts(spec), defaults);
+    return formatHelp(spec, flagTexts(spec), defaults, part);
 }
 
 // Builders. `field` is a generic lambda giving the member a flag sets, for a

@@ -41,10 +41,7 @@ void writeDenoised(const std::vector<std::string>& paths, const AovImages& aov, 
 }
 
 int runDenoise(const DenoiseCommand& cmd) {
-    for (const std::string& out : cmd.outputs) {
-        outputFormat(out);
-        checkOutputPath(out);
-    }
+    for (const std::string& out : cmd.outputs) checkOutputPath(out);
     const AovImages aov = readAovImages(cmd.input);
     vk::Context ctx({cmd.device, cmd.validation});
     const DenoiseResult d = denoise(ctx, denoiseInput(aov), cmd.method);

@@ -30,6 +30,8 @@ void writeDenoised(const std::vector<std::string>& paths, const AovImages& aov, 
 
 // Returns the exit status; throws strata::Error for bad input (a file
 // without a layer the denoiser needs names it), vk::DeviceError for the device.
+// `cmd` as the command line parsed and checked it (cli/checks.h): what
+// the flags alone decide is not checked again.
 int runDenoise(const DenoiseCommand& cmd);
 
 }  // namespace strata

@@ -53,6 +53,8 @@ struct BenchCommand {
     bool validation = false;
 };
 
+// `cmd` as the command line parsed and checked it (cli/checks.h): what
+// the flags alone decide is not checked again.
 int runBench(const BenchCommand& cmd);
 
 }  // namespace strata

@@ -15,6 +15,7 @@ nlohmann::json metricsJson(const ErrorMetrics& m);
 // on unreadable input and on images of different sizes.
 ErrorMetrics compareFiles(const std::string& image, const std::string& reference);
 
+// The arguments as the command line parsed and checked them (cli/checks.h).
 int runCompare(const std::string& image, const std::string& reference, const std::string& json);
 
 }  // namespace strata

@@ -201,9 +201,6 @@ std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd) {
 }
 
 int runConverge(const ConvergeCommand& cmd) {
-    const std::string ext = lowerExtension(cmd.report);
-    if (ext != ".csv" && ext != ".json") fail(cmd.report, "converge report must be .csv or .json");
-    if (!cmd.plot.empty()) outputFormat(cmd.plot);
     checkOutputPath(cmd.report);
     if (!cmd.plot.empty()) checkOutputPath(cmd.plot);
     std::vector<std::uint32_t> kinds;
@@ -233,7 +230,7 @@ int runConverge(const ConvergeCommand& cmd) {
     if (!cmd.plot.empty()) plot(cmd.plot, runs, std::filesystem::path(cmd.scene).stem().string());
     nlohmann::json j;
     for (const auto& r : runs) j["runs"].push_back(r.toJson());
-    writeTextAtomically(cmd.report, ext == ".csv" ? csv(runs) : j.dump(2) + "\n");
+    writeTextAtomically(cmd.report, lowerExtension(cmd.report) == ".csv" ? csv(runs) : j.dump(2) + "\n");
     std::printf("%s", csv(runs).c_str());
     for (const auto& r : runs)
         std::printf("%s: slope relMSE vs spp %.3f, vs device seconds %.3f; bias floor b^2 %.3g (c %.3g); "

@@ -66,6 +66,8 @@ struct ConvergeReport {
 // denoiser's device time).
 std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd);
 
+// `cmd` as the command line parsed and checked it (cli/checks.h): what
+// the flags alone decide is not checked again.
 int runConverge(const ConvergeCommand& cmd);
 
 }  // namespace strata

@@ -251,6 +251,11 @@ const EdgeRow* EdgeReport::row(const std::string& sampler, double angleDeg) cons
     return nullptr;
 }
 
+void checkEdgeSettings(const EdgeSettings& s) {
+    std::vector<std::string> skipped;
+    selectSamplers(s, skipped);
+}
+
 EdgeReport measureEdges(const vk::Context& ctx, const EdgeSettings& s) {
     EdgeReport report;
     const std::vector<const SamplerInfo*> suited = selectSamplers(s, report.skipped);
@@ -390,12 +395,8 @@ std::vector<std::string> edgesSummary(const EdgeReport& r) {
 }
 
 int runEdges(const EdgesCommand& cmd) {
-    if (!cmd.table.empty() && lowerExtension(cmd.table) != ".csv") fail(cmd.table, "edges table must be .csv");
-    if (!cmd.plot.empty()) outputFormat(cmd.plot);
     if (!cmd.table.empty()) checkOutputPath(cmd.table);
     if (!cmd.plot.empty()) checkOutputPath(cmd.plot);
-    std::vector<std::string> skipped;
-    selectSamplers(cmd.settings, skipped);  // bad settings fail before the device starts
     vk::Context ctx({cmd.device, cmd.validation});
     std::fprintf(stderr, "strata: device %u: %s (%s, %s)\n", ctx.info.index, ctx.info.name.c_str(),
                  ctx.info.type.c_str(), ctx.info.driver.c_str());

@@ -97,6 +97,8 @@ struct EdgeReport {
 // Throws strata::Error for spp 0, no offsets, an empty block, or when no
 // requested sampler suits the spp.
 EdgeReport measureEdges(const vk::Context& ctx, const EdgeSettings& settings);
+// The same refusals without a device (the command line checks them while parsing).
+void checkEdgeSettings(const EdgeSettings& settings);
 
 // The table as CSV (one line per row) and as aligned text, and one line per
 // sampler stating the result in words.
@@ -112,8 +114,9 @@ struct EdgesCommand {
     bool validation = false;
 };
 
-// Measures, prints the table and the summary, writes the files; bad names
-// are rejected before any work.
+// Measures, prints the table and the summary, writes the files; an output
+// that cannot be written is rejected before any work. The settings and file
+// names are as the command line checked them (cli/checks.h).
 int runEdges(const EdgesCommand& cmd);
 
 }  // namespace strata

@@ -321,14 +321,12 @@ std::string frameFileName(const std::string& pattern, int frame) {
 }
 
 int runRender(const RenderCommand& cmd) {
-    for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
+    // The flags alone were checked while parsing (cli/checks.h); what needs
+    // the file system before any work: image support, writable outputs.
     for (const auto& out : cmd.outputs) requireImageSupport(out);
     for (const auto& out : cmd.outputs) checkOutputPath(out);
     for (const auto& out : cmd.states) checkOutputPath(out);
     if (!cmd.statsJson.empty()) checkOutputPath(cmd.statsJson);
-    checkSamplerSettings(samplerByKind(cmd.settings.sampler), cmd.settings.spp, cmd.settings.width,
-                         cmd.settings.height);
-    renderRange(cmd);  // a shard that cannot be (more shards than batches)
     if (cmd.dryRun) return dryRun(cmd);
     std::optional<RenderState> resumed;
     if (!cmd.resume.empty()) resumed = readState(cmd.resume);  // a bad state file before any work

@@ -70,6 +70,8 @@ GpuScene buildAndPackReleasing(Scene& scene, int bvhWidth, double& ms);
 
 // Returns the process exit status. Throws strata::Error for bad input and
 // vk::DeviceError for device failures; writes no output file on any error.
+// `cmd` as the command line parsed and checked it (cli/checks.h): what
+// the flags alone decide is not checked again.
 int runRender(const RenderCommand& cmd);
 
 }  // namespace strata

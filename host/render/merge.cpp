@@ -43,8 +43,7 @@ std::vector<std::string> otherImplementations(const StateInfo& in) {
 }  // namespace
 
 int runMerge(const MergeCommand& cmd) {
-    for (const auto& out : cmd.outputs) outputFormat(out);  // reject bad input before any work
-    for (const auto& out : cmd.outputs) requireImageSupport(out);
+    for (const auto& out : cmd.outputs) requireImageSupport(out);  // reject bad input before any work
     for (const auto& out : cmd.outputs) checkOutputPath(out);
     for (const auto& out : cmd.states) checkOutputPath(out);
     if (cmd.dryRun) {

@@ -18,6 +18,8 @@ struct MergeCommand {
 
 // Throws strata::Error (one line naming the file) for unreadable,
 // mismatched, overlapping or missing ranges; writes nothing then.
+// `cmd` as the command line parsed and checked it (cli/checks.h): what
+// the flags alone decide is not checked again.
 int runMerge(const MergeCommand& cmd);
 
 }  // namespace strata
