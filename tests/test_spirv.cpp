@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "../shaders/shared/types.h"
 #include "cli_util.h"
 #include "spirv/cache.h"
@@ -242,4 +244,49 @@ TEST_CASE("shader cache: writers at once leave whole entries") {
     CHECK(files == 1);
 }
 
+TEST_CASE("shader cache: 'strata shaders SCENE' fills the folder a later run finds whole; off writes nothing") {
+    TempDir dir;
+    const std::string cache = (dir.path / "cache").string();
+    const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+    const auto cold = strata::test::run("shaders " + scene + " --quiet --shader-cache " + cache);
+    CAPTURE(cold.output);
+    REQUIRE(cold.status == 0);
+    CHECK(cold.output.find(" compiled, 0 from the cache") != std::string::npos);
+    const auto warm = strata::test::run("shaders " + scene + " --quiet --shader-cache " + cache);
+    CAPTURE(warm.output);
+    CHECK(warm.status == 0);
+    CHECK(warm.output.find(": 0 compiled, ") != std::string::npos);
+    const TempDir empty;
+    const auto off = strata::test::run("shaders " + scene + " --quiet --shader-cache off",
+                                       "XDG_CACHE_HOME=" + empty.path.string());
+    CHECK(off.status == 0);
+    CHECK(off.output.find("0 from the cache (off)") != std::string::npos);
+    CHECK(std::filesystem::is_empty(empty.path));
+    // Without arguments: the feature table.
+    const auto table = strata::test::run("shaders");
+    CHECK(table.output == featureTableMarkdown());
+}
+
 TEST_SUITE_END();
+
+TEST_CASE("shader cache: a render compiles its modules once, and the next render reads them" *
+          doctest::test_suite("render")) {
+    TempDir dir;
+    const std::string cache = (dir.path / "cache").string();
+    const std::string args = "render " + std::string(STRATA_SOURCE_DIR) +
+                             "/scenes/cornell-box.gltf --spp 1 --width 16 --height 16 --quiet --shader-cache " +
+                             cache + " -o " + (dir.path / "a.exr").string() + " --stats-json ";
+    const auto first = strata::test::run(args + (dir.path / "first.json").string());
+    CAPTURE(first.output);
+    REQUIRE(first.status == 0);
+    const auto second = strata::test::run(args + (dir.path / "second.json").string());
+    REQUIRE(second.status == 0);
+    const auto startup = [](const std::filesystem::path& p) {
+        return nlohmann::json::parse(readText(p.string()))["startup"];
+    };
+    const auto a = startup(dir.path / "first.json"), b = startup(dir.path / "second.json");
+    CHECK(a["shaders_compiled"].get<int>() >= 1);
+    CHECK(a["shaders_cached"].get<int>() == 0);
+    CHECK(b["shaders_compiled"].get<int>() == 0);
+    CHECK(b["shaders_cached"].get<int>() == a["shaders_compiled"].get<int>());
+}

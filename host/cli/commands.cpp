@@ -408,6 +408,32 @@ std::vector<Flag<DenoiseCommand>> denoiseFlags() {
 
 const CommandSpec<DenoiseCommand>& denoiseSpec() { return kept<kDenoiseText>(denoiseFlags); }
 
+const CommandText kShadersText{"shaders", "[SCENE.gltf ...] [--all] [options]",
+    "Print the shader feature table, or fill the shader cache.",
+    "Without arguments: the feature axes (docs/architecture.md). With scenes: compiles,\n"
+    "or finds in the shader cache, every module a render of each may use (any BVH,\n"
+    "with and without --aov and the camera effects, either integrator, the denoiser);\n"
+    "with --all, every module the table allows. Run it before a farm's jobs start on\n"
+    "a shared --shader-cache folder.\n"};
+
+std::vector<Flag<ShadersCommand>> shadersFlags() {
+    using C = ShadersCommand;
+    return {
+        toggle<C>("--all", "every module the feature table allows", [](C& c) { c.all = true; }),
+        text<C>("--out", "DIR", "also write each module as DIR/NAME.spv", STRATA_FIELD(out)),
+        toggle<C>("--quiet", "print the summary line only", [](C& c) { c.quiet = true; }),
+        shaderCacheFlag<C>(),
+    };
+}
+
+const CommandSpec<ShadersCommand>& shadersSpec() { return kept<kShadersText>(shadersFlags); }
+
+ShadersCommand parseShaders(const std::vector<std::string>& args) {
+    ShadersCommand cmd = shadersSpec().init;
+    cmd.scenes = parseFlags(shadersSpec(), args, cmd).positional;
+    return cmd;
+}
+
 struct NoArgs {};
 
 std::vector<Flag<NoArgs>> noFlags() { return {}; }
@@ -557,6 +583,7 @@ const std::vector<CommandInfo>& commands() {
         command(denoiseSpec(), [](const auto& a) { return runDenoise(parseDenoise(a)); }),
         command(mergeSpec(), [](const auto& a) { return runMerge(parseMerge(a)); }),
         command(devicesSpec(), listDevices),
+        command(shadersSpec(), [](const auto& a) { return runShaders(parseShaders(a)); }),
     };
     return list;
 }

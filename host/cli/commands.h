@@ -11,6 +11,7 @@
 #include "measure/edges.h"
 #include "render/command.h"
 #include "render/merge.h"
+#include "render/shaders_command.h"
 
 namespace strata::cli {
 
@@ -26,7 +27,7 @@ struct CommandInfo {
     std::function<int(const std::vector<std::string>& args)> run;
 };
 
-// render, reference, compare, converge, edges, bench, denoise, merge, devices.
+// render, reference, compare, converge, edges, bench, denoise, merge, devices, shaders.
 const std::vector<CommandInfo>& commands();
 const CommandInfo* findCommand(const std::string& name);
 // `strata --help`: the commands with their summaries.

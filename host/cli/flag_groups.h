@@ -10,6 +10,7 @@
 #include "cli/flags.h"
 #include "render/filter.h"
 #include "render/sampler_kind.h"
+#include "spirv/cache.h"
 #include "util/files.h"
 
 namespace strata::cli {
@@ -183,7 +184,20 @@ std::vector<Flag<T>> sceneFlags() {
                     STRATA_FIELD(restrictPaths))};
 }
 
-// --device, --validation.
+// --shader-cache DIR|off: where the compiled shader modules are kept
+// (spirv/cache.h); process-wide, set as the flag is read.
+template <class T>
+Flag<T> shaderCacheFlag() {
+    return flag<T>("--shader-cache", "DIR|off",
+                   "keep the compiled shaders in DIR, or 'off' to compile them in memory only",
+                   [](T&, const std::string& name, const std::string& v) {
+                       if (v.empty()) badFlag(name + " needs a folder or 'off'");
+                       spirv::setShaderCache(v);
+                   })
+        .withDefault("$XDG_CACHE_HOME/strata/shaders, else ~/.cache/strata/shaders");
+}
+
+// --device, --validation, --shader-cache.
 template <class T>
 std::vector<Flag<T>> deviceFlags() {
     return {
@@ -191,6 +205,7 @@ std::vector<Flag<T>> deviceFlags() {
             .withDefault("a discrete GPU, else an integrated one, else the CPU"),
         toggle<T>("--validation", "turn on the Vulkan validation layers, as STRATA_VALIDATION=1 does",
                   [](T& c) { c.validation = true; }),
+        shaderCacheFlag<T>(),
     };
 }
 
