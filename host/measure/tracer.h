@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "render/settings.h"
+#include "settings/settings.h"
 #include "upload/device_scene.h"
 #include "pack/gpu_scene.h"
 #include "vk/context.h"

@@ -2,7 +2,7 @@
 // image/image_io.cpp loads on the first image read or written, so that
 // commands touching no image do not run the static initialisers of the
 // libraries Debian's OpenImageIO pulls in (docs/experiments.md). The
-// interface is plain data (image/image.h, image/chart.h) and function
+// interface is plain data (oiio/image.h, oiio/chart.h) and function
 // pointers: the module and strata share no other header.
 //
 // Functions return "" on success, else the error (one line, no file name).
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "image/chart.h"
-#include "image/image.h"
+#include "oiio/chart.h"
+#include "oiio/image.h"
 
 namespace strata::oiio {
 

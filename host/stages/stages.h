@@ -12,7 +12,7 @@
 
 #include "bvh/scene_bvh.h"
 #include "pack/gpu_scene.h"
-#include "render/settings.h"
+#include "settings/settings.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
 #include "scene/view.h"

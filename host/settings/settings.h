@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "../../shaders/shared/types.h"
-#include "render/filter.h"
+#include "settings/filter.h"
 #include "scene/scene.h"
 #include "upload/device_scene.h"
 
