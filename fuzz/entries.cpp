@@ -8,15 +8,13 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "bvh/scene_bvh.h"
 #include "cli/commands.h"
 #include "pack/env_tables.h"
 #include "image/image_io.h"
-#include "pack/gpu_scene.h"
 #include "render/state.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
-#include "scene/view.h"
+#include "stages/stages.h"
 #include "util/error.h"
 
 namespace strata::fuzz {
@@ -30,18 +28,19 @@ void handled(const std::function<void()>& body) {
     }
 }
 
+// The host stages of `strata render` (stages/stages.h) over the bytes:
+// load -> camera -> BVH -> pack, consuming as the command does.
 void loadAndPack(const std::string& path, const std::vector<unsigned char>& bytes, const std::string& root) {
-    LoadOptions options;
-    options.restrictPaths = root;
-    options.hostMemory = std::uint64_t(1) << 30;  // within libFuzzer's -rss_limit_mb=4096
-    Scene scene = loadGltf(path, bytes, options);
-    const Camera camera = chooseCamera(scene, ViewOptions{}, 64, 48);
-    (void)camera;
-    BvhBuildOptions bvh;
-    bvh.threads = 1;  // libFuzzer wants one thread
-    SceneBvh tree = buildSceneBvh(scene, bvh);
-    GpuScene gpu = packSceneAndRelease(scene, std::move(tree), 4);
-    (void)gpu;
+    SceneRequest request;
+    request.file = path;
+    request.bytes = bytes;
+    request.load.restrictPaths = root;
+    request.load.hostMemory = std::uint64_t(1) << 30;  // within libFuzzer's -rss_limit_mb=4096
+    request.camera = CameraChoice{{}, 64, 48};
+    request.build.threads = 1;  // libFuzzer wants one thread
+    request.bvhWidth = 4;
+    request.consume = Consume::All;
+    (void)prepareScene(request);
 }
 
 void appendU32(std::vector<unsigned char>& out, std::uint32_t v) {

@@ -139,7 +139,7 @@ TEST_CASE("instancing: the two-level traversal renders what the flattened scene 
     bvh2.bvhWidth = 2;
     RenderSettings memory = s;
     memory.bvhStack = BvhStack::Memory;
-    CHECK(sameImage(uploadAndRender(gpuOn, on.cameras.at(0), bvh2).film, onResult.film));
+    CHECK(sameImage(uploadAndRender(buildAndPack(on, {}, 2), on.cameras.at(0), bvh2).film, onResult.film));
     CHECK(sameImage(uploadAndRender(gpuOn, on.cameras.at(0), memory).film, onResult.film));
 }
 

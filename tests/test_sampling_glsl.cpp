@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "../shaders/shared/bindings.h"
-#include "render/filter.h"
+#include "settings/filter.h"
 #include "pack/env_tables.h"
 #include "pack/gpu_scene.h"
 #include "measure/sample_dump.h"

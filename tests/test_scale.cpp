@@ -241,6 +241,7 @@ void checkConsumingPack(const Scene& scene, int bvhWidth) {
     CHECK(g.sceneRadius == kept.sceneRadius);
     CHECK(g.totalPower == kept.totalPower);
     // The BVH2 is dropped only where the four-wide tree will be traversed.
+    CHECK(g.bvhWidth == bvhWidth);
     if (bvhWidth == 4) CHECK(g.nodes.empty());
     else CHECK(sameBytes(g.nodes, kept.nodes));
 }

@@ -12,9 +12,10 @@
 #include "bvh/scene_bvh.h"
 #include "pack/gpu_scene.h"
 #include "render/renderer.h"
-#include "upload/device_scene.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
+#include "stages/stages.h"
+#include "upload/device_scene.h"
 #include "vk/context.h"
 
 namespace strata::test {
@@ -32,32 +33,52 @@ struct Rendered {
     RenderResult result;
 };
 
-// The BVH and packing stages of a render, as `strata render` runs them
-// (without releasing the scene).
-inline GpuScene buildAndPack(const Scene& scene, const BvhBuildOptions& options = {}) {
-    return packScene(scene, buildSceneBvh(scene, options));
+// The request of the stages (stages/stages.h) as `strata render` makes it
+// for these settings, keeping the Scene and the GpuScene (Consume::None).
+inline SceneRequest keptRequest(const RenderSettings& settings = {}, const RenderTuning& tuning = {}) {
+    SceneRequest r = sceneRequest(settings, tuning);
+    r.consume = Consume::None;
+    return r;
 }
 
-// Uploads a packed scene as the settings ask and renders it.
+// The BVH and packing stages of a render, as `strata render` runs them
+// (without releasing the scene); `bvhWidth` chooses the tree traversed.
+inline GpuScene buildAndPack(const Scene& scene, const BvhBuildOptions& options = {}, int bvhWidth = 4) {
+    SceneRequest r = keptRequest();
+    r.camera.reset();
+    r.build = options;
+    r.bvhWidth = bvhWidth;
+    return prepareScene(r, scene).gpu;
+}
+
+// Uploads a packed scene as the settings ask and renders it. The BVH is the
+// one `gpu` was packed for: settings.bvhWidth 2 needs a scene packed so.
 inline RenderResult uploadAndRender(const GpuScene& gpu, const Camera& camera, const RenderSettings& settings,
                                     const RenderTuning& tuning = {}, const Checkpoints& checkpoints = {}) {
-    const DeviceScene dev = uploadScene(context(), gpu, uploadOptions(settings, tuning));
+    REQUIRE_MESSAGE((settings.bvhWidth == 4 || gpu.bvhWidth == 2), "pack the scene for --bvh 2: buildAndPack(s, {}, 2)");
+    const DeviceScene dev = uploadPrepared(context(), keptRequest(settings, tuning), gpu);
     return render(context(), dev, camera, settings, tuning, checkpoints);
 }
 
-// Packs and renders a loaded scene from its first camera. Every test scene
-// renders without a single NaN/Inf sample.
+// Packs (for settings.bvhWidth) and renders a loaded scene from its first
+// camera. Every test scene renders without a single NaN/Inf sample.
 inline RenderResult renderScene(const Scene& scene, const RenderSettings& settings, const RenderTuning& tuning = {}) {
-    RenderResult r = uploadAndRender(buildAndPack(scene), scene.cameras.at(0), settings, tuning);
+    RenderResult r = uploadAndRender(buildAndPack(scene, {}, settings.bvhWidth), scene.cameras.at(0), settings, tuning);
     CHECK(r.nonFinite == 0);
     return r;
 }
 
+// Loads a scene file (its own lights, no --env), packs and renders it through
+// the stages as `strata render` does, from the file's first camera.
 inline Rendered renderFile(const std::string& relPath, const RenderSettings& settings, const RenderTuning& tuning = {}) {
+    SceneRequest request = keptRequest(settings, tuning);
+    request.file = sourcePath(relPath);
+    HostScene host = prepareScene(request);
+    REQUIRE(!host.scene.cameras.empty());
     Rendered r;
-    r.scene = loadGltf(sourcePath(relPath));
-    r.gpu = buildAndPack(r.scene);
-    r.result = uploadAndRender(r.gpu, r.scene.cameras.at(0), settings, tuning);
+    r.result = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, settings, tuning);
+    r.scene = std::move(host.scene);
+    r.gpu = std::move(host.gpu);
     CHECK(r.result.nonFinite == 0);
     return r;
 }

@@ -10,7 +10,7 @@
 #include "denoise/command.h"
 #include "image/image_io.h"
 #include "measure/compare.h"
-#include "render/filter.h"
+#include "settings/filter.h"
 #include "render/merge.h"
 #include "render/sampler_kind.h"
 #include "util/files.h"

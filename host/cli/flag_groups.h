@@ -8,7 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/flags.h"
-#include "render/filter.h"
+#include "settings/filter.h"
 #include "render/sampler_kind.h"
 #include "spirv/cache.h"
 #include "util/files.h"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "image/film.h"
-#include "image/image.h"
+#include "oiio/image.h"
 
 namespace strata {
 

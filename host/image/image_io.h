@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "image/image.h"
+#include "oiio/image.h"
 
 namespace strata {
 

@@ -11,7 +11,7 @@
 
 #include "../../shaders/shared/types.h"
 #include "integrate/kernels.h"
-#include "render/settings.h"
+#include "settings/settings.h"
 #include "upload/device_scene.h"
 #include "vk/context.h"
 

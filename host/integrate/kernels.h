@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "render/settings.h"
+#include "settings/settings.h"
 #include "spirv/features.h"
 #include "upload/device_scene.h"
 #include "vk/buffer.h"
@@ -49,7 +49,7 @@ void bindTraversal(vk::Kernel& kernel, const DeviceScene& scene);
 // integrator reads or adds to.
 struct FilmBuffers {
     const vk::Buffer& frame;        // BINDING_FRAME: gpu::FrameUniforms
-    const vk::Buffer& filterTable;  // BINDING_FILTER: render/filter.h's inverse CDF
+    const vk::Buffer& filterTable;  // BINDING_FILTER: settings/filter.h's inverse CDF
     const vk::Buffer& accum;        // BINDING_ACCUM: kAccumVec4PerPixel vec4 per pixel
     const vk::Buffer& counters;     // BINDING_COUNTERS: gpu::RenderCounters
 };

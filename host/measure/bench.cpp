@@ -10,11 +10,11 @@
 
 #include "image/image_io.h"
 #include "measure/bench_render.h"
-#include "pack/gpu_scene.h"
-#include "render/command.h"
-#include "render/report.h"
 #include "measure/tracer.h"
+#include "pack/gpu_scene.h"
+#include "render/report.h"
 #include "scene/scene.h"
+#include "stages/stages.h"
 #include "util/error.h"
 #include "util/files.h"
 #include "vk/check.h"
@@ -89,9 +89,11 @@ struct Upload {
 
 // The peer's three ray sets, traced with the shader BVH (median of cmd.reps
 // passes each).
-nlohmann::ordered_json traversalSection(const vk::Context& ctx, const GpuScene& gpu, const Framing& fr,
-                                        const BenchCommand& cmd, Upload& upload) {
-    DeviceTracer tracer(ctx, gpu, cmd.settings.reads, cmd.settings.bvhWidth, cmd.settings.bvhStack);
+nlohmann::ordered_json traversalSection(const vk::Context& ctx, const SceneRequest& request, const GpuScene& gpu,
+                                        const Framing& fr, const BenchCommand& cmd, Upload& upload) {
+    SceneRequest traced = request;
+    traced.imageBytes = 0;  // rays only: no image's sums beside the scene
+    DeviceTracer tracer(ctx, uploadPrepared(ctx, traced, gpu));
     const glm::vec3 lo = fr.lo, hi = fr.hi;
     const Camera& cam = fr.camera;
     const float eps = 1e-4f * glm::length(hi - lo);
@@ -290,27 +292,31 @@ int runBench(const BenchCommand& cmd) {
                                     std::to_string(cmd.settings.width) + "x" + std::to_string(cmd.settings.height) +
                                     " (set --width and --height to match)");
     }
-    LoadOptions options;
-    options.requireEmitter = false;  // traversal needs no light
-    options.variant = cmd.variant;
-    if (!cmd.restrictPaths.empty()) options.restrictPaths = restrictRoot(cmd.restrictPaths);
-    options.instancing = cmd.instancing;
-    options.motion = motionOptions(cmd.settings);
+    SceneRequest request = sceneRequest(cmd.settings);
+    request.file = cmd.scene;
+    request.env = cmd.env;
+    request.load.requireEmitter = false;  // traversal needs no light
+    request.load.variant = cmd.variant;
+    if (!cmd.restrictPaths.empty()) request.load.restrictPaths = restrictRoot(cmd.restrictPaths);
+    request.load.instancing = cmd.instancing;
+    request.camera.reset();  // framed below, as the peer frames (the loaded triangles' bounds)
+    request.consume = Consume::Scene;  // the packed scene is uploaded by each section
     auto t0 = std::chrono::steady_clock::now();
-    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, options);
+    Scene scene = loadScene(request);
     const std::string environment = scene.environment.enabled ? scene.environment.source : "";
     const double loadMs = msSince(t0);
     if (scene.triangles.empty()) fail(cmd.scene, "no triangles to trace");
     const Framing fr = frame(scene, cmd);
 
-    double packMs = 0.0;  // the BVH build and the packing
-    GpuScene gpu = buildAndPackReleasing(scene, cmd.settings.bvhWidth, packMs);
+    HostScene host = prepareScene(request, std::move(scene));
+    const double packMs = host.packMs;  // the BVH build and the packing
+    const GpuScene& gpu = host.gpu;
     const auto t1 = std::chrono::steady_clock::now();
     vk::Context ctx({cmd.device, cmd.validation});
     const double deviceMs = msSince(t1);
 
     Upload upload;
-    nlohmann::ordered_json traversal = traversalSection(ctx, gpu, fr, cmd, upload);
+    nlohmann::ordered_json traversal = traversalSection(ctx, request, gpu, fr, cmd, upload);
     auto checkValidation = [&] {
         if (ctx.validation && vk::validationMessageCount() > 0)
             throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +

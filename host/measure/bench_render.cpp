@@ -6,6 +6,7 @@
 #include "image/metrics.h"
 #include "render/renderer.h"
 #include "render/sampler_kind.h"
+#include "stages/stages.h"
 
 namespace strata {
 namespace {
@@ -38,7 +39,9 @@ RenderTuning benchTuning() {
 RenderResult timedRender(const vk::Context& ctx, const GpuScene& scene, const Camera& camera,
                          const RenderSettings& s, const RenderTuning& t, PipelineTimes& pipelines) {
     checkSamplerSettings(samplerByKind(s.sampler), s.spp, s.width, s.height);
-    const DeviceScene dev = uploadScene(ctx, scene, uploadOptions(s, t));
+    SceneRequest request = sceneRequest(s, t);
+    request.consume = Consume::Scene;  // uploaded again by the next render
+    const DeviceScene dev = uploadPrepared(ctx, request, scene);
     RenderResult r = render(ctx, dev, camera, s, t);
     pipelines.push_back(r.pipelineMs);
     return r;

@@ -1,7 +1,5 @@
 #include "measure/converge.h"
 
-#include "scene/environment.h"
-
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -13,10 +11,8 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 #include "measure/plot.h"
-#include "pack/gpu_scene.h"
 #include "render/sampler_kind.h"
-#include "scene/environment.h"
-#include "scene/scene.h"
+#include "stages/stages.h"
 #include "stats/stats.h"
 #include "util/error.h"
 #include "util/files.h"
@@ -138,23 +134,24 @@ ConvergeReport summarize(const ConvergeCommand& cmd, const std::vector<std::vect
 std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd) {
     if (cmd.spp.empty()) fail(cmd.scene, "converge needs at least one spp value");
     const RgbImage ref = readReference(cmd.reference);
-    LoadOptions load;
-    load.variant = cmd.variant;
-    if (!cmd.restrictPaths.empty()) load.restrictPaths = restrictRoot(cmd.restrictPaths);
-    load.instancing = cmd.instancing;
-    load.motion = motionOptions(cmd.settings);
-    Scene scene = loadSceneWithEnvironment(cmd.scene, cmd.env, load);
-    const Camera camera = chooseCamera(scene, cmd.view, ref.width, ref.height);
-    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
-    vk::Context ctx({cmd.device, cmd.validation});
-
     RenderSettings s = cmd.settings;
     s.width = ref.width;
     s.height = ref.height;
     s.spp = cmd.spp.back();
     s.progress = false;
     s.aov = cmd.denoise;
-    const DeviceScene dev = uploadScene(ctx, gpu, uploadOptions(s));
+    SceneRequest request = sceneRequest(s);
+    request.file = cmd.scene;
+    request.env = cmd.env;
+    request.load.variant = cmd.variant;
+    if (!cmd.restrictPaths.empty()) request.load.restrictPaths = restrictRoot(cmd.restrictPaths);
+    request.load.instancing = cmd.instancing;
+    request.camera->view = cmd.view;
+    request.consume = Consume::None;
+    const HostScene host = prepareScene(request);
+    const Camera& camera = host.camera;
+    vk::Context ctx({cmd.device, cmd.validation});
+    const DeviceScene dev = uploadPrepared(ctx, request, host.gpu);
     const std::size_t levels = cmd.spp.size();
     // [0]: as rendered, [1]: denoised (cmd.denoise).
     std::vector<std::vector<ErrorMetrics>> metrics[2] = {std::vector<std::vector<ErrorMetrics>>(levels),

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "image/chart.h"
+#include "oiio/chart.h"
 
 namespace strata {
 

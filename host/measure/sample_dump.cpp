@@ -11,7 +11,7 @@
 #include "integrate/kernels.h"
 #include "pack/textures.h"
 #include "upload/device_scene.h"
-#include "render/filter.h"
+#include "settings/filter.h"
 #include "render/sampler_kind.h"
 #include "vk/buffer.h"
 #include "vk/kernel.h"

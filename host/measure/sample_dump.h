@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "../../shaders/shared/types.h"
-#include "render/filter.h"
+#include "settings/filter.h"
 #include "pack/gpu_scene.h"
 #include "vk/context.h"
 

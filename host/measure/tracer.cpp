@@ -4,6 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "../../shaders/shared/bindings.h"
 #include "integrate/kernels.h"
@@ -11,9 +12,12 @@
 
 namespace strata {
 
-DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, ReadMode reads, int bvhWidth,
-                           BvhStack stack, WorkQueue queue)
-    : ctx_(ctx), scene_(uploadScene(ctx, scene, {reads, bvhWidth, stack, {}})), workQueue_(useWorkQueue(ctx, queue)) {}
+DeviceTracer::DeviceTracer(const vk::Context& ctx, DeviceScene scene, WorkQueue queue)
+    : ctx_(ctx), scene_(std::move(scene)), workQueue_(useWorkQueue(ctx, queue)) {}
+
+DeviceTracer::DeviceTracer(const vk::Context& ctx, const GpuScene& scene, ReadMode reads, BvhStack stack,
+                           WorkQueue queue)
+    : DeviceTracer(ctx, uploadScene(ctx, scene, {reads, stack}), queue) {}
 
 vk::Kernel& DeviceTracer::kernel(std::uint32_t mode) {
     using namespace gpu;
@@ -84,8 +88,8 @@ std::vector<gpu::TraceHit> DeviceTracer::trace(const std::vector<gpu::TraceRay>&
 
 std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
                                          const std::vector<gpu::TraceRay>& rays, ReadMode reads,
-                                         std::uint32_t mode, int bvhWidth) {
-    DeviceTracer tracer(ctx, scene, reads, bvhWidth);
+                                         std::uint32_t mode) {
+    DeviceTracer tracer(ctx, scene, reads);
     return tracer.trace(rays, mode);
 }
 

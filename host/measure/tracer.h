@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "render/settings.h"
+#include "settings/settings.h"
 #include "upload/device_scene.h"
 #include "pack/gpu_scene.h"
 #include "vk/context.h"
@@ -17,10 +17,13 @@ namespace strata {
 // (the mode is a specialization constant); trace() may be called many times.
 class DeviceTracer {
 public:
-    // bvhWidth, stack: as uploadScene (upload/device_scene.h).
-    // queue: SPEC_WORK_QUEUE (useWorkQueue).
-    DeviceTracer(const vk::Context& ctx, const GpuScene& scene, ReadMode reads, int bvhWidth = 4,
-                 BvhStack stack = BvhStack::Auto, WorkQueue queue = WorkQueue::Auto);
+    // `scene` uploaded (stages/stages.h: uploadPrepared); queue:
+    // SPEC_WORK_QUEUE (useWorkQueue).
+    DeviceTracer(const vk::Context& ctx, DeviceScene scene, WorkQueue queue = WorkQueue::Auto);
+    // The same of a packed scene, uploaded with these reads and stack (the
+    // tree traversed is the packing's: GpuScene::bvhWidth).
+    DeviceTracer(const vk::Context& ctx, const GpuScene& scene, ReadMode reads, BvhStack stack = BvhStack::Auto,
+                 WorkQueue queue = WorkQueue::Auto);
     ~DeviceTracer();
 
     // `mode` is gpu::kTraceClosest, kTraceAny or kTraceSpawn (types.h). Runs
@@ -49,7 +52,6 @@ private:
 
 // One-shot convenience: upload, trace once, return the hits.
 std::vector<gpu::TraceHit> traceOnDevice(const vk::Context& ctx, const GpuScene& scene,
-                                         const std::vector<gpu::TraceRay>& rays,
-                                         ReadMode reads, std::uint32_t mode, int bvhWidth = 4);
+                                         const std::vector<gpu::TraceRay>& rays, ReadMode reads, std::uint32_t mode);
 
 }  // namespace strata

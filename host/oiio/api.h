@@ -3,7 +3,7 @@
 // commands touching no image do not run the static initialisers of the
 // libraries Debian's OpenImageIO pulls in
 // (docs/experiments/scale-and-startup.md). The interface is plain data
-// (image/image.h, image/chart.h) and function pointers: the module and
+// (oiio/image.h, oiio/chart.h) and function pointers: the module and
 // strata share no other header.
 //
 // Functions return "" on success, else the error (one line, no file name).
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "image/chart.h"
-#include "image/image.h"
+#include "oiio/chart.h"
+#include "oiio/image.h"
 
 namespace strata::oiio {
 

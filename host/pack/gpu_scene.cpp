@@ -335,8 +335,9 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
     g.wideDepth = sceneBvh.wide.maxDepth;
     g.wideSahCost = sceneBvh.wide.sahCost;
     g.wideBuildMs = sceneBvh.wide.buildMs;
-    if (consume && bvhWidth == 4 && bvhRegsFor(g.wideDepth) > 0)
-        std::vector<gpu::BvhNode>().swap(g.nodes);  // the four-wide tree will be traversed
+    // The one place the traversed tree is chosen (GpuScene::bvhWidth).
+    g.bvhWidth = bvhWidth == 4 && bvhRegsFor(g.wideDepth) > 0 && !g.wide.empty() ? 4 : 2;
+    if (consume && g.bvhWidth == 4) std::vector<gpu::BvhNode>().swap(g.nodes);  // not traversed
     g.bvh = bvh.stats;
 
     for (const auto& m : scene.materials) {
@@ -515,7 +516,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
 
 }  // namespace
 
-GpuScene packScene(const Scene& scene, SceneBvh bvh) { return pack(scene, std::move(bvh), 2); }
+GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth) { return pack(scene, std::move(bvh), bvhWidth); }
 
 GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth) { return pack(scene, std::move(bvh), bvhWidth); }
 

@@ -20,8 +20,14 @@ struct SceneFeatures {
 
 struct GpuScene {
     std::string source;                     // Scene::path, for messages
-    std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; the bvh2 axis)
+    std::vector<gpu::BvhNode> nodes;        // BVH2 (CPU reference traversal; the bvh2 axis); dropped by
+                                            // packSceneAndRelease where bvhWidth is 4
     std::vector<gpu::BvhNode4> wide;        // the same tree four-wide (bvh/wide.h)
+    // The tree the shaders traverse, decided once, by packing (packScene's
+    // bvhWidth): 4, `wide`, where it was asked for and its depth fits the
+    // register stack (bvhRegsFor, kBvhMaxRegs); else 2, `nodes`. The upload
+    // binds this tree and takes no width of its own.
+    int bvhWidth = 2;
     std::uint32_t wideDepth = 0;            // WideBvh::maxDepth
     double wideSahCost = 0.0;               // WideBvh::sahCost
     double wideBuildMs = 0.0;               // WideBvh::buildMs
@@ -69,14 +75,15 @@ struct GpuScene {
 //   spot         2 pi (1 - (cos inner + cos outer) / 2) Y(I)
 //   directional  pi R^2 Y(E)
 //   environment  pi R^2 * 4 pi * (solid-angle mean of Y(L))   (as pbrt-v4)
-GpuScene packScene(const Scene& scene, SceneBvh bvh);
+// `bvhWidth` (2 or 4: --bvh) decides GpuScene::bvhWidth, the tree the
+// shaders will traverse; both trees are kept.
+GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4);
 
 // The same, consuming the scene's geometry (releaseGeometry(scene) done):
 // each page of the triangles is handed back as soon as it has been read, so
 // packing a large scene needs little more memory than the packed arrays.
-// bvhWidth 4 (the traversal the scene will get, as uploadScene's) also drops
-// `nodes`, the BVH2, once the four-wide tree is built, where that tree is
-// shallow enough to be traversed; bvhWidth 2 keeps it.
+// Where the four-wide tree will be traversed (GpuScene::bvhWidth 4) it also
+// drops `nodes`, the BVH2, once that tree is built.
 GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth = 4);
 
 // The instances array alone (GpuScene::instances) of a scene posed again

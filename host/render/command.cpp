@@ -9,12 +9,9 @@
 #include "denoise/command.h"
 #include "image/aov.h"
 #include "image/image_io.h"
-#include "bvh/scene_bvh.h"
-#include "pack/gpu_scene.h"
 #include "render/sampler_kind.h"
 #include "render/report.h"
-#include "scene/environment.h"
-#include "scene/scene.h"
+#include "stages/stages.h"
 #include "util/error.h"
 #include "util/files.h"
 #include "util/interrupt.h"
@@ -28,64 +25,49 @@ double msSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-}  // namespace
-
-GpuScene buildAndPackReleasing(Scene& scene, int bvhWidth, double& ms) {
-    const auto t0 = std::chrono::steady_clock::now();
-    SceneBvh bvh = buildSceneBvh(scene);
-    GpuScene gpu = packSceneAndRelease(scene, std::move(bvh), bvhWidth);
-    ms = msSince(t0);
-    return gpu;
-}
-
-namespace {
-
-// A scene on the device, and what a frame of --frames needs to pose it
-// again: the host Scene (its triangles released), the BVH's bottom levels.
+// A scene on the device (through the stages of stages/stages.h), and what a
+// frame of --frames needs to pose it again: the request, the host Scene
+// (its triangles released, its placements kept), the BVH's bottom levels.
 struct Loaded {
-    Scene scene;
-    GpuScene gpu;
+    SceneRequest request;
+    HostScene host;
     DeviceScene dev;
-    std::vector<BottomLevel> bottoms;
-    Camera camera;
     std::string sceneHash;  // sceneContentHash, with states
-    double loadMs = 0.0, packMs = 0.0, deviceMs = 0.0;
+    double deviceMs = 0.0;
 };
 
 bool usesStates(const RenderCommand& cmd) { return !cmd.states.empty() || !cmd.resume.empty(); }
 
 void checkResumable(const RenderCommand& cmd, const RenderState& st, const StateInfo& here);
 
+// What the command asks of the stages: its file, environment, loader
+// options, view, BVH, reads and limits; with --frames the placements kept.
+SceneRequest sceneRequest(const RenderCommand& cmd) {
+    SceneRequest r = sceneRequest(cmd.settings, cmd.tuning);
+    r.file = cmd.scene;
+    r.env = cmd.env;
+    r.load.variant = cmd.variant;
+    if (!cmd.restrictPaths.empty()) r.load.restrictPaths = restrictRoot(cmd.restrictPaths);
+    r.load.instancing = cmd.instancing;
+    r.load.motion.frames = cmd.frames.enabled;
+    r.camera->view = cmd.view;
+    r.consume = Consume::All;
+    r.keepPlacements = cmd.frames.enabled;
+    return r;
+}
+
 // Load, build, pack and upload `cmd.scene`; `shared` is the device, created
 // on first use (after the scene loaded). A --resume state (`resumed`) is
 // checked against the scene and settings before the device is opened.
 Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared, const RenderState* resumed = nullptr) {
     Loaded l;
-    auto t0 = std::chrono::steady_clock::now();
-    LoadOptions options;
-    options.variant = cmd.variant;
-    if (!cmd.restrictPaths.empty()) options.restrictPaths = restrictRoot(cmd.restrictPaths);
-    options.instancing = cmd.instancing;
-    options.motion = motionOptions(cmd.settings);
-    options.motion.frames = cmd.frames.enabled;
-    l.scene = loadSceneWithEnvironment(cmd.scene, cmd.env, options);
-    l.loadMs = msSince(t0);
-    l.camera = chooseCamera(l.scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
-    t0 = std::chrono::steady_clock::now();
-    SceneBvh bvh = buildSceneBvh(l.scene);
-    l.bottoms = bvh.bottoms;
-    // Packing releases the placements with the triangles; a sequence of
-    // frames poses them again.
-    std::vector<MeshInstance> instances;
-    if (cmd.frames.enabled) instances = l.scene.instances;
-    l.gpu = packSceneAndRelease(l.scene, std::move(bvh), cmd.settings.bvhWidth);
-    if (cmd.frames.enabled) l.scene.instances = std::move(instances);
-    l.packMs = msSince(t0);
-    if (usesStates(cmd)) l.sceneHash = sceneContentHash(l.gpu, l.camera);
+    l.request = sceneRequest(cmd);
+    l.host = prepareScene(l.request);
+    if (usesStates(cmd)) l.sceneHash = sceneContentHash(l.host.gpu, l.host.camera);
     if (resumed) {
         StateInfo here;
         here.sceneHash = l.sceneHash;
-        here.settings = stateSettings(cmd.settings, l.camera);
+        here.settings = stateSettings(cmd.settings, l.host.camera);
         here.batch = cmd.tuning.maxBatch;
         checkResumable(cmd, *resumed, here);
     }
@@ -97,21 +79,22 @@ Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared, cons
                          shared->info.type.c_str(), shared->info.driver.c_str());
     }
     l.deviceMs = msSince(t1);
-    l.dev = uploadAndRelease(*shared, l.gpu, uploadOptions(cmd.settings, cmd.tuning));
+    l.dev = uploadPrepared(*shared, l.request, l.host.gpu);
     return l;
 }
 
 // Poses a loaded scene for another frame's shutter: its moving placements
 // (a new top level and instances array on the device) and cameras.
 void pose(const vk::Context& ctx, const RenderCommand& cmd, Loaded& l) {
-    l.scene.poser->pose(l.scene, cmd.settings.shutterOpen, cmd.settings.shutterClose);
-    l.camera = chooseCamera(l.scene, cmd.view, int(cmd.settings.width), int(cmd.settings.height));
-    if (!l.scene.instanced()) return;
+    Scene& scene = l.host.scene;
+    scene.poser->pose(scene, cmd.settings.shutterOpen, cmd.settings.shutterClose);
+    l.host.camera = requestedCamera(l.request, scene);
+    if (!scene.instanced()) return;
     SceneBvh top;
-    top.bottoms = l.bottoms;
-    buildTopLevel(l.scene, top);
-    l.gpu.instances = packInstanceArray(l.scene, top);
-    l.dev.instances = uploadArray(ctx, l.gpu.instances, sceneLimits(ctx, cmd.tuning.limits));
+    top.bottoms = l.host.bottoms;
+    buildTopLevel(scene, top);
+    l.host.gpu.instances = packInstanceArray(scene, top);
+    l.dev.instances = uploadArray(ctx, l.host.gpu.instances, sceneLimits(ctx, l.request.limits));
 }
 
 // The header of the states this render writes.
@@ -119,7 +102,7 @@ StateInfo stateInfo(const RenderCommand& cmd, const vk::Context& ctx, const Load
     StateInfo in;
     in.scene = cmd.scene;
     in.sceneHash = l.sceneHash;
-    in.settings = stateSettings(cmd.settings, l.camera);
+    in.settings = stateSettings(cmd.settings, l.host.camera);
     in.implementation = stateImplementation(ctx.info.name, ctx.info.driver, cmd.settings);
     in.spp = cmd.settings.spp;
     in.shard = cmd.shard;
@@ -203,11 +186,11 @@ int renderAndWrite(const RenderCommand& cmd, const vk::Context& ctx, Loaded& l, 
     }
     RenderResult result;
     try {
-        result = render(ctx, l.dev, l.camera, cmd.settings, cmd.tuning, {}, run);
+        result = render(ctx, l.dev, l.host.camera, cmd.settings, cmd.tuning, {}, run);
     } catch (const vk::DeviceError& e) {  // lost, out of memory: exit 3, what there is to go on from named
         throw vk::DeviceError(e.what() + deviceFailureNote(cmd, checkpointed));
     }
-    StatsInput in{&ctx, &l.scene, &l.gpu, &cmd.settings, &result, l.loadMs, l.packMs, l.deviceMs};
+    StatsInput in{&ctx, &l.host.scene, &l.host.gpu, &cmd.settings, &result, l.host.loadMs, l.host.packMs, l.deviceMs};
     nlohmann::json stats = statsJson(in);
     if (ctx.validation && vk::validationMessageCount() > 0)
         throw vk::DeviceError(std::to_string(vk::validationMessageCount()) +
@@ -355,14 +338,14 @@ int runRender(const RenderCommand& cmd) {
         for (std::string& out : frame.outputs) out = frameFileName(out, f);
         if (!frame.statsJson.empty()) frame.statsJson = frameFileName(frame.statsJson, f);
         const auto t0 = std::chrono::steady_clock::now();
-        if (l && l->scene.poser)
+        if (l && l->host.scene.poser)
             pose(*ctx, frame, *l);
         else  // the first frame, or a scene the poser cannot pose (Scene::poser)
             l.emplace(load(frame, ctx));
         const double setUpMs = msSince(t0);
-        if (f != fr.first && l->scene.poser) {  // this frame's start-up: the posing alone (--stats: pack)
-            l->loadMs = l->deviceMs = l->dev.uploadMs = 0.0;
-            l->packMs = setUpMs;
+        if (f != fr.first && l->host.scene.poser) {  // this frame's start-up: the posing alone (--stats: pack)
+            l->host.loadMs = l->deviceMs = l->dev.uploadMs = 0.0;
+            l->host.packMs = setUpMs;
         }
         const int signal = renderAndWrite(frame, *ctx, *l);
         if (!cmd.quiet)

@@ -64,10 +64,6 @@ SampleRange renderRange(const RenderCommand& cmd);
 void writeFilmImages(const std::vector<std::string>& outputs, const Film& film, bool variance,
                      const std::vector<std::pair<std::string, int>>& attributes);
 
-// The BVH and packing stages as the commands run them, consuming the scene
-// (packSceneAndRelease); `ms` receives their host time together.
-GpuScene buildAndPackReleasing(Scene& scene, int bvhWidth, double& ms);
-
 // Returns the process exit status. Throws strata::Error for bad input and
 // vk::DeviceError for device failures; writes no output file on any error.
 // `cmd` as the command line parsed and checked it (cli/checks.h): what

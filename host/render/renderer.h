@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "image/film.h"
-#include "render/settings.h"
+#include "settings/settings.h"
 #include "scene/scene.h"
 #include "upload/device_scene.h"
 #include "vk/context.h"

@@ -5,11 +5,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "bvh/scene_bvh.h"
-#include "pack/gpu_scene.h"
-#include "scene/environment.h"
 #include "spirv/cache.h"
 #include "spirv/features.h"
+#include "stages/stages.h"
 #include "util/error.h"
 
 namespace strata {
@@ -28,8 +26,10 @@ void addOnce(std::vector<Variant>& list, const Variant& v) {
 // with and without the AOVs and the camera effects, either integrator, and
 // the denoiser.
 void addSceneModules(const std::string& file, std::vector<Variant>& list) {
-    Scene scene = loadSceneWithEnvironment(file, EnvironmentOptions{}, LoadOptions{});
-    const GpuScene gpu = packScene(scene, buildSceneBvh(scene));
+    SceneRequest request;
+    request.file = file;
+    const HostScene host = prepareScene(request);
+    const GpuScene& gpu = host.gpu;
     spirv::VariantInputs in;
     in.features = gpu.features.bits;
     for (const auto& [wide, memoryStack] : {std::pair{true, false}, {false, false}, {true, true}}) {

@@ -19,7 +19,7 @@
 
 #include "pack/gpu_scene.h"
 #include "render/renderer.h"
-#include "render/settings.h"
+#include "settings/settings.h"
 #include "scene/scene.h"
 
 namespace strata {

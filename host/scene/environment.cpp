@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "image/image_io.h"
 #include "util/error.h"
@@ -79,13 +80,28 @@ Environment environmentFromImage(const EnvironmentOptions& o, RgbImage img) {
     return env;
 }
 
-Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options, LoadOptions load) {
+namespace {
+
+// `load` as loadSceneWithEnvironment gives it to loadGltf, and the map added.
+template <class LoadGltf>
+Scene withEnvironment(const EnvironmentOptions& options, LoadOptions load, const LoadGltf& loadGltfWith) {
     load.externalLight = options.given();
-    Scene scene = loadGltf(path, load);
+    Scene scene = loadGltfWith(load);
     EnvironmentOptions env = options;
     env.restrictPaths = load.restrictPaths;
     if (options.given()) scene.environment = makeEnvironment(env);
     return scene;
+}
+
+}  // namespace
+
+Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options, LoadOptions load) {
+    return withEnvironment(options, std::move(load), [&](const LoadOptions& l) { return loadGltf(path, l); });
+}
+
+Scene loadSceneWithEnvironment(const std::string& path, const std::vector<unsigned char>& bytes,
+                               const EnvironmentOptions& options, LoadOptions load) {
+    return withEnvironment(options, std::move(load), [&](const LoadOptions& l) { return loadGltf(path, bytes, l); });
 }
 
 }  // namespace strata

@@ -3,6 +3,7 @@
 // (scene.h states the mapping convention).
 #pragma once
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -31,5 +32,8 @@ Environment environmentFromImage(const EnvironmentOptions& options, RgbImage ima
 // loadGltf with `load` plus the command line's environment: a scene lit only
 // by the environment is valid. The scene is checked before the map is read.
 Scene loadSceneWithEnvironment(const std::string& path, const EnvironmentOptions& options, LoadOptions load = {});
+// The same of the file's bytes, already read (`path` names it).
+Scene loadSceneWithEnvironment(const std::string& path, const std::vector<unsigned char>& bytes,
+                               const EnvironmentOptions& options, LoadOptions load = {});
 
 }  // namespace strata

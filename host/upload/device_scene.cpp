@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <stdexcept>
 #include <type_traits>
 
 #include "util/error.h"
@@ -102,12 +101,9 @@ template <class G>
 DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
     const SceneLimits limits = sceneLimits(ctx, options.limits);
-    const int bvhWidth = options.bvhWidth;
     const BvhStack stack = options.stack;
     const std::uint32_t regs = bvhRegsFor(scene.wideDepth);
-    const bool wide = bvhWidth == 4 && regs > 0 && !scene.wide.empty();
-    if (!wide && scene.nodes.empty())
-        throw std::logic_error("uploadScene: the scene was packed without its BVH2 (packSceneAndRelease, bvhWidth 4)");
+    const bool wide = scene.bvhWidth == 4;  // packing's choice (GpuScene::bvhWidth)
     constexpr bool consume = !std::is_const_v<G>;  // each array released as it is copied
     const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     DeviceScene d;

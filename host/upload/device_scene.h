@@ -102,12 +102,11 @@ struct DeviceScene {
 };
 
 // How a packed scene goes onto the device: how its arrays are read, which
-// BVH and stack the shaders traverse, and the limits it is planned against.
+// stack the four-wide traversal keeps, and the limits it is planned against.
+// The tree traversed is the packed scene's (GpuScene::bvhWidth, chosen when
+// packing), so the upload and the packing cannot disagree about it.
 struct UploadOptions {
     ReadMode reads = ReadMode::Auto;
-    int bvhWidth = 4;  // 4: the four-wide BVH unless the scene's wide tree is deeper
-                       // than kBvhMaxRegs (bvh/wide.h); 2: the BVH2 (a scene packed by
-                       // packSceneAndRelease for width 4 has none: std::logic_error)
     BvhStack stack = BvhStack::Auto;  // the four-wide traversal's
     SceneLimits limits;               // overrides, as sceneLimits
     std::uint64_t imageBytes = 0;     // the render's sample sums (RenderSettings: sampleSumBytes),

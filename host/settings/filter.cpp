@@ -1,4 +1,4 @@
-#include "render/filter.h"
+#include "settings/filter.h"
 
 #include <algorithm>
 #include <cmath>

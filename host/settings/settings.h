@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "../../shaders/shared/types.h"
-#include "render/filter.h"
+#include "settings/filter.h"
 #include "scene/scene.h"
 #include "upload/device_scene.h"
 
@@ -34,7 +34,8 @@ struct RenderSettings {
     double timeLimit = 0.0;             // seconds; 0 = none. Stops after the submission in progress
     bool progress = false;              // progress line on stderr
     ReadMode reads = ReadMode::Auto;    // --reads: the scene arrays through texel views or storage
-    int bvhWidth = 4;                   // 4: four-wide BVH where it fits (upload/device_scene.h), 2: BVH2
+    int bvhWidth = 4;                   // --bvh: 4, the four-wide BVH where it fits, or 2, the BVH2
+                                        // (packing decides: GpuScene::bvhWidth)
     BvhStack bvhStack = BvhStack::Auto; // the four-wide traversal's stack (upload/device_scene.h)
     std::uint32_t sampler = gpu::kSamplerSobol;  // gpu::kSampler* (render/sampler_kind.h names them)
     PixelFilter filter;                 // pixel reconstruction filter (box, radius 0.5)
@@ -87,12 +88,6 @@ inline std::uint32_t accumVec4PerPixel(const RenderSettings& s) {
 // Bytes of the image's sample sums on the device (one buffer).
 inline std::uint64_t sampleSumBytes(const RenderSettings& s) {
     return std::uint64_t(s.width) * std::uint64_t(s.height) * accumVec4PerPixel(s) * 16u;
-}
-
-// The upload the settings ask for, planned against tuning.limits, with the
-// image's sums counted beside the scene against the device's memory.
-inline UploadOptions uploadOptions(const RenderSettings& s, const RenderTuning& t = {}) {
-    return {s.reads, s.bvhWidth, s.bvhStack, t.limits, sampleSumBytes(s)};
 }
 
 }  // namespace strata
