@@ -118,6 +118,7 @@ void cliInput(const std::uint8_t* data, std::size_t size) {
         {"bench", [](const auto& a) { (void)cli::parseBench(a); }},
         {"denoise", [](const auto& a) { (void)cli::parseDenoise(a); }},
         {"merge", [](const auto& a) { (void)cli::parseMerge(a); }},
+        {"shaders", [](const auto& a) { (void)cli::parseShaders(a); }},
     };
     const auto parser = parsers.find(words.front());
     if (parser == parsers.end()) return;

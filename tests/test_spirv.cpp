@@ -244,7 +244,7 @@ TEST_CASE("shader cache: writers at once leave whole entries") {
     CHECK(files == 1);
 }
 
-TEST_CASE("shader cache: 'strata shaders SCENE' fills the folder a later run finds whole; off writes nothing") {
+TEST_CASE("shader cache: 'strata shaders SCENE' fills the folder a later run finds whole, and off writes nothing") {
     TempDir dir;
     const std::string cache = (dir.path / "cache").string();
     const std::string scene = std::string(STRATA_SOURCE_DIR) + "/scenes/cornell-box.gltf";

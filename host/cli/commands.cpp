@@ -428,12 +428,6 @@ std::vector<Flag<ShadersCommand>> shadersFlags() {
 
 const CommandSpec<ShadersCommand>& shadersSpec() { return kept<kShadersText>(shadersFlags); }
 
-ShadersCommand parseShaders(const std::vector<std::string>& args) {
-    ShadersCommand cmd = shadersSpec().init;
-    cmd.scenes = parseFlags(shadersSpec(), args, cmd).positional;
-    return cmd;
-}
-
 struct NoArgs {};
 
 std::vector<Flag<NoArgs>> noFlags() { return {}; }
@@ -554,6 +548,12 @@ MergeCommand parseMerge(const std::vector<std::string>& args) {
     if (cmd.outputs.empty() && cmd.states.empty()) badFlag("merge needs -o OUT.exr, OUT.png or OUT.state");
     cmd.inputs = parsed.positional;
     checkMergeFlags(cmd);
+    return cmd;
+}
+
+ShadersCommand parseShaders(const std::vector<std::string>& args) {
+    ShadersCommand cmd = shadersSpec().init;
+    cmd.scenes = parseFlags(shadersSpec(), args, cmd).positional;
     return cmd;
 }
 

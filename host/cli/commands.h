@@ -50,5 +50,6 @@ EdgesCommand parseEdges(const std::vector<std::string>& args);
 BenchCommand parseBench(const std::vector<std::string>& args);
 DenoiseCommand parseDenoise(const std::vector<std::string>& args);
 MergeCommand parseMerge(const std::vector<std::string>& args);
+ShadersCommand parseShaders(const std::vector<std::string>& args);
 
 }  // namespace strata::cli
