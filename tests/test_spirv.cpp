@@ -143,8 +143,9 @@ TEST_CASE("spirv: the run-time compiler makes glslangValidator's words") {
     for (const std::string& d : variantDefines(v)) defines += " -D" + d;
     const auto out = dir.path / "validator.spv";
     const std::string src = std::string(STRATA_SOURCE_DIR) + "/shaders";
-    const auto r = runShell("glslangValidator --target-env vulkan1.1 -I" + src + " -I" + STRATA_GENERATED_SHADERS_DIR +
-                            defines + " -o " + out.string() + " " + src + "/pathtrace.comp");
+    const auto r = runShell(std::string(STRATA_GLSLANG_VALIDATOR) + " --target-env vulkan1.1 -I" + src + " -I" +
+                            STRATA_GENERATED_SHADERS_DIR + defines + " -o " + out.string() + " " + src +
+                            "/pathtrace.comp");
     CAPTURE(r.output);
     REQUIRE(r.status == 0);
     CHECK(readWords(out) == compileGlsl("pathtrace.comp", variantDefines(v)));
