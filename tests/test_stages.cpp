@@ -34,21 +34,7 @@ SceneRequest fileRequest(const std::string& rel, int bvhWidth, Consume consume) 
 
 // A chain of triangles shrinking by 1.15x, one per leaf: a tree deeper than
 // the four-wide traversal's register stack holds (kBvhMaxRegs).
-Scene deepChain() {
-    Scene chain;
-    chain.path = "chain";
-    chain.materials.push_back(MaterialDesc{});
-    for (int i = 0; i < 400; ++i) {
-        const float x = std::pow(1.15f, float(i - 200)), s = 0.3f * x;
-        Triangle t;
-        t.v[0] = {x, 0.0f, 0.0f};
-        t.v[1] = {x + s, s, 0.0f};
-        t.v[2] = {x, s, s};
-        t.n[0] = t.n[1] = t.n[2] = glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
-        chain.triangles.push_back(t);
-    }
-    return chain;
-}
+Scene deepChain() { return triangleChain(400, 1.15f); }
 
 }  // namespace
 

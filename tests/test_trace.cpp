@@ -123,17 +123,7 @@ TEST_CASE("shader traversal matches the CPU BVH on the Cornell box") {
 // A chain of triangles shrinking by 2.1x, one per leaf: a BVH about as deep
 // as it gets, so the four-wide traversal needs more than 16 stack registers.
 TEST_CASE("four-wide traversal of a deep tree (24 or 32 stack registers) matches the CPU BVH") {
-    Scene chain;
-    chain.materials.push_back(MaterialDesc{});
-    for (int i = 0; i < 60; ++i) {
-        const float x = std::pow(2.1f, float(i - 30)), s = 0.3f * x;
-        Triangle t;
-        t.v[0] = {x, 0.0f, 0.0f};
-        t.v[1] = {x + s, s, 0.0f};
-        t.v[2] = {x, s, s};
-        t.n[0] = t.n[1] = t.n[2] = glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
-        chain.triangles.push_back(t);
-    }
+    const Scene chain = triangleChain(60, 2.1f);
     BvhBuildOptions options;
     options.bins = 2;
     options.maxLeafSize = 1;

@@ -125,6 +125,25 @@ inline Scene envBoardWithSun() {
 }
 
 // True when the two films' mean images are the same bits.
+// `count` triangles, one per leaf, each `ratio` times the size and distance
+// of the one before (the middle one at x = 1): a BVH about as deep as it
+// gets, for the four-wide traversal's stack limits.
+inline Scene triangleChain(int count, float ratio) {
+    Scene chain;
+    chain.path = "chain";
+    chain.materials.push_back(MaterialDesc{});
+    for (int i = 0; i < count; ++i) {
+        const float x = std::pow(ratio, float(i - count / 2)), s = 0.3f * x;
+        Triangle t;
+        t.v[0] = {x, 0.0f, 0.0f};
+        t.v[1] = {x + s, s, 0.0f};
+        t.v[2] = {x, s, s};
+        t.n[0] = t.n[1] = t.n[2] = glm::normalize(glm::cross(t.v[1] - t.v[0], t.v[2] - t.v[0]));
+        chain.triangles.push_back(t);
+    }
+    return chain;
+}
+
 inline bool sameImage(const Film& a, const Film& b) {
     const auto x = a.mean(), y = b.mean();
     return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(float)) == 0;
