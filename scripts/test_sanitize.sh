@@ -21,11 +21,13 @@ export ASAN_OPTIONS="detect_leaks=1"
 export LSAN_OPTIONS="suppressions=$repo/tests/sanitize/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd "$build"
-# LeakSanitizer itself crashes at the exit of one test process ("Tracer
+# LeakSanitizer itself crashes at the exit of some test processes ("Tracer
 # caught signal 11" on a dynamic-TLS range of 0x21c2-0x10000032c4 in the
 # main thread: Debian 12's gcc 12 runtime with glibc 2.36), after the test
-# passed. That test runs with leak detection off, ASan and UBSan still on.
-no_leaks='state: a render resumed from its state, also one stopped by SIGINT'
+# passed: always for the resumed state, at times for converge's report
+# (seen once in two runs, 2026-12-06, after every check of the test had
+# passed). Those tests run with leak detection off, ASan and UBSan still on.
+no_leaks='state: a render resumed from its state, also one stopped by SIGINT|reference stores per-pixel variance, compare measures against it, converge reports'
 status=0
 # shellcheck disable=SC2086
 if ctest -N -R "$no_leaks" ${CTEST_ARGS:-} | grep -q 'Total Tests: [1-9]'; then
