@@ -7,9 +7,16 @@
 
 namespace strata {
 
+namespace {
+
+// The module's inputs from the uploaded scene and the render's settings
+// (the AOV sums, the camera effects): spirv/features.h's table picks the
+// axes from them.
 spirv::VariantInputs variantInputs(const DeviceScene& scene, bool aov, bool cameraEffects) {
     return {scene.features.bits, scene.wide, scene.memoryStack, aov, cameraEffects};
 }
+
+}  // namespace
 
 std::span<const std::uint32_t> traversalShader(const DeviceScene& scene, bool pathtrace, bool aov, bool motion) {
     const spirv::KernelId kernel = pathtrace ? spirv::KernelId::Pathtrace : spirv::KernelId::Trace;

@@ -10,18 +10,12 @@
 #include <vector>
 
 #include "settings/settings.h"
-#include "spirv/features.h"
 #include "upload/device_scene.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/kernel.h"
 
 namespace strata {
-
-// The module's inputs from the uploaded scene and the render's settings
-// (the AOV sums, the camera effects): spirv/features.h's table picks the
-// axes from them.
-spirv::VariantInputs variantInputs(const DeviceScene& scene, bool aov, bool cameraEffects);
 
 // The SPIR-V of pathtrace.comp (pathtrace true) or trace.comp, and of
 // wavefront.comp, for the scene: the table's module (spirv::chooseVariant),

@@ -146,11 +146,6 @@ std::string shaderCacheDir() {
 
 std::string moduleKey(const Variant& v) { return hex(keyHash(v)); }
 
-std::string moduleFile(const Variant& v) {
-    const std::string dir = shaderCacheDir();
-    return dir.empty() ? std::string() : dir + "/" + variantName(v) + "-" + moduleKey(v) + ".spv";
-}
-
 std::vector<std::uint32_t> cachedModule(const Variant& v, const std::string& dir, ShaderCacheStats& stats,
                                         bool* unwritable) {
     const std::uint64_t key = keyHash(v);

@@ -45,9 +45,8 @@ std::span<const std::uint32_t> moduleFor(const Variant& v);
 std::vector<std::uint32_t> cachedModule(const Variant& v, const std::string& dir, ShaderCacheStats& stats,
                                         bool* unwritable = nullptr);
 
-// The cache key of a module (hex), and its file in the cache folder.
+// The cache key of a module (hex): its entry is NAME-KEY.spv.
 std::string moduleKey(const Variant& v);
-std::string moduleFile(const Variant& v);
 
 ShaderCacheStats shaderCacheStats();
 
