@@ -18,21 +18,15 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
 fi
 cmake --build "$build" -j "$(nproc)"
 export ASAN_OPTIONS="detect_leaks=1"
-export LSAN_OPTIONS="suppressions=$repo/tests/sanitize/lsan.supp:print_suppressions=0"
+export LSAN_OPTIONS="suppressions=$repo/tests/sanitize/lsan.supp:print_suppressions=0:use_tls=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd "$build"
-# LeakSanitizer itself crashes at the exit of some test processes ("Tracer
-# caught signal 11" on a dynamic-TLS range of 0x21c2-0x10000032c4 in the
-# main thread: Debian 12's gcc 12 runtime with glibc 2.36), after the test
-# passed: always for the resumed state, at times for converge's report
-# (seen once in two runs, 2026-12-06, after every check of the test had
-# passed). Those tests run with leak detection off, ASan and UBSan still on.
-no_leaks='state: a render resumed from its state, also one stopped by SIGINT|reference stores per-pixel variance, compare measures against it, converge reports'
-status=0
+# use_tls=0: LeakSanitizer's tracer does not scan thread-local storage. With
+# it on, the tracer crashed at the exit of strata processes ("Tracer caught
+# signal 11" reading a dynamic-TLS range of the main thread that is not
+# one, 0x21c2-0x10000032c4: Debian 12's gcc 12 runtime with glibc 2.36)
+# after their test had passed, in three different tests over three runs
+# (docs/testing.md). Nothing strata allocates is held only by a
+# thread_local, so no leak report depends on that scan.
 # shellcheck disable=SC2086
-if ctest -N -R "$no_leaks" ${CTEST_ARGS:-} | grep -q 'Total Tests: [1-9]'; then
-  ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j 1 -R "$no_leaks" ${CTEST_ARGS:-} || status=$?
-fi
-# shellcheck disable=SC2086
-ctest --output-on-failure -j 1 -E "$no_leaks" ${CTEST_ARGS:-} || status=$?
-exit $status
+ctest --output-on-failure -j 1 ${CTEST_ARGS:-}
