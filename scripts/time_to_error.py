@@ -3,8 +3,8 @@
 
     scripts/time_to_error.py SCENE [SCENE ...] [--width 128] [--height 128]
         [--spp 4,16,64,256] [--rounds 3] [--ref-spp 4096] [--threads 2]
-        [--max-depth 16] [--strata build/strata] [--strata-arg=ARG ...]
-        [--cycles-arg=ARG ...] [--adaptive [--noise-threshold 0.01]]
+        [--max-depth 16] [--strata build/strata] [--strata-arg='ARGS' ...]
+        [--cycles-arg='ARGS' ...] [--adaptive [--noise-threshold 0.01]]
         [--strata-reference] [--reference cycles|strata] [--time render|wall]
         [--out DIR] [--ref-cache DIR] [--json FILE] [--blender blender]
         [--cycles-peer ../shared/peers/cycles/cycles_render.py]
@@ -27,7 +27,9 @@ Matching (../shared/peers/cycles/README.md says what differs):
     for Lambert scenes (KHR_materials_specular factor 0, metallic 0);
   - emission: Cycles' is two-sided; use closed emitters, lamps with nothing
     behind them, or doubleSided emitters (scenes/many-lights.gltf).
-  - seeds: round r uses seed r in both; the references use seed 1000003.
+  - seeds: round r uses seed r + 1 in both; the references use seed 1000003.
+  - --strata-arg='--light-sampler power' (say) passes flags to strata render
+    and reference alone; --cycles-arg to the peer.
 
 Times (both are kept; --time picks the one the ratios use):
   - render (default): strata's `--stats-json` render.seconds (the render
@@ -59,11 +61,14 @@ import json
 import math
 import os
 import re
+import shlex
 import shutil
 import statistics
+import struct
 import subprocess
 import sys
 import time
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -84,11 +89,11 @@ def parse_args(argv):
     ap.add_argument("--max-depth", type=int, default=16,
                     help="strata's --max-depth D; Cycles gets --max-bounces D-1")
     ap.add_argument("--strata", default=os.path.join(ROOT, "build", "strata"))
-    ap.add_argument("--strata-arg", action="append", default=[], metavar="ARG",
-                    help="one more argument for strata render/reference (repeat; write "
-                         "--strata-arg=--flag to pass a flag)")
-    ap.add_argument("--cycles-arg", action="append", default=[], metavar="ARG",
-                    help="one more argument for the Cycles peer (repeat)")
+    ap.add_argument("--strata-arg", action="append", default=[], metavar="ARGS",
+                    help="more arguments for strata render and reference, split as a shell "
+                         "would: --strata-arg='--light-sampler power' (repeatable)")
+    ap.add_argument("--cycles-arg", action="append", default=[], metavar="ARGS",
+                    help="more arguments for the Cycles peer, as --strata-arg")
     ap.add_argument("--blender", default="blender")
     ap.add_argument("--cycles-peer",
                     default=os.path.join(ROOT, "..", "shared", "peers", "cycles", "cycles_render.py"))
@@ -113,6 +118,8 @@ def parse_args(argv):
         ap.error("--max-depth must be at least 1 (Cycles' bounces are D - 1)")
     if a.rounds < 1:
         ap.error("--rounds must be at least 1")
+    a.strata_arg = [x for arg in a.strata_arg for x in shlex.split(arg)]
+    a.cycles_arg = [x for arg in a.cycles_arg for x in shlex.split(arg)]
     a.ref_cache = a.ref_cache or os.path.join(a.out, "refs")
     a.json = a.json or os.path.join(a.out, "time_to_error.json")
     return a
@@ -139,6 +146,7 @@ class Renderers:
         help_text = subprocess.run([a.strata, "render", "--help"], stdout=subprocess.PIPE,
                                    stderr=subprocess.STDOUT, text=True).stdout
         self.strata_adaptive = "--noise-threshold" in help_text
+        self.strata_id = file_key(a.strata)  # the binary changes under a running project
         # Blender's embedded Python takes its prefix from the first python3 on PATH: a
         # pyenv or virtualenv python3 there hides Debian's numpy from it, so Blender's
         # own folder (/usr/bin) goes first.
@@ -209,8 +217,11 @@ def reference(a, rnd, scene, renderer):
     """The cached reference EXR of `renderer` for this scene and settings."""
     os.makedirs(a.ref_cache, exist_ok=True)
     stem = os.path.splitext(os.path.basename(scene))[0]
-    extra = hashlib.sha256(" ".join(a.strata_arg if renderer == "strata" else a.cycles_arg)
-                           .encode()).hexdigest()[:6]
+    # The renderer's identity and extra arguments: a rebuilt strata, another
+    # Blender or peer script makes another reference.
+    ident = ([rnd.strata_id] + a.strata_arg if renderer == "strata" else
+             [rnd.blender_version, file_key(a.cycles_peer)] + a.cycles_arg)
+    extra = hashlib.sha256("\0".join(ident).encode()).hexdigest()[:8]
     name = "%s-%s-%dx%d-d%d-%s%d-%s" % (stem, file_key(scene), a.width, a.height, a.max_depth,
                                         renderer, a.ref_spp, extra)
     exr = os.path.join(a.ref_cache, name + ".exr")
@@ -227,7 +238,7 @@ def reference(a, rnd, scene, renderer):
         version = rnd.blender_version + " Cycles"
     else:
         times = rnd.strata(scene, a.ref_spp, REF_SEED, tmp, reference=True)
-        version = "strata " + a.strata
+        version = "strata %s (sha256 %s)" % (a.strata, rnd.strata_id)
     os.replace(tmp, exr)
     info = {"renderer": renderer, "version": version, "scene": scene, "spp": a.ref_spp,
             "seed": REF_SEED, "width": a.width, "height": a.height, "max_depth": a.max_depth,
@@ -235,6 +246,83 @@ def reference(a, rnd, scene, renderer):
     with open(meta, "w") as f:
         json.dump(info, f, indent=1)
     return exr, info
+
+
+def read_exr(path):
+    """A scanline OpenEXR file's channels: (width, height, {name: [floats]}).
+    Reads what the two renderers write: no compression (Cycles) or ZIP/ZIPS
+    (strata), HALF or FLOAT channels, one part."""
+    with open(path, "rb") as f:
+        b = f.read()
+    if struct.unpack_from("<I", b)[0] != 20000630 or b[5] & 0x1a:  # tiled, deep or multi-part
+        raise ValueError("%s: not a single-part scanline OpenEXR file" % path)
+    i, attrs = 8, {}
+    while b[i] != 0:
+        j = b.index(b"\0", i)
+        name = b[i:j].decode()
+        k = b.index(b"\0", j + 1)
+        size = struct.unpack_from("<i", b, k + 1)[0]
+        attrs[name] = b[k + 5:k + 5 + size]
+        i = k + 5 + size
+    i += 1
+    chans, k, raw = [], 0, attrs["channels"]
+    while raw[k] != 0:
+        e = raw.index(b"\0", k)
+        chans.append((raw[k:e].decode(), struct.unpack_from("<i", raw, e + 1)[0]))
+        k = e + 17
+    x0, y0, x1, y1 = struct.unpack("<4i", attrs["dataWindow"])
+    w, h = x1 - x0 + 1, y1 - y0 + 1
+    comp = attrs["compression"][0]
+    lines = {0: 1, 2: 1, 3: 16}.get(comp)
+    if lines is None:
+        raise ValueError("%s: compression %d is not read here" % (path, comp))
+    sizes = {0: 4, 1: 2, 2: 4}
+    formats = {0: "I", 1: "e", 2: "f"}
+    out = {n: [] for n, _ in chans}
+    blocks = (h + lines - 1) // lines
+    for n in range(blocks):
+        off = struct.unpack_from("<Q", b, i + 8 * n)[0]
+        y, size = struct.unpack_from("<ii", b, off)
+        data = b[off + 8:off + 8 + size]
+        rows = min(lines, y1 + 1 - y)
+        expect = rows * w * sum(sizes[t] for _, t in chans)
+        if comp != 0 and size < expect:
+            t = bytearray(zlib.decompress(data))
+            for m in range(1, len(t)):
+                t[m] = (t[m - 1] + t[m] - 128) & 0xff
+            half = (len(t) + 1) // 2
+            data = bytearray(len(t))
+            data[0::2], data[1::2] = t[:half], t[half:]
+        pos = 0
+        for _ in range(rows):
+            for name, typ in chans:
+                out[name] += struct.unpack_from("<%d%s" % (w, formats[typ]), data, pos)
+                pos += w * sizes[typ]
+    return w, h, out
+
+
+def reference_means(strata_ref, cycles_ref):
+    """Each reference's mean R, G, B, and the standard error of strata's mean
+    from its variance channels (the variance of each pixel's mean)."""
+    _, _, s = read_exr(strata_ref)
+    _, _, c = read_exr(cycles_ref)
+    res = {"strata": [], "cycles": [], "strata_se": [], "noise_relmse": None}
+    noise = 0.0
+    for ch in "RGB":
+        n = len(s[ch])
+        res["strata"].append(sum(s[ch]) / n)
+        res["cycles"].append(sum(c[ch]) / n)
+        var = s.get("variance." + ch)
+        res["strata_se"].append(math.sqrt(sum(var)) / n if var else None)
+        if var and noise is not None:
+            # relMSE's expectation from the two references' noise alone, if Cycles'
+            # pixel variances equal strata's: sum 2 var / (r^2 + 0.01), r Cycles'.
+            noise += sum(2 * v / (r * r + 0.01) for v, r in zip(var, c[ch]))
+        else:
+            noise = None
+    if noise is not None:
+        res["noise_relmse"] = noise / (3 * len(s["R"]))
+    return res
 
 
 def median(xs):
@@ -355,13 +443,15 @@ def measure_scene(a, rnd, scene):
                          "ratio": tc / ts if ts and tc else None})
         tte["%s/%s" % (other, mine)] = rows
 
-    ref_vs = None
+    ref_vs = means = None
     if len(refs) > 1:
         ref_vs = compare(a.strata, refs["strata"][0], refs["cycles"][0],
                          os.path.join(work, "refs"))
+        means = reference_means(refs["strata"][0], refs["cycles"][0])
     return {"scene": scene, "stem": stem, "series": series, "notes": notes,
             "reference": ref_info, "references": {n: i for n, (_, i) in refs.items()},
-            "reference_relmse_strata_vs_cycles": ref_vs, "time_basis": a.time,
+            "reference_relmse_strata_vs_cycles": ref_vs, "reference_means": means,
+            "time_basis": a.time,
             "summary": summary, "time_to_error": tte, "runs": runs,
             "load1_median": median([x["load1"] for x in runs]),
             "elapsed_s": time.perf_counter() - t_start}
@@ -378,10 +468,12 @@ def markdown(a, res, rnd):
     out.append("### %s (%dx%d, max depth %d / Cycles bounces %d, %d threads, %d rounds)" % (
         res["stem"], a.width, a.height, a.max_depth, a.max_depth - 1, a.threads, a.rounds))
     out.append("")
-    out.append("Reference: %s, %d spp, seed %d (%s). Times: %s. Medians over rounds; "
-               "1-minute load average (median) %.2f." % (
-                   ref["renderer"], ref["spp"], ref["seed"], ref["version"], basis,
-                   res["load1_median"]))
+    out.append("strata %s (sha256 %s)%s; %s, Cycles peer%s. Reference: %s, "
+               "%d spp, seed %d. Times: %s. Medians over rounds; 1-minute load average "
+               "(median) %.2f." % (
+                   a.strata, rnd.strata_id, " " + " ".join(a.strata_arg) if a.strata_arg else "",
+                   rnd.blender_version, " " + " ".join(a.cycles_arg) if a.cycles_arg else "",
+                   ref["renderer"], ref["spp"], ref["seed"], basis, res["load1_median"]))
     out.append("")
     head = "| spp | strata relMSE | Cycles relMSE | Cycles/strata relMSE | strata s | Cycles s |"
     sep = "|---:|---:|---:|---:|---:|---:|"
@@ -434,18 +526,27 @@ def markdown(a, res, rnd):
                                                    fmt(r["ratio"], ".2f")))
         out.append("")
     if res["reference_relmse_strata_vs_cycles"] is not None:
-        # If both converge as 1/spp: relMSE(n spp, own reference) = v/n + v/ref_spp, so
-        # a reference's own relMSE v/ref_spp is that relMSE times n / (n + ref_spp).
+        m = res["reference_means"]
         hi = a.spp[-1]
-        est = sum(s[name][-1]["relmse_vs"][name] * hi / (hi + a.ref_spp)
-                  for name in ("strata", "cycles"))
-        out.append("References: relMSE(strata reference, Cycles reference) = %.4g "
-                   "(noise alone, extrapolated as 1/spp from %d spp: about %.2g). At %d spp, "
-                   "strata vs its own / Cycles' reference: %.4g / %.4g; Cycles vs its own / "
-                   "strata's: %.4g / %.4g." % (
-                       res["reference_relmse_strata_vs_cycles"], hi, est, hi,
+        out.append("References: relMSE(strata reference, Cycles reference) = %.4g; from the "
+                   "noise alone (strata's variance channels, Cycles' taken as noisy): about %s. "
+                   "At %d spp, strata vs its own / Cycles' reference: %.4g / %.4g; Cycles vs its "
+                   "own / strata's: %.4g / %.4g." % (
+                       res["reference_relmse_strata_vs_cycles"], fmt(m["noise_relmse"], ".2g"), hi,
                        s["strata"][-1]["relmse_vs"]["strata"], s["strata"][-1]["relmse_vs"]["cycles"],
                        s["cycles"][-1]["relmse_vs"]["cycles"], s["cycles"][-1]["relmse_vs"]["strata"]))
+        out.append("")
+        ratio = [c / x if x else None for c, x in zip(m["cycles"], m["strata"])]
+        z = [(c - x) / (math.sqrt(2) * e) if e else None
+             for c, x, e in zip(m["cycles"], m["strata"], m["strata_se"])]
+        out.append("Mean R, G, B of the references: strata %s, Cycles %s; Cycles / strata %s; "
+                   "(Cycles - strata) in standard errors of strata's mean (times sqrt 2, as if "
+                   "Cycles' were as noisy): %s. A ratio off 1 by many standard errors is a bias "
+                   "(e.g. Cycles' two-sided emission), not noise." % (
+                       "/".join(fmt(v, ".4g") for v in m["strata"]),
+                       "/".join(fmt(v, ".4g") for v in m["cycles"]),
+                       "/".join(fmt(v, ".3f") for v in ratio),
+                       "/".join(fmt(v, ".1f") for v in z)))
         out.append("")
     for n in res["notes"]:
         out.append("Note: " + n)
@@ -478,6 +579,7 @@ def main(argv):
         texts.append(text)
         print(text, flush=True)
     doc = {"args": {k: v for k, v in vars(a).items()}, "blender": rnd.blender_version,
+           "strata_sha256": rnd.strata_id,
            "strata_has_noise_threshold": rnd.strata_adaptive, "scenes": results,
            "elapsed_s": time.perf_counter() - t0}
     with open(a.json, "w") as f:
