@@ -99,8 +99,23 @@ void main() {
         // Identify the emitter by its pmf-independent payload: radiance.x holds its index.
         out4.x = emitterAt(chooseLight(params.emitterCount, sample2D(smp).x, rest)).radiance.x;
     } else if (params.routine == kSampleLight) {
+#ifdef STRATA_LIGHT_TREE
+        vec2 u = sample2D(smp);
+        LightSample ls = sampleLight(params.bsdf0.xyz, params.bsdf1.xyz, u, sample1D(smp));
+#else
         LightSample ls = sampleLight(vec3(0.0), sample2D(smp));
+#endif
         out4 = vec4(ls.wi, ls.pdf);
+#ifdef STRATA_LIGHT_TREE
+    } else if (params.routine == kSampleLightTree) {
+        float pmf;
+        uint light = sampleLightTree(params.bsdf0.xyz, params.bsdf1.xyz, sample1D(smp), pmf);
+        out4.x = light == kNoLight ? -1.0 : float(light);
+        out4.y = pmf;
+        out4.z = light == kNoLight ? 0.0 : lightTreePmf(params.bsdf0.xyz, params.bsdf1.xyz, emitterAt(light).trail);
+    } else if (params.routine == kLightTreePmf) {
+        out4.x = lightTreePmf(params.bsdf0.xyz, params.bsdf1.xyz, emitterAt(i).trail);
+#endif
     } else if (params.routine == kSampleEnvironmentPdf) {
         uint rows = params.count / params.width;
         vec2 c = (vec2(i % params.width, i / params.width) + 0.5) / vec2(params.width, rows);

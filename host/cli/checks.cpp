@@ -65,6 +65,9 @@ void checkLensFlags(const RenderSettings& s) {
     if (s.cameraEffects() && s.integrator == IntegratorKind::Wavefront)
         badFlag("--lens-radius and a --shutter interval need the megakernel integrator; the wavefront integrator "
                 "has no lens and no time");
+    if (s.lightSampler == LightSampler::Tree && s.integrator == IntegratorKind::Wavefront)
+        badFlag("--light-sampler tree needs the megakernel integrator; the wavefront integrator chooses lights by "
+                "power");
 }
 
 void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {

@@ -107,6 +107,12 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
                 }),
         text<T>("--animation", "NAME|INDEX", "the glTF animation --shutter plays (default: the first)",
                 [settings](auto& c) -> auto& { return settings(c).animation; }),
+        choice<T, LightSampler>("--light-sampler",
+                                "how a light is chosen for each shadow ray: tree, the light tree over every "
+                                "emitter (by bounds, power and orientation at the shading point), or power, in "
+                                "proportion to estimated power alone; auto: the tree from 16 lights on",
+                                {{"auto", LightSampler::Auto}, {"tree", LightSampler::Tree}, {"power", LightSampler::Power}},
+                                [settings](auto& c) -> auto& { return settings(c).lightSampler; }),
     };
 }
 

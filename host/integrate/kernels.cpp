@@ -72,6 +72,8 @@ std::vector<vk::BindingDesc> pathBindings() {
         {BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
         {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+        {BINDING_LIGHT_TREE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_LIGHT_TREE_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -87,6 +89,7 @@ void bindPathInputs(vk::Kernel& kernel, const DeviceScene& dev, const FilmBuffer
     bindTraversal(kernel, dev);
     kernel.bind(BINDING_FRAME, film.frame);
     bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, dev.emitters);
+    bindArray(kernel, BINDING_LIGHT_TREE, BINDING_LIGHT_TREE_TEXEL, dev.lightTree);
     kernel.bind(BINDING_ACCUM, film.accum);
     kernel.bind(BINDING_COUNTERS, film.counters);
     kernel.bind(BINDING_FILTER, film.filterTable);

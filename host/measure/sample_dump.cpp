@@ -26,6 +26,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     const GpuScene none;
     const GpuScene& scene = lights ? *lights : none;
     const DeviceArray em = uploadArray(ctx, lights ? lights->emitters : emitters, sceneLimits(ctx));
+    const DeviceArray tree = uploadArray(ctx, scene.lightTree, sceneLimits(ctx));
     FrameUniforms fu{};
     setLightUniforms(fu, scene);
     vk::Buffer frame(ctx, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, vk::MemoryUse::Upload);
@@ -43,10 +44,14 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     std::vector<std::uint32_t> spec(4, 0u);
     spec[SPEC_SAMPLER] = sampler;
     spec[SPEC_FEATURES] = scene.features.bits | features;
-    vk::Kernel kernel(ctx, spirv::moduleFor({spirv::KernelId::SampleTest, 0}),
+    spirv::VariantInputs inputs;
+    inputs.features = spec[SPEC_FEATURES];
+    vk::Kernel kernel(ctx, spirv::moduleFor(spirv::chooseVariant(spirv::KernelId::SampleTest, inputs)),
                       {{BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                        {BINDING_EMITTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_EMITTERS_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+                       {BINDING_LIGHT_TREE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                       {BINDING_LIGHT_TREE_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
                        {BINDING_SAMPLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                        {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
@@ -58,6 +63,7 @@ std::vector<glm::vec4> runSampleKernel(const vk::Context& ctx, const gpu::Sample
     kernel.bind(BINDING_ENV_TEXELS, env.envTexelView);
     bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, env.envTables);
     bindArray(kernel, BINDING_EMITTERS, BINDING_EMITTERS_TEXEL, em);
+    bindArray(kernel, BINDING_LIGHT_TREE, BINDING_LIGHT_TREE_TEXEL, tree);
     kernel.bind(BINDING_SAMPLES, out);
     kernel.bind(BINDING_FILTER, table);
     kernel.bind(BINDING_TEXELS, texelsView);

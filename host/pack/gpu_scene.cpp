@@ -1,6 +1,7 @@
 #include "pack/gpu_scene.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <glm/gtc/matrix_access.hpp>
 
 #include "pack/env_tables.h"
+#include "pack/light_tree.h"
 #include "pack/textures.h"
 #include "util/memory.h"
 
@@ -28,7 +30,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureUnlit, "unlit"},             {gpu::kFeatureVolume, "volume"},
         {gpu::kFeatureVertexColor, "vertex-colors"}, {gpu::kFeatureClearcoat, "clearcoat"},
         {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"},
-        {gpu::kFeatureInstancing, "instancing"},   {gpu::kFeatureIridescence, "iridescence"}};
+        {gpu::kFeatureInstancing, "instancing"},   {gpu::kFeatureIridescence, "iridescence"},
+        {gpu::kFeatureLightTree, "light-tree"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -177,6 +180,7 @@ void setLightUniforms(gpu::FrameUniforms& f, const GpuScene& g) {
     f.envScale = glm::vec4(g.envScale, 0.0f);
     f.envRotation = glm::vec4(std::cos(g.envRotation), std::sin(g.envRotation), 0.0f, 0.0f);
     f.envInfo = glm::uvec4(g.environment, g.envWidth, g.envHeight, 0u);
+    f.scene.y = static_cast<float>(g.lightTreeProb);
 }
 
 void buildAliasTable(const std::vector<double>& weights, std::vector<gpu::Emitter>& emitters) {
@@ -323,7 +327,7 @@ struct BvhOrderSource {
 // so the host never holds it twice) or const Scene (gathered in BVH order,
 // left as it was).
 template <class S>
-GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
+GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSampler) {
     constexpr bool consume = !std::is_const_v<S>;
     GpuScene g;
     g.source = scene.path;
@@ -494,6 +498,26 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
         for (std::size_t k = 0; k < weights.size(); ++k) weights[k] = g.emitters[k].area;
     if (!g.emitters.empty()) buildAliasTable(weights, g.emitters);
     g.features.emitters = !g.emitters.empty();
+    std::size_t bounded = 0;
+    double boundedPower = 0.0;
+    for (std::size_t k = 0; k < g.emitters.size(); ++k)
+        if (!isInfiniteLight(g.emitters[k])) ++bounded, boundedPower += weights[k];
+    if (bounded > 0 && lightSampler != LightSampler::Power) {
+        const auto t0 = std::chrono::steady_clock::now();
+        LightTree tree = buildLightTree(g.emitters, weights);
+        g.lightTreeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        g.lightClusters = lightClusters(tree);
+        if (useLightTree(lightSampler, g.lightClusters)) {
+            g.lightTree = std::move(tree.nodes);
+            g.lightTreeDepth = tree.depth;
+            double total = 0.0;
+            for (double w : weights) total += w;
+            g.lightTreeProb = bounded == g.emitters.size() ? 1.0 : boundedPower / total;
+            g.features.bits |= gpu::kFeatureLightTree;
+        } else {
+            for (gpu::Emitter& e : g.emitters) e.trail = 0;  // the emitters as without a tree
+        }
+    }
     // Features of the materials some triangle uses.
     for (std::size_t i = 0; i < g.materials.size(); ++i) {
         if (!used[i]) continue;
@@ -516,8 +540,12 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth) {
 
 }  // namespace
 
-GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth) { return pack(scene, std::move(bvh), bvhWidth); }
+GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights) {
+    return pack(scene, std::move(bvh), bvhWidth, lights);
+}
 
-GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth) { return pack(scene, std::move(bvh), bvhWidth); }
+GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights) {
+    return pack(scene, std::move(bvh), bvhWidth, lights);
+}
 
 }  // namespace strata

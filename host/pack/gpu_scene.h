@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bvh/scene_bvh.h"
+#include "pack/light_tree.h"
 #include "scene/scene.h"
 
 namespace strata {
@@ -44,6 +45,14 @@ struct GpuScene {
     std::vector<std::uint32_t> texels;         // R32UI words (types.h, TextureRef)
     std::vector<gpu::Emitter> emitters;     // triangles, then punctual lights, then the
                                             // environment; with the alias table filled in
+    // With kFeatureLightTree: the light tree over the bounded emitters
+    // (pack/light_tree.h; their Emitter::trail set) and the probability of
+    // choosing through it rather than a directional or environment light.
+    std::vector<gpu::LightNode> lightTree;
+    double lightTreeProb = 0.0;
+    std::uint32_t lightTreeDepth = 0;       // LightTree::depth
+    std::size_t lightClusters = 0;          // of the tree built (lightClusters), kept or not
+    double lightTreeMs = 0.0;               // its build's host time
     double totalPower = 0.0;                // sum of the emitters' estimated powers (packScene)
     double sceneRadius = 0.0;               // bounding sphere of the triangles' bounds (1 if none)
     std::uint32_t environment = gpu::kNoLight;  // the environment's emitter index
@@ -76,15 +85,18 @@ struct GpuScene {
 //   directional  pi R^2 Y(E)
 //   environment  pi R^2 * 4 pi * (solid-angle mean of Y(L))   (as pbrt-v4)
 // `bvhWidth` (2 or 4: --bvh) decides GpuScene::bvhWidth, the tree the
-// shaders will traverse; both trees are kept.
-GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4);
+// shaders will traverse; both trees are kept. `lights` (--light-sampler)
+// decides whether the light tree is built (pack/light_tree.h; the alias
+// table is built either way).
+GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4, LightSampler lights = LightSampler::Auto);
 
 // The same, consuming the scene's geometry (releaseGeometry(scene) done):
 // each page of the triangles is handed back as soon as it has been read, so
 // packing a large scene needs little more memory than the packed arrays.
 // Where the four-wide tree will be traversed (GpuScene::bvhWidth 4) it also
 // drops `nodes`, the BVH2, once that tree is built.
-GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth = 4);
+GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth = 4,
+                             LightSampler lights = LightSampler::Auto);
 
 // The instances array alone (GpuScene::instances) of a scene posed again
 // (--frames): `bvh` holds the bottom levels' roots and the new top level.

@@ -36,6 +36,12 @@ nlohmann::json statsJson(const StatsInput& in) {
                            {"top_nodes", t.nodes},                    {"top_max_depth", t.maxDepth},
                            {"top_build_ms", t.buildMs}};
     }
+    if (!in.gpu->lightTree.empty())
+        j["light_tree"] = {{"nodes", in.gpu->lightTree.size()},
+                           {"max_depth", in.gpu->lightTreeDepth},
+                           {"build_ms", in.gpu->lightTreeMs},
+                           {"tree_probability", in.gpu->lightTreeProb},
+                           {"clusters", in.gpu->lightClusters}};
     const BvhStats& b = in.gpu->bvh;
     j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
                 {"sah_cost", b.sahCost}, {"build_ms", b.buildMs}, {"bytes", b.bytes}};
@@ -106,6 +112,15 @@ std::string statsText(const nlohmann::json& j) {
                       i["placements"].get<unsigned long long>(), i["shared_meshes"].get<unsigned long long>(),
                       i["stored_triangles"].get<unsigned long long>(), i["placed_triangles"].get<unsigned long long>(),
                       i["top_nodes"].get<unsigned>(), i["top_max_depth"].get<unsigned>(), i["top_build_ms"].get<double>());
+        o << line;
+    }
+    if (j.contains("light_tree")) {
+        const auto& t = j["light_tree"];
+        std::snprintf(line, sizeof line,
+                      "lights     light tree of %llu nodes (%llu clusters), max depth %u, build %.1f ms; chosen "
+                      "through it with probability %.4g\n",
+                      t["nodes"].get<unsigned long long>(), t["clusters"].get<unsigned long long>(),
+                      t["max_depth"].get<unsigned>(), t["build_ms"].get<double>(), t["tree_probability"].get<double>());
         o << line;
     }
     const auto& b = j["bvh"];

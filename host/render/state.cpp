@@ -89,6 +89,7 @@ std::string sceneContentHash(const GpuScene& g, const Camera& camera) {
     h.add(&g.envHeight, sizeof g.envHeight);
     h.add(&g.features.bits, sizeof g.features.bits);
     h.addVector(g.instances);
+    if (!g.lightTree.empty()) h.addVector(g.lightTree);  // scenes without it keep their hash
     h.add(&camera.position, sizeof camera.position);
     h.add(&camera.forward, sizeof camera.forward);
     h.add(&camera.up, sizeof camera.up);

@@ -42,6 +42,12 @@ struct RenderSettings {
     std::uint32_t mis = gpu::kMisPower; // gpu::kMis*: light and BSDF sampling by the power
                                         // heuristic, or one technique alone (for comparisons)
     IntegratorKind integrator = IntegratorKind::Megakernel;
+    // --light-sampler: the light tree or the alias table alone (pack/light_tree.h);
+    // the wavefront integrator has no tree (its auto is power).
+    LightSampler lightSampler = LightSampler::Auto;
+    LightSampler packedLightSampler() const {
+        return integrator == IntegratorKind::Wavefront ? LightSampler::Power : lightSampler;
+    }
     // The camera effects (the motion axis, lib/camera.glsl):
     float lensRadius = 0.0f;            // --lens-radius (world units): 0 is a pinhole
     float focusDistance = 1.0f;         // --focus-distance: the plane in focus, along the view direction

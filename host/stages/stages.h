@@ -52,6 +52,8 @@ struct SceneRequest {
     BvhBuildOptions build;
     int bvhWidth = 4;
     BvhStack stack = BvhStack::Auto;
+    // Pack: whether the light tree is built (--light-sampler).
+    LightSampler lights = LightSampler::Auto;
     // Upload: the reads (--reads), lowered device limits (tests), and the
     // image's sample sums counted beside the scene against device memory.
     ReadMode reads = ReadMode::Auto;

@@ -34,6 +34,7 @@ std::vector<ArrayUse> arrayUses(const GpuScene& s, bool wide) {
             {"tangents", s.tangents.size() * sizeof(gpu::TriTangents), true, kTexel},
             {"vertex colours", s.colors.size() * sizeof(gpu::TriColors), true, kTexel},
             {"emitters", s.emitters.size() * sizeof(gpu::Emitter), true, kTexel},
+            {"light tree", s.lightTree.size() * sizeof(gpu::LightNode), true, kTexel},
             {"materials", s.materials.size() * sizeof(gpu::Material), true, kTexel},
             {"texture references", s.textureRefs.size() * sizeof(gpu::TextureRef), true, kTexel},
             {"environment sampling tables", s.envTables.size() * sizeof(float), true, kTexel},
@@ -139,6 +140,7 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
     put(d.colors, scene.colors);
     put(d.instances, scene.instances);
     d.emitters = uploadArray(ctx, scene.emitters, limits);
+    d.lightTree = uploadArray(ctx, scene.lightTree, limits);
     d.materials = uploadArray(ctx, scene.materials, limits);
     d.textureRefs = uploadArray(ctx, scene.textureRefs, limits);
     d.texels = vk::uploadVector(ctx, scene.texels, VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
@@ -147,7 +149,7 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
     uploadEnvironment(ctx, scene, d, limits);
     release(scene.envTexels);
     for (const DeviceArray* a : {&d.nodes, &d.tris, &d.shading, &d.texcoords, &d.tangents, &d.colors, &d.instances,
-                                  &d.emitters, &d.materials, &d.textureRefs, &d.envTables})
+                                  &d.emitters, &d.lightTree, &d.materials, &d.textureRefs, &d.envTables})
         d.deviceBytes += a->buffer.allocationSize();
     for (const vk::Buffer* b : {&d.texels, &d.envTexels})
         d.deviceBytes += b->allocationSize();

@@ -79,6 +79,7 @@ DeviceArray uploadArray(const vk::Context& ctx, const std::vector<T>& v, const S
 
 struct DeviceScene {
     DeviceArray nodes, tris, shading, texcoords, tangents, colors, instances, emitters, materials, textureRefs;
+    DeviceArray lightTree;  // GpuScene::lightTree (16 bytes without the tree)
     // Texturing inputs; a 16-byte zero buffer each when the scene has none
     // (every binding the shaders declare stays valid for the validation layers).
     vk::Buffer texels;

@@ -18,7 +18,7 @@ Emitter emitterAt(uint i) {
                        TEXEL_VEC3(t, kEmitterWordE2), TEXEL_FLOAT(t, kEmitterWordPmf),
                        TEXEL_VEC3(t, kEmitterWordRadiance), TEXEL_UINT(t, kEmitterWordFlags),
                        TEXEL_FLOAT(t, kEmitterWordAliasProb), TEXEL_UINT(t, kEmitterWordAlias),
-                       TEXEL_UINT(t, kEmitterWordKind), TEXEL_UINT(t, kEmitterWordPad1));
+                       TEXEL_UINT(t, kEmitterWordKind), TEXEL_UINT(t, kEmitterWordTrail));
     }
     return emitters[i];
 }

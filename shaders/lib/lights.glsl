@@ -1,7 +1,9 @@
 // Lights: one choice over all emitters (emissive triangles, KHR_lights_punctual
 // lights and the environment) in proportion to estimated power through the
 // host-built alias table (Walker 1977 / Vose 1991; weights in
-// pack/gpu_scene.cpp), then a point or direction on the chosen one.
+// pack/gpu_scene.cpp), then a point or direction on the chosen one. With the
+// light tree (STRATA_LIGHT_TREE) a bounded light is chosen by the tree at the
+// shading point instead (lib/light_tree.glsl).
 // Code for punctual lights and the environment is compiled out through the
 // kFeature* bits when the scene has none. Needs `frame` (FrameUniforms)
 // declared by the includer; reads emitters through lib/emitters.glsl.
@@ -12,6 +14,9 @@
 #include "lib/features.glsl"
 #include "lib/environment.glsl"
 #include "lib/emitters.glsl"
+#ifdef STRATA_LIGHT_TREE
+#include "lib/light_tree.glsl"
+#endif
 
 const float kLightFar = 3.0e38;  // distance of directional and environment lights
 
@@ -55,11 +60,20 @@ float emitterPdfSolidAngle(float pmf, float area, float dist, float cosLight) {
 }
 
 // For MIS when a BSDF-sampled ray hits emitter triangle `light` at distance
-// `dist` with |cosine| `cosLight` to its normal.
+// `dist` with |cosine| `cosLight` to its normal; with the light tree, the ray
+// left point `from` with normal `n` (sampleLight's p and n).
+#ifdef STRATA_LIGHT_TREE
+float lightPdfTriangle(uint light, float dist, float cosLight, vec3 from, vec3 n) {
+    Emitter e = emitterAt(light);
+    float pmf = frame.scene.y * lightTreePmf(from, n, e.trail);
+    return emitterPdfSolidAngle(pmf, e.area, dist, cosLight);
+}
+#else
 float lightPdfTriangle(uint light, float dist, float cosLight) {
     Emitter e = emitterAt(light);
     return emitterPdfSolidAngle(e.pmf, e.area, dist, cosLight);
 }
+#endif
 
 // For MIS when a BSDF-sampled ray escapes along `dir`.
 float lightPdfEnvironment(vec3 dir) {
@@ -70,9 +84,9 @@ LightSample noLight(vec3 p) {
     return LightSample(vec3(0.0, 0.0, 1.0), kLightFar, vec3(0.0), 0.0, p, false);
 }
 
-// A uniform point on the triangle (the square-root map); one-sided emitters
-// give nothing behind them.
-LightSample sampleTriangleLight(Emitter e, vec3 p, vec2 u) {
+// A uniform point on the triangle (the square-root map), the triangle chosen
+// with probability `pmf`; one-sided emitters give nothing behind them.
+LightSample sampleTriangleLight(Emitter e, float pmf, vec3 p, vec2 u) {
     vec2 b = sampleTriangle(u);
     vec3 pos = e.v0 + b.x * e.e1 + b.y * e.e2;
     vec3 normal = normalize(cross(e.e1, e.e2));
@@ -85,7 +99,7 @@ LightSample sampleTriangleLight(Emitter e, vec3 p, vec2 u) {
     float cosSigned = -dot(ls.wi, normal);
     bool emits = cosSigned > 0.0 || (e.flags & kMaterialDoubleSided) != 0u;
     if (!emits) return ls;
-    ls.pdf = emitterPdfSolidAngle(e.pmf, e.area, dist, abs(cosSigned));
+    ls.pdf = emitterPdfSolidAngle(pmf, e.area, dist, abs(cosSigned));
     if (ls.pdf > 0.0) {
         ls.Li = e.radiance;
 #ifdef STRATA_LIB_MATERIAL_GLSL
@@ -102,11 +116,12 @@ LightSample sampleTriangleLight(Emitter e, vec3 p, vec2 u) {
 
 // Point and spot lights: radiant intensity I falls off as 1/d^2; a spot is
 // scaled by KHR_lights_punctual's smooth falloff clamp(cos * scale + offset,
-// 0, 1)^2. Directional: irradiance E from -e1.
-LightSample samplePunctualLight(Emitter e, vec3 p) {
+// 0, 1)^2. Directional: irradiance E from -e1. The light is chosen with
+// probability `pmf`.
+LightSample samplePunctualLight(Emitter e, float pmf, vec3 p) {
     LightSample ls = noLight(p);
     ls.isDelta = true;
-    ls.pdf = e.pmf;
+    ls.pdf = pmf;
     if (e.kind == kLightDirectional) {
         ls.wi = -e.e1;
         ls.Li = e.radiance;
@@ -127,21 +142,50 @@ LightSample samplePunctualLight(Emitter e, vec3 p) {
     return ls;
 }
 
+// The environment, chosen with probability e.pmf, sampled by its map.
+LightSample sampleEnvironmentLight(Emitter e, vec3 p, vec2 u2) {
+    LightSample ls = noLight(p);
+    float pdf;
+    ls.wi = sampleEnvironment(u2, pdf);
+    ls.pdf = e.pmf * pdf;
+    if (ls.pdf > 0.0) ls.Li = environmentRadiance(ls.wi);
+    return ls;
+}
+
+#ifdef STRATA_LIGHT_TREE
+// One light sample for shading point p with normal n (that of the BSDF's
+// frame) from one 2D pair u and one more number uTree. The alias table
+// chooses as without the tree (u.x); where it chooses a bounded light, that
+// choice is dropped and the tree chooses one (uTree): so the directional and
+// environment lights keep their probabilities, and the tree is taken with
+// probability frame.scene.y (1 where there are none: no alias step).
+LightSample sampleLight(vec3 p, vec3 n, vec2 u, float uTree) {
+    vec2 u2 = u;
+    if (frame.scene.y < 1.0) {
+        float rest;
+        Emitter e = emitterAt(chooseLight(frame.counts.x, u.x, rest));
+        u2 = vec2(min(rest, 0.99999994), u.y);
+        if (hasFeature(kFeatureEnvironment) && e.kind == kLightEnvironment) return sampleEnvironmentLight(e, p, u2);
+        if (hasFeature(kFeaturePunctual) && e.kind == kLightDirectional) return samplePunctualLight(e, e.pmf, p);
+    }
+    float pmf;
+    uint light = sampleLightTree(p, n, uTree, pmf);
+    if (light == kNoLight) return noLight(p);
+    Emitter e = emitterAt(light);
+    pmf *= frame.scene.y;
+    if (hasFeature(kFeaturePunctual) && e.kind != kLightTriangle) return samplePunctualLight(e, pmf, p);
+    return sampleTriangleLight(e, pmf, p, u2);
+}
+#else
 // One light sample for shading point p from one 2D pair u.
 LightSample sampleLight(vec3 p, vec2 u) {
     float rest;
     Emitter e = emitterAt(chooseLight(frame.counts.x, u.x, rest));
     vec2 u2 = vec2(min(rest, 0.99999994), u.y);
-    if (hasFeature(kFeatureEnvironment) && e.kind == kLightEnvironment) {
-        LightSample ls = noLight(p);
-        float pdf;
-        ls.wi = sampleEnvironment(u2, pdf);
-        ls.pdf = e.pmf * pdf;
-        if (ls.pdf > 0.0) ls.Li = environmentRadiance(ls.wi);
-        return ls;
-    }
-    if (hasFeature(kFeaturePunctual) && e.kind != kLightTriangle) return samplePunctualLight(e, p);
-    return sampleTriangleLight(e, p, u2);
+    if (hasFeature(kFeatureEnvironment) && e.kind == kLightEnvironment) return sampleEnvironmentLight(e, p, u2);
+    if (hasFeature(kFeaturePunctual) && e.kind != kLightTriangle) return samplePunctualLight(e, e.pmf, p);
+    return sampleTriangleLight(e, e.pmf, p, u2);
 }
+#endif
 
 #endif

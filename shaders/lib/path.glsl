@@ -9,8 +9,9 @@
 #define STRATA_LIB_PATH_GLSL
 
 // Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
-// 2D pairs: light choice and point, BSDF lobe (1D in a pair), BSDF
-// direction, roulette (1D in a pair).
+// 2D pairs: light choice and point, BSDF lobe (1D in a pair; the light
+// tree's choice takes the pair's second), BSDF direction, roulette (1D in a
+// pair).
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
 // A shadow ray towards a point on an emitter ends this fraction of the way
@@ -43,9 +44,17 @@ struct PathVertex {
     vec3 L;
     float prevBsdfPdf;
     bool prevDelta;  // the camera ray or a delta lobe: emission found gets weight 1
+#ifdef STRATA_LIGHT_TREE
+    vec3 prevP;      // the last vertex's point and the normal the light tree
+    vec3 prevN;      // was asked with (lightPdfTriangle)
+#endif
 };
 
+#ifdef STRATA_LIGHT_TREE
+PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true, vec3(0.0), vec3(0.0)); }
+#else
 PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true); }
+#endif
 
 // What shading a hit asks for next.
 struct PathNext {
@@ -107,7 +116,11 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     // Emission found by the previous vertex's BSDF sample (or directly).
     if (kHasEmitters != 0u && sh.light != kNoLight) {
         if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
+#ifdef STRATA_LIGHT_TREE
+            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)), v.prevP, v.prevN);
+#else
             float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
+#endif
             float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
             vec2 bary = vec2(hit.u, hit.v);
             vec3 le = emissionAt(sh.material, hit.triangle, bary);
@@ -178,7 +191,15 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
 
         // Next-event estimation: one light sample, one shadow ray.
         if (lightSampling) {
+#ifdef STRATA_LIGHT_TREE
+            // The tree's number is the lobe pair's second, which BSDF sampling leaves unused.
+            samplerSetDim(smp, 2u + depth * kDimsPerVertex + 2u);
+            float uTree = sample2D(smp).y;
+            samplerSetDim(smp, 2u + depth * kDimsPerVertex);
+            LightSample ls = sampleLight(p, ns, sample2D(smp), uTree);
+#else
             LightSample ls = sampleLight(p, sample2D(smp));
+#endif
             vec3 wiL = vec3(dot(ls.wi, t), dot(ls.wi, b), dot(ls.wi, ns));
             float geoSide = dot(n, ls.wi);
             // The shading and geometric normals must agree on the side wi leaves to.
@@ -220,6 +241,10 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
 #endif
             v.prevBsdfPdf = bs.pdf;
             v.prevDelta = bs.delta;
+#ifdef STRATA_LIGHT_TREE
+            v.prevP = p;
+            v.prevN = ns;
+#endif
 
             // Russian roulette after depth 3, survival probability max(beta) (>= 0.05).
             float u = sample1D(smp);

@@ -56,7 +56,9 @@ STRATA_BINDING(BINDING_COLORS, 41);        // storage TriColors[]: COLOR_0 per t
 STRATA_BINDING(BINDING_COLORS_TEXEL, 42);  // usamplerBuffer over BINDING_COLORS (RGBA32UI)
 STRATA_BINDING(BINDING_HIT_INSTANCES, 43);  // storage uint[]: each closest hit's instance (STRATA_INSTANCING: the
                                             // trace kernel writes it, the wavefront's shade stage reads it)
-STRATA_BINDING(BINDING_COUNT, 44);
+STRATA_BINDING(BINDING_LIGHT_TREE, 44);        // storage LightNode[] (kFeatureLightTree; 16 bytes otherwise)
+STRATA_BINDING(BINDING_LIGHT_TREE_TEXEL, 45);  // usamplerBuffer over BINDING_LIGHT_TREE (RGBA32UI)
+STRATA_BINDING(BINDING_COUNT, 46);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views

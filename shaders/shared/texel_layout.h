@@ -125,7 +125,17 @@ STRATA_CONST(uint, kEmitterWordFlags, 15u);
 STRATA_CONST(uint, kEmitterWordAliasProb, 16u);
 STRATA_CONST(uint, kEmitterWordAlias, 17u);
 STRATA_CONST(uint, kEmitterWordKind, 18u);
-STRATA_CONST(uint, kEmitterWordPad1, 19u);
+STRATA_CONST(uint, kEmitterWordTrail, 19u);
+
+STRATA_CONST(uint, kLightNodeTexels, 3u);
+STRATA_CONST(uint, kLightNodeWordCentre, 0u);
+STRATA_CONST(uint, kLightNodeWordRadius2, 3u);
+STRATA_CONST(uint, kLightNodeWordAxis, 4u);
+STRATA_CONST(uint, kLightNodeWordPower, 7u);
+STRATA_CONST(uint, kLightNodeWordCosThetaO, 8u);
+STRATA_CONST(uint, kLightNodeWordSinThetaO, 9u);
+STRATA_CONST(uint, kLightNodeWordCosThetaE, 10u);
+STRATA_CONST(uint, kLightNodeWordLink, 11u);
 
 #ifdef __cplusplus
 // STRATA_TEXELS: the struct is exactly its texels. STRATA_WORD: the field
@@ -247,7 +257,17 @@ STRATA_WORD(Emitter, flags, kEmitterWordFlags);
 STRATA_WORD(Emitter, aliasProb, kEmitterWordAliasProb);
 STRATA_WORD(Emitter, alias, kEmitterWordAlias);
 STRATA_WORD(Emitter, kind, kEmitterWordKind);
-STRATA_WORD(Emitter, pad1, kEmitterWordPad1);
+STRATA_WORD(Emitter, trail, kEmitterWordTrail);
+
+STRATA_TEXELS(LightNode, kLightNodeTexels);
+STRATA_TEXEL_WORD(LightNode, centre, kLightNodeWordCentre);
+STRATA_WORD(LightNode, radius2, kLightNodeWordRadius2);
+STRATA_TEXEL_WORD(LightNode, axis, kLightNodeWordAxis);
+STRATA_WORD(LightNode, power, kLightNodeWordPower);
+STRATA_WORD(LightNode, cosTheta_o, kLightNodeWordCosThetaO);
+STRATA_WORD(LightNode, sinTheta_o, kLightNodeWordSinThetaO);
+STRATA_WORD(LightNode, cosTheta_e, kLightNodeWordCosThetaE);
+STRATA_WORD(LightNode, link, kLightNodeWordLink);
 
 #undef STRATA_TEXELS
 #undef STRATA_WORD

@@ -141,6 +141,8 @@ STRATA_CONST(uint, kFeatureClearcoat, 4096u);  // KHR_materials_clearcoat: the c
 STRATA_CONST(uint, kFeatureSheen, 8192u);      // KHR_materials_sheen: the Charlie sheen lobe
 STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular colour or textures
 STRATA_CONST(uint, kFeatureIridescence, 32768u);    // KHR_materials_iridescence: a thin film on the Fresnel
+STRATA_CONST(uint, kFeatureLightTree, 65536u);      // lights chosen through the light tree (LightNode),
+                                                    // not by power alone (pack/light_tree.h)
 // The material layers: compiled only into the modules with the layers axis
 // (STRATA_LAYERS, lib/features.glsl).
 STRATA_CONST(uint, kFeaturesLayers,
@@ -306,8 +308,34 @@ struct Emitter {
     float aliasProb;
     uint alias;
     uint kind;        // kLight*
-    uint pad1;
+    uint trail;       // with the light tree (kFeatureLightTree), a bounded
+                      // light's path from the root: bit d = 1 takes the second
+                      // child at depth d (LightNode)
 };
+
+// A node of the light tree (pack/light_tree.h; Conty Estevez & Kulla 2018):
+// the bounds, total estimated power and orientation cone of the bounded
+// lights (triangles, point and spot lights) below it. Node 0 is the root;
+// an interior node's first child follows it, its second is in `link`. A
+// leaf holds one light, `link` then holds its emitter index. The bounds are
+// the sphere around the lights' box (all the importance reads of it). The
+// cone: every light's normal (or a spot's axis) is within theta_o of
+// `axis`, and emits within theta_e beyond it (pi/2 for a surface).
+struct LightNode {
+    vec3 centre;      // of the lights' bounding box
+    float radius2;    // its half diagonal, squared
+    vec3 axis;        // unit
+    float power;      // sum of the lights' estimated powers (packScene's weights)
+    float cosTheta_o;
+    float sinTheta_o;
+    float cosTheta_e;
+    uint link;        // kLightNodeIndex bits: the second child, or a leaf's emitter;
+                      // kLightNodeLeaf, kLightNodeTwoSided (some light below emits
+                      // from both sides)
+};
+STRATA_CONST(uint, kLightNodeLeaf, 0x80000000u);
+STRATA_CONST(uint, kLightNodeTwoSided, 0x40000000u);
+STRATA_CONST(uint, kLightNodeIndex, 0x3fffffffu);
 
 // Accumulation layout: per pixel, two vec4 — sum of sample rgb and the number
 // of finite samples (in .w), then the sum of squared rgb (.w unused).
@@ -332,7 +360,9 @@ struct FrameUniforms {
     vec4 camUp;         // xyz: up * tan(yfov/2)
     uvec4 image;        // width, height, maxDepth, seed
     uvec4 counts;       // emitterCount, triangleCount, nodeCount, spp (of the whole render)
-    vec4 scene;         // x: total emitted power (for stats), yzw unused
+    vec4 scene;         // x: total emitted power (for stats); y: with the light tree, the
+                        // probability of choosing a bounded light (the tree) over the
+                        // directional and environment lights; zw unused
     // Environment light (scene.h states the equirectangular convention).
     vec4 envScale;      // xyz: radiance (constant) or the map's multiplier; w unused
     vec4 envRotation;   // x, y: cos, sin of the rotation about +Y; zw unused
@@ -458,6 +488,11 @@ STRATA_CONST(uint, kBsdfPdfCells, 7u);            // out: x = integral of the pd
                                                   // a pixelX (theta in [0,pi]) x pixelY (phi)
                                                   // grid, row-major in theta
 STRATA_CONST(uint, kSampleLight, 8u);             // out: sampleLight(0, u): wi xyz, pdf w
+STRATA_CONST(uint, kSampleLightTree, 10u);        // light tree at point bsdf0.xyz, normal bsdf1.xyz:
+                                                  // out: x = chosen emitter (-1: none), y = its
+                                                  // pmf as sampled, z = lightTreePmf of it
+STRATA_CONST(uint, kLightTreePmf, 11u);           // out: x = lightTreePmf of emitter i at the
+                                                  // point and normal of kSampleLightTree
 STRATA_CONST(uint, kSampleEnvironmentPdf, 9u);    // out: direction xyz at the centre of cell
                                                   // (i % width, i / width) of a width x
                                                   // (count / width) grid in (phi / 2pi,
@@ -505,6 +540,7 @@ static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
 static_assert(sizeof(Material) == 192);
 static_assert(sizeof(Emitter) == 80);
+static_assert(sizeof(LightNode) == 48);
 static_assert(sizeof(TriTexcoords) == 48);
 static_assert(sizeof(TriTangents) == 48);
 static_assert(sizeof(TriColors) == 48);
