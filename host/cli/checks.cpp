@@ -77,11 +77,25 @@ void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
             badFlag(a + " needs --env or --env-color");
 }
 
+void checkAdaptiveFlags(const RenderSettings& s, std::uint32_t cap) {
+    if (s.minSpp > 0 && !s.adaptive()) badFlag("--min-spp needs --noise-threshold");
+    if (!s.adaptive()) return;
+    if (s.minSpp > cap)
+        badFlag("--min-spp " + std::to_string(s.minSpp) + " is above the cap --spp " + std::to_string(cap));
+    if (s.integrator == IntegratorKind::Wavefront)
+        badFlag("--noise-threshold needs the megakernel integrator; the wavefront integrator samples every pixel");
+}
+
 void checkRenderFlags(const Parsed& parsed, const RenderCommand& cmd) {
     checkEnvFlags(parsed, cmd.env);
     checkViewFlags(cmd.view);
     checkFrameFlags(parsed, cmd);
     checkLensFlags(cmd.settings);
+    checkAdaptiveFlags(cmd.settings, cmd.settings.spp);
+    if (cmd.settings.adaptive() && cmd.shards > 1)
+        badFlag("--shard and --noise-threshold exclude each other: a shard's blocks would stop on its own samples, "
+                "and the merge would not be the render's; render adaptively in one job (--checkpoint-every "
+                "survives a preemption)");
     checkStateFlags(cmd);
     if (cmd.settings.aov && cmd.settings.integrator == IntegratorKind::Wavefront)
         badFlag(std::string(cmd.denoise ? "--denoise" : "--aov") +
@@ -100,6 +114,8 @@ void checkConvergeFlags(const ConvergeCommand& cmd) {
     // measures the samplers that suit them all.
     if (!cmd.allSamplers)
         for (std::uint32_t spp : cmd.spp) checkSamplerSettings(samplerByKind(cmd.settings.sampler), spp, 1, 1);
+    // With a threshold, each listed spp is a cap.
+    checkAdaptiveFlags(cmd.settings, cmd.spp.empty() ? 0u : cmd.spp.back());
 }
 
 void checkEdgesFlags(const EdgesCommand& cmd) {
@@ -108,7 +124,10 @@ void checkEdgesFlags(const EdgesCommand& cmd) {
     checkEdgeSettings(cmd.settings);
 }
 
-void checkBenchFlags(const BenchCommand& cmd) { checkTextOutput(cmd.json, {".json"}, "bench report must be .json"); }
+void checkBenchFlags(const BenchCommand& cmd) {
+    checkTextOutput(cmd.json, {".json"}, "bench report must be .json");
+    checkAdaptiveFlags(cmd.settings, cmd.settings.spp);
+}
 
 void checkCompareFlags(const CompareArgs& args) {
     checkTextOutput(args.json, {".json"}, "compare report must be .json");

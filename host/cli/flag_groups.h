@@ -113,6 +113,13 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
                                 "proportion to estimated power alone; auto: the tree from 16 lights on",
                                 {{"auto", LightSampler::Auto}, {"tree", LightSampler::Tree}, {"power", LightSampler::Power}},
                                 [settings](auto& c) -> auto& { return settings(c).lightSampler; }),
+        positive<T>("--noise-threshold", "T",
+                    "adaptive sampling: an 8x8 block of pixels stops once each pixel's standard error is within T "
+                    "of sqrt(mean^2 + 0.01) (its relMSE term within T^2), checked every 16 samples; --spp is the cap",
+                    1e30, "a threshold", [settings](auto& c) -> auto& { return settings(c).noiseThreshold; })
+            .withDefault("off"),
+        integer<T>("--min-spp", "N", "adaptive sampling: no block stops before N samples (default 16)", 1, 1u << 30,
+                   [settings](auto& c) -> auto& { return settings(c).minSpp; }),
     };
 }
 

@@ -76,6 +76,7 @@ std::vector<vk::BindingDesc> pathBindings() {
         {BINDING_LIGHT_TREE_TEXEL, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_COUNTERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {BINDING_ACTIVE_BLOCKS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_FILTER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {BINDING_ENV_TEXELS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
         {BINDING_ENV_CDF, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
@@ -92,6 +93,7 @@ void bindPathInputs(vk::Kernel& kernel, const DeviceScene& dev, const FilmBuffer
     bindArray(kernel, BINDING_LIGHT_TREE, BINDING_LIGHT_TREE_TEXEL, dev.lightTree);
     kernel.bind(BINDING_ACCUM, film.accum);
     kernel.bind(BINDING_COUNTERS, film.counters);
+    kernel.bind(BINDING_ACTIVE_BLOCKS, film.activeBlocks);
     kernel.bind(BINDING_FILTER, film.filterTable);
     kernel.bind(BINDING_ENV_TEXELS, dev.envTexelView);
     bindArray(kernel, BINDING_ENV_CDF, BINDING_ENV_CDF_TEXEL, dev.envTables);
@@ -99,9 +101,10 @@ void bindPathInputs(vk::Kernel& kernel, const DeviceScene& dev, const FilmBuffer
 
 std::vector<std::uint32_t> pathSpec(const DeviceScene& dev, const RenderSettings& s) {
     using namespace gpu;
-    std::vector<std::uint32_t> spec(SPEC_WORK_QUEUE + 1, 0u);
+    std::vector<std::uint32_t> spec(SPEC_ADAPTIVE + 1, 0u);
     setTraversalSpec(dev, spec);
     spec[SPEC_HAS_EMITTERS] = dev.features.emitters ? 1u : 0u;
+    spec[SPEC_ADAPTIVE] = s.adaptive() ? 1u : 0u;
     spec[SPEC_SAMPLER] = s.sampler;
     spec[SPEC_FEATURES] = dev.features.bits;
     spec[SPEC_MIS] = s.mis;

@@ -46,6 +46,7 @@ struct FilmBuffers {
     const vk::Buffer& filterTable;  // BINDING_FILTER: settings/filter.h's inverse CDF
     const vk::Buffer& accum;        // BINDING_ACCUM: kAccumVec4PerPixel vec4 per pixel
     const vk::Buffer& counters;     // BINDING_COUNTERS: gpu::RenderCounters
+    const vk::Buffer& activeBlocks; // BINDING_ACTIVE_BLOCKS: render/adaptive.h (SPEC_ADAPTIVE)
 };
 
 // What the path-tracing shaders (pathtrace.comp and wavefront.comp's

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "../../shaders/shared/bindings.h"
+#include "render/adaptive.h"
 #include "render/sampler_kind.h"
 #include "integrate/integrator.h"
 #include "util/error.h"
@@ -107,7 +108,17 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     vk::Buffer countersBack(ctx, sizeof(RenderCounters), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             vk::MemoryUse::Readback);
     vk::Buffer filterTable = vk::uploadVector(ctx, filterInverseCdf(s.filter), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    const FilmBuffers film{frame, filterTable, accum, counters};
+    // Adaptive sampling: the blocks still sampled (render/adaptive.h); a
+    // 16-byte placeholder otherwise.
+    const bool adaptive = s.adaptive();
+    ActiveBlocks blocks = adaptive ? ActiveBlocks(s.width, s.height) : ActiveBlocks();
+    vk::Buffer activeBlocks(ctx, std::max<VkDeviceSize>(16, blocks.active.size() * sizeof(std::uint32_t)),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload);
+    auto writeBlocks = [&] {
+        std::memcpy(activeBlocks.mapped(), blocks.active.data(), blocks.active.size() * sizeof(std::uint32_t));
+    };
+    writeBlocks();
+    const FilmBuffers film{frame, filterTable, accum, counters, activeBlocks};
 
     const std::uint32_t tile = std::max(8u, t.tileSize);
     const std::uint32_t maxTilePixels =
@@ -143,8 +154,11 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     }
 
     // The samples: [begin, end), from `cur` on. Batches are the runs of
-    // foldEvery indices from multiples of foldEvery (Accumulation).
-    const std::uint32_t foldEvery = std::max(1u, t.maxBatch);
+    // foldEvery indices from multiples of foldEvery (Accumulation); an
+    // adaptive render folds every kAdaptiveStep samples at most, and decides
+    // at its folds.
+    const std::uint32_t foldEvery = std::max(1u, adaptive ? std::min(t.maxBatch, kAdaptiveStep) : t.maxBatch);
+    const std::uint32_t minSpp = s.minSpp ? s.minSpp : kAdaptiveStep;
     const Accumulation* resume = run.resume;
     const std::uint32_t begin = resume ? resume->begin : run.begin;
     const std::uint32_t end = run.end ? run.end : s.spp;
@@ -154,6 +168,12 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     std::uint32_t cur = resume ? resume->end : begin;
     std::uint32_t unfolded = resume ? resume->end - resume->folded : 0;  // samples summed on the device since the last fold
     Film sums = resume ? resume->film : Film(s.width, s.height, s.aov);  // the complete batches
+    // A resumed adaptive render finds the blocks retired at its last fold
+    // again: the decisions there read the same film.
+    if (adaptive && resume && resume->folded - begin >= minSpp && resume->folded > begin) {
+        retireConverged(sums, s.noiseThreshold, blocks);
+        writeBlocks();
+    }
     {
         VkCommandBuffer cmd = submit.begin();
         vkCmdFillBuffer(cmd, counters.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -230,7 +250,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     double ownSeconds = 0.0;     // device time of what the integrator submitted on its own
     double lastCheckpoint = 0.0; // elapsed() at the last onCheckpoint
 
-    while (cur < end) {
+    while (cur < end && (!adaptive || blocks.activeCount() > 0)) {
         const std::uint32_t spp = cur - begin;  // in the image so far
         while (nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] <= spp) ++nextCheckpoint;
         std::uint32_t limit = std::min(foldEvery - cur % foldEvery, end - cur);
@@ -273,10 +293,15 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         cur = after;
         unfolded += batch;
         result.sppRendered += batch;
+        result.samplesTaken += std::uint64_t(batch) * (adaptive ? blocks.activePixels(s.width, s.height) : pixels);
         ++result.submissions;
         if (fold) {
             sums.fold(readBatch());
             unfolded = 0;
+            if (adaptive && cur - begin >= minSpp) {
+                retireConverged(sums, s.noiseThreshold, blocks);
+                writeBlocks();
+            }
         }
         if (atCheckpoint && checkpoints.onReached) {  // the image so far, the batch in progress included
             result.spp = cur - begin;
@@ -299,8 +324,16 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         batch = t.fixedBatch ? t.fixedBatch
                              : static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
         if (showProgress)
-            printProgress(cur - begin, end - begin, elapsed(),
-                          static_cast<double>(pixels) * result.sppRendered / elapsed() * 1e-6);
+            printProgress(cur - begin, end - begin, elapsed(), static_cast<double>(result.samplesTaken) / elapsed() * 1e-6);
+    }
+    // An adaptive render whose every block stopped: its image is the one at
+    // each later checkpoint too (no pixel would take another sample).
+    if (adaptive && cur < end && blocks.activeCount() == 0 && checkpoints.onReached) {
+        result.spp = cur - begin;
+        result.seconds = elapsed();
+        result.film = sums;
+        for (; nextCheckpoint < checkpoints.spp.size(); ++nextCheckpoint)
+            if (checkpoints.spp[nextCheckpoint] > cur - begin) checkpoints.onReached(result);
     }
     // The batch in progress (the render ended, or was stopped by --time or a
     // signal, inside one): in the image, and kept apart in the state.

@@ -52,6 +52,8 @@ struct RenderResult {
     Film film;
     std::uint32_t spp = 0;              // samples per pixel in the image (with a resumed state's)
     std::uint32_t sppRendered = 0;      // of those, the ones this render took
+    std::uint64_t samplesTaken = 0;     // pixel samples this render took (adaptive: fewer than
+                                        // pixels x sppRendered)
     Accumulation state;                 // with SampleRun::keep: the accumulation the image is made of
     int interrupted = 0;                // the SIGINT or SIGTERM that ended the loop early
                                         // (util/interrupt.h), 0 when none
@@ -81,7 +83,7 @@ struct RenderResult {
     std::uint64_t peakDeviceBytes = 0;  // most device memory the process held at once, by the
                                         // render's end (scene, image, staging: vk::Buffer)
     double msamplesPerSecond() const {
-        return seconds > 0 ? static_cast<double>(film.pixels()) * sppRendered / seconds * 1e-6 : 0.0;
+        return seconds > 0 ? static_cast<double>(samplesTaken) / seconds * 1e-6 : 0.0;
     }
 };
 

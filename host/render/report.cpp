@@ -65,6 +65,7 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"seconds", r.seconds},
                    {"device_seconds", r.deviceSeconds},
                    {"msamples_per_second", r.msamplesPerSecond()},
+                   {"mean_spp_rendered", r.film.pixels() ? double(r.samplesTaken) / double(r.film.pixels()) : 0.0},
                    {"submissions", r.submissions},
                    {"dispatches", r.dispatches},
                    {"closest_rays", r.closestRays},
@@ -76,6 +77,7 @@ nlohmann::json statsJson(const StatsInput& in) {
                    {"sampler", samplerByKind(s.sampler).name},
                    {"filter", filterName(s.filter.kind)},
                    {"filter_radius", s.filter.radius}};
+    if (s.adaptive()) j["render"]["noise_threshold"] = s.noiseThreshold;
     j["memory"] = memoryJson(r.sceneBytes, r.sceneDeviceBytes);
     j["validation"] = {{"enabled", in.ctx->validation},
                        {"messages", vk::validationMessageCount()}};
@@ -146,6 +148,11 @@ std::string statsText(const nlohmann::json& j) {
                   r["bvh_stack"].get<std::string>().c_str(),
                   r["sampler"].get<std::string>().c_str());
     o << line;
+    if (r.contains("noise_threshold")) {
+        std::snprintf(line, sizeof line, "adaptive   noise threshold %g: %.1f spp a pixel on average this render\n",
+                      r["noise_threshold"].get<double>(), r["mean_spp_rendered"].get<double>());
+        o << line;
+    }
     if (r.contains("interrupted") && !r["interrupted"].is_null())
         o << "stopped    by " << r["interrupted"].get<std::string>() << " before the samples asked for\n";
     o << "samples    " << r["non_finite_samples"] << " non-finite dropped\n";

@@ -111,6 +111,10 @@ nlohmann::ordered_json stateSettings(const RenderSettings& s, const Camera& came
     j["filter-radius"] = s.filter.radius;
     j["mis"] = misName(s.mis);
     j["aov"] = s.aov;
+    if (s.adaptive()) {  // a state without them renders every pixel to the cap
+        j["noise-threshold"] = s.noiseThreshold;
+        j["min-spp"] = s.minSpp;
+    }
     j["lens-radius"] = s.lensRadius;
     if (s.lensRadius > 0.0f) {
         j["focus-distance"] = s.focusDistance;

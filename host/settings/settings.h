@@ -61,6 +61,11 @@ struct RenderSettings {
     bool cameraEffects() const { return lensRadius > 0.0f || (shutter && shutterClose > shutterOpen); }
     bool aov = false;                   // --aov: the AOV sums as well (the aov axis; Film::aovSum);
                                         // the megakernel only
+    // Adaptive sampling (render/adaptive.h): --noise-threshold (0: off; then
+    // --spp is the cap) and --min-spp (0: kAdaptiveStep).
+    double noiseThreshold = 0.0;
+    std::uint32_t minSpp = 0;
+    bool adaptive() const { return noiseThreshold > 0.0; }
 };
 
 // The loader's part of the settings: --shutter and --animation.

@@ -58,7 +58,9 @@ STRATA_BINDING(BINDING_HIT_INSTANCES, 43);  // storage uint[]: each closest hit'
                                             // trace kernel writes it, the wavefront's shade stage reads it)
 STRATA_BINDING(BINDING_LIGHT_TREE, 44);        // storage LightNode[] (kFeatureLightTree; 16 bytes otherwise)
 STRATA_BINDING(BINDING_LIGHT_TREE_TEXEL, 45);  // usamplerBuffer over BINDING_LIGHT_TREE (RGBA32UI)
-STRATA_BINDING(BINDING_COUNT, 46);
+STRATA_BINDING(BINDING_ACTIVE_BLOCKS, 46);  // storage uint[]: 1 per 8x8 block of the image still sampled
+                                            // (SPEC_ADAPTIVE; 16 bytes otherwise)
+STRATA_BINDING(BINDING_COUNT, 47);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views
@@ -72,6 +74,8 @@ STRATA_BINDING(SPEC_TRACE_MODE, 7);       // trace kernel: kTraceClosest, kTrace
 STRATA_BINDING(SPEC_WORK_QUEUE, 8);       // 1 (CPU devices): trace.comp's subgroups take rays from a counter,
                                           // pathtrace.comp shades a tile's 8x8 blocks in a permuted order
 STRATA_BINDING(SPEC_WAVE_STAGE, 9);       // wavefront.comp: kStage* (types.h), one pipeline each
+STRATA_BINDING(SPEC_ADAPTIVE, 10);        // 1: adaptive sampling; pathtrace.comp skips the 8x8 blocks
+                                          // BINDING_ACTIVE_BLOCKS marks converged
 
 #ifdef __cplusplus
 }  // namespace strata::gpu
