@@ -103,7 +103,11 @@ def parse_args(argv):
                     default=os.path.join(ROOT, "..", "shared", "peers", "cycles", "cycles_render.py"))
     ap.add_argument("--adaptive", action="store_true",
                     help="also run Cycles with adaptive sampling (and strata if it has it)")
-    ap.add_argument("--noise-threshold", type=float, default=0.01)
+    ap.add_argument("--noise-threshold", type=float, default=0.01,
+                    help="Cycles' adaptive threshold (its default 0.01)")
+    ap.add_argument("--strata-noise-threshold", type=float, default=None,
+                    help="strata's (default: --noise-threshold); strata's is another measure: the "
+                         "standard error over sqrt(I^2 + 0.01), the root of a pixel's relMSE term")
     ap.add_argument("--reference", choices=["cycles", "strata"], default="cycles",
                     help="the renderer of the common reference (default cycles)")
     ap.add_argument("--strata-reference", action="store_true",
@@ -421,7 +425,8 @@ def measure_scene(a, rnd, scene):
                 if s == "strata":
                     times = rnd.strata(scene, spp, seed, img)
                 elif s == "strata-adaptive":
-                    times = rnd.strata(scene, spp, seed, img, noise_threshold=a.noise_threshold)
+                    times = rnd.strata(scene, spp, seed, img, noise_threshold=(
+                        a.noise_threshold if a.strata_noise_threshold is None else a.strata_noise_threshold))
                 elif s == "cycles":
                     times = rnd.cycles(scene, spp, seed, img)
                 else:
