@@ -102,7 +102,7 @@ void checkTree(const LightTree& tree, const std::vector<gpu::Emitter>& emitters,
             const glm::dvec3 v0(e.v0), c(n.centre);
             const glm::dvec3 corners[3] = {v0, v0 + glm::dvec3(e.e1), v0 + glm::dvec3(e.e2)};
             for (int k = 0; k < (e.kind == gpu::kLightTriangle ? 3 : 1); ++k)
-                CHECK(glm::dot(corners[k] - c, corners[k] - c) <= double(n.radius2));
+                CHECK(glm::dot(corners[k] - c, corners[k] - c) <= double(n.radius) * double(n.radius));
             // ... and its orientation in its cone: a triangle's normal, a
             // spot's axis with its inner cone; a point light needs them all.
             const double thetaO = std::acos(double(n.cosTheta_o));

@@ -19,14 +19,14 @@ bool useLightTree(LightSampler sampler, std::size_t clusters) {
 
 std::size_t lightClusters(const LightTree& tree, double size) {
     if (tree.nodes.empty()) return 0;
-    const double limit = size * size * double(tree.nodes[0].radius2);
+    const double limit = size * double(tree.nodes[0].radius);
     std::size_t clusters = 0;
     std::vector<std::uint32_t> stack{0};
     while (!stack.empty()) {
         const gpu::LightNode& n = tree.nodes[stack.back()];
         const std::uint32_t i = stack.back();
         stack.pop_back();
-        if ((n.link & gpu::kLightNodeLeaf) != 0u || double(n.radius2) <= limit) {
+        if ((n.link & gpu::kLightNodeLeaf) != 0u || double(n.radius) <= limit) {
             ++clusters;
             continue;
         }
@@ -161,7 +161,7 @@ struct Builder {
         n.centre = glm::vec3(b.centroid());
         // Rounded up, with the centre's rounding: the sphere holds the box.
         const double r = std::sqrt(glm::dot(half, half)) + glm::length(glm::dvec3(n.centre) - b.centroid());
-        n.radius2 = static_cast<float>(r * r * (1.0 + 1e-6));
+        n.radius = static_cast<float>(r * (1.0 + 1e-6));
         n.axis = glm::vec3(b.cone.axis);
         n.power = static_cast<float>(b.power);
         // Widened by 1e-3 radians: a float cosine near 1 holds the angle to

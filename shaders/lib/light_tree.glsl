@@ -17,7 +17,7 @@ layout(set = 0, binding = BINDING_LIGHT_TREE_TEXEL) uniform usamplerBuffer light
 LightNode lightNodeAt(uint i) {
     if (kTexelAll) {
         uvec4 t[kLightNodeTexels] = texels3(lightNodesTexel, i);
-        return LightNode(TEXEL_VEC3(t, kLightNodeWordCentre), TEXEL_FLOAT(t, kLightNodeWordRadius2),
+        return LightNode(TEXEL_VEC3(t, kLightNodeWordCentre), TEXEL_FLOAT(t, kLightNodeWordRadius),
                          TEXEL_VEC3(t, kLightNodeWordAxis), TEXEL_FLOAT(t, kLightNodeWordPower),
                          TEXEL_FLOAT(t, kLightNodeWordCosThetaO), TEXEL_FLOAT(t, kLightNodeWordSinThetaO),
                          TEXEL_FLOAT(t, kLightNodeWordCosThetaE), TEXEL_UINT(t, kLightNodeWordLink));
@@ -46,11 +46,13 @@ float sinMinusClamped(float cosA, float sinA, float cosB, float sinB) {
 float lightNodeImportance(LightNode nd, vec3 p, vec3 n) {
     vec3 toP = p - nd.centre;
     float d2 = dot(toP, toP);
-    float r2 = nd.radius2;
+    float invD = inversesqrt(d2);
     // Inside the bounding sphere every direction is possible (theta_b = pi).
-    float cosB = d2 > r2 ? sqrt(max(0.0, 1.0 - r2 / d2)) : -1.0;
-    float sinB = sqrt(max(0.0, 1.0 - cosB * cosB));
-    vec3 wi = d2 > 0.0 ? toP * inversesqrt(d2) : nd.axis;
+    float sinB = nd.radius * invD;
+    bool outside = sinB < 1.0;
+    float cosB = outside ? sqrt(1.0 - sinB * sinB) : -1.0;
+    sinB = outside ? sinB : 0.0;
+    vec3 wi = d2 > 0.0 ? toP * invD : nd.axis;
     float cosW = dot(nd.axis, wi);
     if ((nd.link & kLightNodeTwoSided) != 0u) cosW = abs(cosW);
     float sinW = sqrt(max(0.0, 1.0 - cosW * cosW));
@@ -62,7 +64,7 @@ float lightNodeImportance(LightNode nd, vec3 p, vec3 n) {
     if (cosP <= nd.cosTheta_e) return 0.0;
     // The distance is clamped to the box's half diagonal: near or inside it
     // 1/d^2 says nothing of the lights.
-    float importance = nd.power * cosP / max(max(d2, r2), 1e-20);
+    float importance = nd.power * cosP / max(max(d2, nd.radius * nd.radius), 1e-20);
     if (n != vec3(0.0)) {
         float cosI = abs(dot(wi, n));
         float sinI = sqrt(max(0.0, 1.0 - cosI * cosI));

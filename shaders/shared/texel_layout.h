@@ -129,7 +129,7 @@ STRATA_CONST(uint, kEmitterWordTrail, 19u);
 
 STRATA_CONST(uint, kLightNodeTexels, 3u);
 STRATA_CONST(uint, kLightNodeWordCentre, 0u);
-STRATA_CONST(uint, kLightNodeWordRadius2, 3u);
+STRATA_CONST(uint, kLightNodeWordRadius, 3u);
 STRATA_CONST(uint, kLightNodeWordAxis, 4u);
 STRATA_CONST(uint, kLightNodeWordPower, 7u);
 STRATA_CONST(uint, kLightNodeWordCosThetaO, 8u);
@@ -261,7 +261,7 @@ STRATA_WORD(Emitter, trail, kEmitterWordTrail);
 
 STRATA_TEXELS(LightNode, kLightNodeTexels);
 STRATA_TEXEL_WORD(LightNode, centre, kLightNodeWordCentre);
-STRATA_WORD(LightNode, radius2, kLightNodeWordRadius2);
+STRATA_WORD(LightNode, radius, kLightNodeWordRadius);
 STRATA_TEXEL_WORD(LightNode, axis, kLightNodeWordAxis);
 STRATA_WORD(LightNode, power, kLightNodeWordPower);
 STRATA_WORD(LightNode, cosTheta_o, kLightNodeWordCosThetaO);

@@ -323,7 +323,7 @@ struct Emitter {
 // `axis`, and emits within theta_e beyond it (pi/2 for a surface).
 struct LightNode {
     vec3 centre;      // of the lights' bounding box
-    float radius2;    // its half diagonal, squared
+    float radius;     // its half diagonal (rounded up)
     vec3 axis;        // unit
     float power;      // sum of the lights' estimated powers (packScene's weights)
     float cosTheta_o;
