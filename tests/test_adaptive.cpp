@@ -12,6 +12,7 @@
 
 #include "render/adaptive.h"
 #include "cli_util.h"
+#include "image/aov.h"
 #include "stats/stats.h"
 #include "test_util.h"
 
@@ -119,6 +120,34 @@ TEST_CASE("adaptive: no pixel passes the cap, converged blocks keep their counts
     const stats::ZTestResult z = stats::perPixelZTest(mean.data(), var.data(), refMean.data(), refVar.data(), mean.size());
     CAPTURE(z.acceptedFraction);
     CHECK(z.passed);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// The AOVs divide each pixel's sums by its own count: the albedo of an
+// adaptive render is the full render's, and each pixel's halves weighted by
+// their counts give its mean.
+TEST_CASE("adaptive: the AOV layers read each pixel's own sample count") {
+    RenderSettings s = adaptiveSettings();
+    s.aov = true;
+    const Rendered a = renderFile("scenes/cornell-box.gltf", s);
+    RenderSettings full = s;
+    full.noiseThreshold = 0.0;
+    full.spp = 64;
+    const Rendered b = renderFile("scenes/cornell-box.gltf", full);
+    const AovImages x = aovImages(a.result.film), y = aovImages(b.result.film);
+    const Film& f = a.result.film;
+    REQUIRE(*std::min_element(f.count.begin(), f.count.end()) < s.spp);
+    std::size_t close = 0;
+    for (std::size_t i = 0; i < f.pixels(); ++i) {
+        double diff = 0.0;
+        for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(double(x.albedo[i * 3 + c]) - y.albedo[i * 3 + c]));
+        close += diff < 0.05;
+        const double n = double(f.count[i]), nA = std::ceil(n / 2.0);  // even sample indices 0, 2, ...
+        const double weighted = (nA * x.halfA[i * 3] + (n - nA) * x.halfB[i * 3]) / n;
+        CHECK(weighted == doctest::Approx(x.color[i * 3]).epsilon(1e-4));
+    }
+    CAPTURE(close);
+    CHECK(close >= f.pixels() * 98 / 100);
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -212,6 +213,25 @@ TEST_CASE("light tree: lights the split would peel off one by one still get trai
     checkTree(tree, emitters, emitters.size());
     MESSAGE("depth " << tree.depth);
     CHECK(tree.depth <= kLightTreeMaxDepth);
+}
+
+TEST_CASE("light tree: lights at the float range's ends, whose bounds overflow, still get one leaf each") {
+    std::vector<gpu::Emitter> emitters;
+    std::vector<double> weights;
+    for (int i = 0; i < 40; ++i) {
+        gpu::Emitter e{};
+        e.kind = gpu::kLightTriangle;
+        const float big = (i % 2 ? 1.0f : -1.0f) * 3.0e38f;
+        e.v0 = glm::vec3(big, float(i), 0.0f);
+        e.e1 = glm::vec3(-2.0f * big, 0.0f, 0.0f);  // inf: the far vertex past the range
+        e.e2 = glm::vec3(0.0f, 1.0f, float(i % 3));
+        emitters.push_back(e);
+        weights.push_back(i % 5 == 0 ? std::numeric_limits<double>::infinity() : 1.0);
+    }
+    const LightTree tree = buildLightTree(emitters, weights);
+    REQUIRE(tree.nodes.size() == 2 * emitters.size() - 1);
+    for (std::size_t i = 0; i < emitters.size(); ++i)
+        CHECK((tree.nodes[followTrail(tree, emitters[i].trail)].link & gpu::kLightNodeIndex) == i);
 }
 
 TEST_CASE("light sampler: auto keeps the tree from kLightTreeMinClusters clusters on, power never, tree always") {

@@ -110,7 +110,8 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
         choice<T, LightSampler>("--light-sampler",
                                 "how a light is chosen for each shadow ray: tree, the light tree over every "
                                 "emitter (by bounds, power and orientation at the shading point), or power, in "
-                                "proportion to estimated power alone; auto: the tree from 16 lights on",
+                                "proportion to estimated power alone; auto: the tree where the lights form 16 or more spatial "
+                                "clusters",
                                 {{"auto", LightSampler::Auto}, {"tree", LightSampler::Tree}, {"power", LightSampler::Power}},
                                 [settings](auto& c) -> auto& { return settings(c).lightSampler; }),
         positive<T>("--noise-threshold", "T",

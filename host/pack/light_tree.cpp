@@ -174,9 +174,17 @@ struct Builder {
         return n;
     }
 
+    static constexpr int kBuckets = 12;
+
+    // The bucket of an item's centroid along `dim` (0 for what is not a
+    // number: lights at the float range's end).
+    static int bucket(const Item& it, int dim, double lo, double extent) {
+        const double t = (it.bounds.centroid()[dim] - lo) / extent * kBuckets;
+        return t >= 1.0 ? std::min(kBuckets - 1, static_cast<int>(std::min(t, double(kBuckets)))) : 0;
+    }
+
     // The split of [first, last) into [first, mid) and [mid, last).
     static std::size_t split(std::vector<Item>& items, std::size_t first, std::size_t last) {
-        constexpr int kBuckets = 12;
         Bounds centroids;
         for (std::size_t i = first; i < last; ++i) {
             const glm::dvec3 c = items[i].bounds.centroid();
@@ -189,10 +197,7 @@ struct Builder {
         int bestDim = -1, bestBucket = 0;
         for (int dim = 0; dim < 3; ++dim) {
             if (!(extent[dim] > 0.0)) continue;
-            auto bucketOf = [&](const Item& it) {
-                const double t = (it.bounds.centroid()[dim] - centroids.lo[dim]) / extent[dim];
-                return std::min(kBuckets - 1, static_cast<int>(t * kBuckets));
-            };
+            auto bucketOf = [&](const Item& it) { return bucket(it, dim, centroids.lo[dim], extent[dim]); };
             std::array<Bounds, kBuckets> buckets;
             for (std::size_t i = first; i < last; ++i) buckets[static_cast<std::size_t>(bucketOf(items[i]))].add(items[i].bounds);
             const double regulariser = longest / extent[dim];
@@ -209,8 +214,7 @@ struct Builder {
         const int dim = bestDim;
         auto it = std::partition(items.begin() + static_cast<std::ptrdiff_t>(first),
                                  items.begin() + static_cast<std::ptrdiff_t>(last), [&](const Item& item) {
-                                     const double t = (item.bounds.centroid()[dim] - centroids.lo[dim]) / extent[dim];
-                                     return std::min(kBuckets - 1, static_cast<int>(t * kBuckets)) < bestBucket;
+                                     return bucket(item, dim, centroids.lo[dim], extent[dim]) < bestBucket;
                                  });
         return static_cast<std::size_t>(it - items.begin());
     }
@@ -239,8 +243,14 @@ struct Builder {
             std::nth_element(items.begin() + static_cast<std::ptrdiff_t>(first),
                              items.begin() + static_cast<std::ptrdiff_t>(mid),
                              items.begin() + static_cast<std::ptrdiff_t>(last), [](const Item& a, const Item& b) {
-                                 const glm::dvec3 ca = a.bounds.centroid(), cb = b.bounds.centroid();
-                                 return ca.x < cb.x || (ca.x == cb.x && (ca.y < cb.y || (ca.y == cb.y && ca.z < cb.z)));
+                                 // A strict weak order even for centroids that are not numbers.
+                                 auto key = [](const Item& it) {
+                                     glm::dvec3 c = it.bounds.centroid();
+                                     for (int k = 0; k < 3; ++k)
+                                         if (std::isnan(c[k])) c[k] = std::numeric_limits<double>::infinity();
+                                     return std::array<double, 3>{c.x, c.y, c.z};
+                                 };
+                                 return key(a) < key(b);
                              });
         }
         build(items, first, mid, level + 1, trail);
