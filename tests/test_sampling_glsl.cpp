@@ -24,7 +24,7 @@ TEST_SUITE_BEGIN("render");
 namespace {
 
 constexpr double kAlpha = 0.01;
-constexpr std::size_t kTests = 8;  // chi-square tests in this file (Sidak correction)
+constexpr std::size_t kTests = 10;  // chi-square tests in this file (Sidak correction)
 
 std::vector<glm::vec4> drawSamples(std::uint32_t routine, std::uint32_t count, std::uint32_t seed,
                                    const std::vector<gpu::Emitter>& emitters = {},
@@ -89,6 +89,81 @@ TEST_CASE("GLSL uniform triangle sampling is uniform over the triangle (chi-squa
     const auto res = stats::chiSquareTest(observed, expected, kAlpha, kTests);
     MESSAGE(res.detail);
     CHECK(res.passed);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// sampleLight on one emissive triangle seen from the origin, of 0.26 and of
+// 2.4 sr (in sampleBySolidAngle's range): the directions are uniform over its solid
+// angle (chi-square over the triangle, its points mapped to the unit
+// square by the inverse of the square-root map, where the density is the
+// smooth A cos / (d^2 Omega)), and each sample's pdf is 1 / Omega.
+TEST_CASE("GLSL emitter triangles are sampled uniformly over their solid angle (chi-square) with pdf 1 / Omega") {
+  for (const double near : {1.0, 0.25}) {
+    CAPTURE(near);
+    const glm::dvec3 v0(-0.3, -0.2, near), v1(0.5, -0.1, 1.2 * near), v2(0.0, 0.6, 0.9 * near);
+    const glm::dvec3 cr = glm::cross(v1 - v0, v2 - v0);
+    const double area = 0.5 * glm::length(cr);
+    const glm::dvec3 normal = glm::normalize(cr);
+    const glm::dvec3 a = glm::normalize(v0), b = glm::normalize(v1), c = glm::normalize(v2);
+    const double omega = 2.0 * std::atan2(std::abs(glm::dot(a, glm::cross(b, c))),
+                                          1.0 + glm::dot(a, b) + glm::dot(b, c) + glm::dot(c, a));
+    MESSAGE("solid angle " << omega);
+    REQUIRE(omega > 3e-4);
+    GpuScene g;
+    gpu::Emitter e{};
+    e.kind = gpu::kLightTriangle;
+    e.v0 = glm::vec3(v0);
+    e.e1 = glm::vec3(v1 - v0);
+    e.e2 = glm::vec3(v2 - v0);
+    e.area = float(area);
+    e.radiance = glm::vec3(1.0f);
+    e.flags = gpu::kMaterialDoubleSided;
+    g.emitters = {e};
+    buildAliasTable({1.0}, g.emitters);
+    g.features.emitters = true;
+    gpu::SampleTestParams p{};
+    p.count = 1000000;
+    p.routine = gpu::kSampleLight;
+    p.seed = 41;
+    const auto s = runSampleKernel(context(), p, gpu::kSamplerIndependent, {}, {}, &g);
+    std::vector<std::pair<double, double>> xy;
+    std::size_t pdfAgrees = 0;
+    for (const auto& v : s) {
+        const glm::dvec3 wi(v.x, v.y, v.z);
+        const glm::dvec3 x = wi * (glm::dot(v0, normal) / glm::dot(wi, normal));
+        // Barycentrics of x, then the square-root map's inverse.
+        const glm::dvec3 d = x - v0, e1 = v1 - v0, e2 = v2 - v0;
+        const double d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
+        const double d20 = glm::dot(d, e1), d21 = glm::dot(d, e2), den = d00 * d11 - d01 * d01;
+        const double b1 = (d11 * d20 - d01 * d21) / den, b2 = (d00 * d21 - d01 * d20) / den;
+        const double sum = b1 + b2;
+        xy.emplace_back(sum * sum, sum > 0.0 ? b2 / sum : 0.0);
+        pdfAgrees += std::abs(double(v.w) * omega - 1.0) < 1e-3;
+    }
+    CHECK(pdfAgrees == s.size());
+    const int r = 24, q = 8;  // cells a side, quadrature points a cell side
+    const auto observed = stats::histogram2D(xy, r, r, 0.0, 1.0, 0.0, 1.0);
+    std::vector<double> expected(r * r, 0.0);
+    double total = 0.0;
+    for (int iy = 0; iy < r; ++iy)
+        for (int ix = 0; ix < r; ++ix) {
+            double sum = 0.0;
+            for (int j = 0; j < q; ++j)
+                for (int k = 0; k < q; ++k) {
+                    const double sx = (ix + (k + 0.5) / q) / r, sy = (iy + (j + 0.5) / q) / r;
+                    const double su = std::sqrt(sx);
+                    const glm::dvec3 x = v0 + su * (1.0 - sy) * (v1 - v0) + su * sy * (v2 - v0);
+                    const double d2 = glm::dot(x, x);
+                    sum += std::abs(glm::dot(x, normal)) / (d2 * std::sqrt(d2));
+                }
+            expected[iy * r + ix] = p.count * area / omega * sum / (q * q * r * r);
+            total += expected[iy * r + ix];
+        }
+    CHECK(total == doctest::Approx(double(p.count)).epsilon(1e-3));  // the density integrates to 1
+    const auto res = stats::chiSquareTest(observed, expected, kAlpha, kTests);
+    MESSAGE(res.detail);
+    CHECK(res.passed);
+  }
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -59,19 +59,34 @@ float emitterPdfSolidAngle(float pmf, float area, float dist, float cosLight) {
     return cosLight > 0.0 ? pmf * dist * dist / (cosLight * area) : 0.0;
 }
 
-// For MIS when a BSDF-sampled ray hits emitter triangle `light` at distance
-// `dist` with |cosine| `cosLight` to its normal; with the light tree, the ray
-// left point `from` with normal `n` (sampleLight's p and n).
+// Emitter triangles subtending a solid angle in this range are sampled
+// uniformly over it (sampleSphericalTriangle); smaller ones, where its
+// angles lose precision, and larger ones, by area (pbrt-v4's range).
+const float kSphericalMinSolidAngle = 3e-4;
+const float kSphericalMaxSolidAngle = 6.22;
+bool sampleBySolidAngle(float omega) { return omega >= kSphericalMinSolidAngle && omega <= kSphericalMaxSolidAngle; }
+
+// The solid-angle density of choosing emitter e (with probability `pmf`)
+// and a point on it at distance `dist` whose normal makes |cosine|
+// `cosLight` with the direction to it, from point `from`.
+float trianglePdf(Emitter e, float pmf, vec3 from, float dist, float cosLight) {
+    float omega = triangleSolidAngle(from, e.v0, e.v0 + e.e1, e.v0 + e.e2);
+    if (sampleBySolidAngle(omega)) return cosLight > 0.0 ? pmf / omega : 0.0;
+    return emitterPdfSolidAngle(pmf, e.area, dist, cosLight);
+}
+
+// For MIS when a BSDF-sampled ray from `from` hits emitter triangle `light`
+// at distance `dist` with |cosine| `cosLight` to its normal; with the light
+// tree, `n` is the normal the tree was asked with (sampleLight's p and n).
 #ifdef STRATA_LIGHT_TREE
 float lightPdfTriangle(uint light, float dist, float cosLight, vec3 from, vec3 n) {
     Emitter e = emitterAt(light);
-    float pmf = frame.scene.y * lightTreePmf(from, n, e.trail);
-    return emitterPdfSolidAngle(pmf, e.area, dist, cosLight);
+    return trianglePdf(e, frame.scene.y * lightTreePmf(from, n, e.trail), from, dist, cosLight);
 }
 #else
-float lightPdfTriangle(uint light, float dist, float cosLight) {
+float lightPdfTriangle(uint light, float dist, float cosLight, vec3 from) {
     Emitter e = emitterAt(light);
-    return emitterPdfSolidAngle(e.pmf, e.area, dist, cosLight);
+    return trianglePdf(e, e.pmf, from, dist, cosLight);
 }
 #endif
 
@@ -84,22 +99,44 @@ LightSample noLight(vec3 p) {
     return LightSample(vec3(0.0, 0.0, 1.0), kLightFar, vec3(0.0), 0.0, p, false);
 }
 
-// A uniform point on the triangle (the square-root map), the triangle chosen
-// with probability `pmf`; one-sided emitters give nothing behind them.
+// A point on the triangle, the triangle chosen with probability `pmf`: by
+// a direction uniform over its solid angle from p where that is in range
+// (sampleBySolidAngle), else uniform over its area (the square-root map).
+// One-sided emitters give nothing behind them.
 LightSample sampleTriangleLight(Emitter e, float pmf, vec3 p, vec2 u) {
-    vec2 b = sampleTriangle(u);
-    vec3 pos = e.v0 + b.x * e.e1 + b.y * e.e2;
     vec3 normal = normalize(cross(e.e1, e.e2));
-    vec3 toLight = pos - p;
-    float dist = length(toLight);
     LightSample ls = noLight(p);
-    if (!(dist > 0.0)) return ls;
-    ls.wi = toLight / dist;
+    vec3 v1 = e.v0 + e.e1, v2 = e.v0 + e.e2;
+    float omega = triangleSolidAngle(p, e.v0, v1, v2);
+    vec2 b;
+    vec3 pos;
+    float dist;
+    if (sampleBySolidAngle(omega)) {
+        vec3 wi = sampleSphericalTriangle(normalize(e.v0 - p), normalize(v1 - p), normalize(v2 - p), omega, u);
+        float along = dot(wi, normal);
+        dist = along != 0.0 ? dot(e.v0 - p, normal) / along : 0.0;
+        if (!(dist > 0.0)) return ls;
+        pos = p + dist * wi;
+        // The point's barycentrics (for an emissive texture and the coat).
+        vec3 d = pos - e.v0;
+        float d00 = dot(e.e1, e.e1), d01 = dot(e.e1, e.e2), d11 = dot(e.e2, e.e2);
+        float d20 = dot(d, e.e1), d21 = dot(d, e.e2), den = d00 * d11 - d01 * d01;
+        b = clamp(vec2(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / den, 0.0, 1.0);
+        ls.wi = wi;
+    } else {
+        b = sampleTriangle(u);
+        pos = e.v0 + b.x * e.e1 + b.y * e.e2;
+        vec3 toLight = pos - p;
+        dist = length(toLight);
+        if (!(dist > 0.0)) return ls;
+        ls.wi = toLight / dist;
+    }
     ls.dist = dist;
     float cosSigned = -dot(ls.wi, normal);
     bool emits = cosSigned > 0.0 || (e.flags & kMaterialDoubleSided) != 0u;
     if (!emits) return ls;
-    ls.pdf = emitterPdfSolidAngle(pmf, e.area, dist, abs(cosSigned));
+    ls.pdf = sampleBySolidAngle(omega) ? (abs(cosSigned) > 0.0 ? pmf / omega : 0.0)
+                                       : emitterPdfSolidAngle(pmf, e.area, dist, abs(cosSigned));
     if (ls.pdf > 0.0) {
         ls.Li = e.radiance;
 #ifdef STRATA_LIB_MATERIAL_GLSL

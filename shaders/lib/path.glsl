@@ -119,7 +119,10 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
 #ifdef STRATA_LIGHT_TREE
             float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)), v.prevP, v.prevN);
 #else
-            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)));
+            // The ray's origin: the previous vertex moved off its surface by
+            // its rounding error, where the light sample was taken from.
+            vec3 from = tv.v0.xyz + hit.u * e1 + hit.v * e2 - hit.t * dir;
+            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)), from);
 #endif
             float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
             vec2 bary = vec2(hit.u, hit.v);

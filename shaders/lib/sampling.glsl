@@ -42,6 +42,40 @@ vec2 sampleTriangle(vec2 u) {
 }
 
 // Veach's power heuristic (beta = 2) for the technique with pdf `a` against `b`.
+// Solid angle of the triangle v0 v1 v2 seen from p (Van Oosterom & Strackee
+// 1983): 2 atan(|a . (b x c)|, 1 + a.b + b.c + c.a) of the unit directions.
+float triangleSolidAngle(vec3 p, vec3 v0, vec3 v1, vec3 v2) {
+    vec3 a = normalize(v0 - p), b = normalize(v1 - p), c = normalize(v2 - p);
+    return abs(2.0 * atan(abs(dot(a, cross(b, c))), 1.0 + dot(a, b) + dot(b, c) + dot(c, a)));
+}
+
+// A direction uniform over the spherical triangle of unit vectors A, B, C
+// of solid angle `area` (triangleSolidAngle's: the pdf's own, so the sub-
+// areas add up to it) (Arvo 1995, "Stratified sampling of spherical
+// triangles"): u.x chooses the sub-triangle A B C' of area u.x times the
+// whole, u.y a point on the arc from B to C'. The angle at A comes from
+// atan(sin, cos) of the edges' plane normals. vec3(0) where the triangle
+// is degenerate.
+vec3 sampleSphericalTriangle(vec3 A, vec3 B, vec3 C, float area, vec2 u) {
+    vec3 nAB = cross(A, B), nCA = cross(C, A);
+    if (dot(nAB, nAB) == 0.0 || dot(nCA, nCA) == 0.0) return vec3(0.0);
+    nAB = normalize(nAB);
+    nCA = normalize(nCA);
+    // The angle at A, between the planes of its two edges.
+    float cosAlpha = -dot(nAB, nCA), sinAlpha = length(cross(nAB, nCA));
+    float alpha = atan(sinAlpha, cosAlpha);
+    float sub = u.x * area;
+    float s = sin(sub - alpha), t = cos(sub - alpha);
+    float pu = t - cosAlpha, pv = s + sinAlpha * dot(A, B);
+    float den = (pv * s + pu * t) * sinAlpha;
+    float q = den != 0.0 ? clamp(((pv * t - pu * s) * cosAlpha - pv) / den, -1.0, 1.0) : 1.0;
+    vec3 cPerp = C - dot(C, A) * A;
+    vec3 cHat = q * A + sqrt(max(0.0, 1.0 - q * q)) * (dot(cPerp, cPerp) > 0.0 ? normalize(cPerp) : vec3(0.0));
+    float z = clamp(1.0 - u.y * (1.0 - dot(cHat, B)), -1.0, 1.0);
+    vec3 pPerp = cHat - dot(cHat, B) * B;
+    return z * B + sqrt(max(0.0, 1.0 - z * z)) * (dot(pPerp, pPerp) > 0.0 ? normalize(pPerp) : vec3(0.0));
+}
+
 float powerHeuristic(float a, float b) {
     float a2 = a * a, b2 = b * b;
     return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
