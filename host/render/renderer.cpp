@@ -114,8 +114,9 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     ActiveBlocks blocks = adaptive ? ActiveBlocks(s.width, s.height) : ActiveBlocks();
     vk::Buffer activeBlocks(ctx, std::max<VkDeviceSize>(16, blocks.active.size() * sizeof(std::uint32_t)),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload);
-    auto writeBlocks = [&] {
-        std::memcpy(activeBlocks.mapped(), blocks.active.data(), blocks.active.size() * sizeof(std::uint32_t));
+    auto writeBlocks = [&] {  // (an empty vector's data() is null: memcpy must not see it)
+        if (!blocks.active.empty())
+            std::memcpy(activeBlocks.mapped(), blocks.active.data(), blocks.active.size() * sizeof(std::uint32_t));
     };
     writeBlocks();
     const FilmBuffers film{frame, filterTable, accum, counters, activeBlocks};
