@@ -65,9 +65,6 @@ void checkLensFlags(const RenderSettings& s) {
     if (s.cameraEffects() && s.integrator == IntegratorKind::Wavefront)
         badFlag("--lens-radius and a --shutter interval need the megakernel integrator; the wavefront integrator "
                 "has no lens and no time");
-    if (s.lightSampler == LightSampler::Tree && s.integrator == IntegratorKind::Wavefront)
-        badFlag("--light-sampler tree needs the megakernel integrator; the wavefront integrator chooses lights by "
-                "power");
 }
 
 void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
@@ -77,7 +74,10 @@ void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
             badFlag(a + " needs --env or --env-color");
 }
 
-void checkAdaptiveFlags(const RenderSettings& s, std::uint32_t cap) {
+void checkSamplingFlags(const RenderSettings& s, std::uint32_t cap) {
+    if (s.lightSampler == LightSampler::Tree && s.integrator == IntegratorKind::Wavefront)
+        badFlag("--light-sampler tree needs the megakernel integrator; the wavefront integrator chooses lights by "
+                "power");
     if (s.minSpp > 0 && !s.adaptive()) badFlag("--min-spp needs --noise-threshold");
     if (!s.adaptive()) return;
     if (s.minSpp > cap)
@@ -91,7 +91,7 @@ void checkRenderFlags(const Parsed& parsed, const RenderCommand& cmd) {
     checkViewFlags(cmd.view);
     checkFrameFlags(parsed, cmd);
     checkLensFlags(cmd.settings);
-    checkAdaptiveFlags(cmd.settings, cmd.settings.spp);
+    checkSamplingFlags(cmd.settings, cmd.settings.spp);
     if (cmd.settings.adaptive() && cmd.shards > 1)
         badFlag("--shard and --noise-threshold exclude each other: a shard's blocks would stop on its own samples, "
                 "and the merge would not be the render's; render adaptively in one job (--checkpoint-every "
@@ -115,7 +115,7 @@ void checkConvergeFlags(const ConvergeCommand& cmd) {
     if (!cmd.allSamplers)
         for (std::uint32_t spp : cmd.spp) checkSamplerSettings(samplerByKind(cmd.settings.sampler), spp, 1, 1);
     // With a threshold, each listed spp is a cap.
-    checkAdaptiveFlags(cmd.settings, cmd.spp.empty() ? 0u : cmd.spp.back());
+    checkSamplingFlags(cmd.settings, cmd.spp.empty() ? 0u : cmd.spp.back());
 }
 
 void checkEdgesFlags(const EdgesCommand& cmd) {
@@ -126,7 +126,7 @@ void checkEdgesFlags(const EdgesCommand& cmd) {
 
 void checkBenchFlags(const BenchCommand& cmd) {
     checkTextOutput(cmd.json, {".json"}, "bench report must be .json");
-    checkAdaptiveFlags(cmd.settings, cmd.settings.spp);
+    checkSamplingFlags(cmd.settings, cmd.settings.spp);
 }
 
 void checkCompareFlags(const CompareArgs& args) {

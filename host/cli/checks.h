@@ -16,8 +16,9 @@ namespace strata::cli {
 // with --env-color, --env-intensity/--env-rotate without either.
 void checkViewFlags(const ViewOptions& view);
 void checkLensFlags(const RenderSettings& s);
-// --noise-threshold and --min-spp: the minimum within the cap, the megakernel.
-void checkAdaptiveFlags(const RenderSettings& s, std::uint32_t cap);
+// --light-sampler, --noise-threshold and --min-spp: the tree and adaptive
+// sampling on the megakernel only, the minimum within the cap.
+void checkSamplingFlags(const RenderSettings& s, std::uint32_t cap);
 void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env);
 
 // render and reference, after --frames has set the first frame's shutter

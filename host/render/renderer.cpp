@@ -171,7 +171,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     Film sums = resume ? resume->film : Film(s.width, s.height, s.aov);  // the complete batches
     // A resumed adaptive render finds the blocks retired at its last fold
     // again: the decisions there read the same film.
-    if (adaptive && resume && resume->folded - begin >= minSpp && resume->folded > begin) {
+    if (adaptive && resume && resume->folded - begin >= minSpp) {
         retireConverged(sums, s.noiseThreshold, blocks);
         writeBlocks();
     }

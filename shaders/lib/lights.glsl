@@ -68,11 +68,15 @@ bool sampleBySolidAngle(float omega) { return omega >= kSphericalMinSolidAngle &
 
 // The solid-angle density of choosing emitter e (with probability `pmf`)
 // and a point on it at distance `dist` whose normal makes |cosine|
-// `cosLight` with the direction to it, from point `from`.
-float trianglePdf(Emitter e, float pmf, vec3 from, float dist, float cosLight) {
-    float omega = triangleSolidAngle(from, e.v0, e.v0 + e.e1, e.v0 + e.e2);
+// `cosLight` with the direction to it, the triangle subtending `omega`.
+float trianglePdfOmega(Emitter e, float pmf, float omega, float dist, float cosLight) {
     if (sampleBySolidAngle(omega)) return cosLight > 0.0 ? pmf / omega : 0.0;
     return emitterPdfSolidAngle(pmf, e.area, dist, cosLight);
+}
+
+// ... seen from point `from`.
+float trianglePdf(Emitter e, float pmf, vec3 from, float dist, float cosLight) {
+    return trianglePdfOmega(e, pmf, triangleSolidAngle(from, e.v0, e.v0 + e.e1, e.v0 + e.e2), dist, cosLight);
 }
 
 // For MIS when a BSDF-sampled ray from `from` hits emitter triangle `light`
@@ -135,8 +139,7 @@ LightSample sampleTriangleLight(Emitter e, float pmf, vec3 p, vec2 u) {
     float cosSigned = -dot(ls.wi, normal);
     bool emits = cosSigned > 0.0 || (e.flags & kMaterialDoubleSided) != 0u;
     if (!emits) return ls;
-    ls.pdf = sampleBySolidAngle(omega) ? (abs(cosSigned) > 0.0 ? pmf / omega : 0.0)
-                                       : emitterPdfSolidAngle(pmf, e.area, dist, abs(cosSigned));
+    ls.pdf = trianglePdfOmega(e, pmf, omega, dist, abs(cosSigned));
     if (ls.pdf > 0.0) {
         ls.Li = e.radiance;
 #ifdef STRATA_LIB_MATERIAL_GLSL
