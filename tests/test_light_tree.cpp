@@ -234,6 +234,30 @@ TEST_CASE("light tree: lights at the float range's ends, whose bounds overflow, 
         CHECK((tree.nodes[followTrail(tree, emitters[i].trail)].link & gpu::kLightNodeIndex) == i);
 }
 
+TEST_CASE("light tree: a swept light (a moving lamp) is bounded over its sweep, its cone every direction where it turns") {
+    gpu::Emitter e{};
+    e.kind = gpu::kLightTriangle;
+    e.v0 = glm::vec3(0.0f);
+    e.e1 = glm::vec3(0.1f, 0.0f, 0.0f);
+    e.e2 = glm::vec3(0.0f, 0.1f, 0.0f);
+    std::vector<gpu::Emitter> one{e};
+    const std::vector<double> w{1.0};
+    const LightTree still = buildLightTree(one, w);
+    REQUIRE(still.nodes.size() == 1);
+    CHECK(still.nodes[0].radius < 0.1f);
+    CHECK(still.nodes[0].cosTheta_o == doctest::Approx(1.0f));
+    SweptLight swept{0, {-2.0, 0.0, 0.0}, {2.0, 0.1, 0.0}, false};
+    const LightTree sliding = buildLightTree(one, w, {swept});
+    const gpu::LightNode& n = sliding.nodes.at(0);
+    for (const glm::vec3 corner : {glm::vec3(-2.0f, 0.0f, 0.0f), glm::vec3(2.0f, 0.1f, 0.0f)})
+        CHECK(glm::length(corner - n.centre) <= n.radius);
+    CHECK(n.cosTheta_o == doctest::Approx(1.0f));  // it slides: its normal stays
+    swept.turns = true;
+    CHECK(buildLightTree(one, w, {swept}).nodes.at(0).cosTheta_o == -1.0f);
+    swept.emitter = 1;  // not an emitter
+    CHECK_THROWS_AS(buildLightTree(one, w, {swept}), std::invalid_argument);
+}
+
 TEST_CASE("light sampler: auto keeps the tree from kLightTreeMinClusters clusters on, power never, tree always") {
     CHECK(!useLightTree(LightSampler::Auto, kLightTreeMinClusters - 1));
     CHECK(useLightTree(LightSampler::Auto, kLightTreeMinClusters));

@@ -36,49 +36,6 @@ RenderSettings settings(int size, std::uint32_t spp, std::uint32_t depth, std::u
     return s;
 }
 
-// Per pixel in `mask`: value and expected = mean of the three channels; sigma
-// = mean of the channels' standard errors (bounds the standard error of the
-// channel mean). Mean test of (value - expected) over the pixels at 4 standard
-// errors (two-sided alpha 6.3e-5, pixels independent), and the count of
-// pixels individually within 4.5 sigma (alpha 6.8e-6 each).
-struct PixelCheck {
-    stats::MeanTestResult mean;
-    std::size_t pixels = 0, within = 0;
-    double expectedMean = 0.0;
-};
-
-PixelCheck checkPixels(const RenderResult& r, const std::vector<double>& expected, const std::vector<char>& mask) {
-    const auto m = r.film.mean();
-    const auto v = r.film.varianceOfMean();
-    std::vector<double> diff, var;
-    PixelCheck c;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-        if (!mask[i]) continue;
-        double value = 0.0, sigma = 0.0;
-        for (int k = 0; k < 3; ++k) {
-            value += m[i * 3 + k] / 3.0;
-            sigma += std::sqrt(static_cast<double>(v[i * 3 + k])) / 3.0;
-        }
-        diff.push_back(value - expected[i]);
-        var.push_back(sigma * sigma);
-        c.within += std::abs(value - expected[i]) <= 4.5 * sigma;
-        c.expectedMean += expected[i];
-    }
-    c.pixels = diff.size();
-    c.expectedMean /= static_cast<double>(std::max<std::size_t>(1, c.pixels));
-    c.mean = stats::meanTest(diff, var, 0.0, 4.0);
-    return c;
-}
-
-void report(const std::string& what, const PixelCheck& c) {
-    MESSAGE(what << ": " << c.pixels << " pixels, expected mean " << c.expectedMean << ", mean difference "
-                 << c.mean.mean << " +- " << c.mean.stdError << " (z " << c.mean.z << "), " << c.within
-                 << " within 4.5 sigma");
-    CHECK(c.pixels > 0);
-    CHECK(c.mean.passed);
-    CHECK(static_cast<double>(c.within) >= 0.99 * static_cast<double>(c.pixels));
-}
-
 // Where the camera ray (image position sx, sy) meets the plane y = 0 from above.
 glm::dvec3 onGround(const CameraRays& rays, double sx, double sy) {
     const glm::dvec3 d = rays.dir(sx, sy);

@@ -2,6 +2,7 @@
 // (validation layers on when STRATA_VALIDATION is set, as ctest does), and
 // the statistics used to compare renders with known answers.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -15,6 +16,7 @@
 #include "scene/environment.h"
 #include "scene/scene.h"
 #include "stages/stages.h"
+#include "stats/stats.h"
 #include "upload/device_scene.h"
 #include "vk/context.h"
 
@@ -165,6 +167,49 @@ inline ImageMean imageMean(const Film& film) {
     // Channels of one pixel are correlated (same path); bound the variance of
     // their average by treating them as fully correlated: var(sum of 3) <= 9 var.
     return {sum / n, std::sqrt(3.0 * var) / n};
+}
+
+// Per pixel in `mask`: value and expected = mean of the three channels; sigma
+// = mean of the channels' standard errors (bounds the standard error of the
+// channel mean). Mean test of (value - expected) over the pixels at 4 standard
+// errors (two-sided alpha 6.3e-5, pixels independent), and the count of
+// pixels individually within 4.5 sigma (alpha 6.8e-6 each).
+struct PixelCheck {
+    stats::MeanTestResult mean;
+    std::size_t pixels = 0, within = 0;
+    double expectedMean = 0.0;
+};
+
+inline PixelCheck checkPixels(const RenderResult& r, const std::vector<double>& expected, const std::vector<char>& mask) {
+    const auto m = r.film.mean();
+    const auto v = r.film.varianceOfMean();
+    std::vector<double> diff, var;
+    PixelCheck c;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        if (!mask[i]) continue;
+        double value = 0.0, sigma = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            value += m[i * 3 + k] / 3.0;
+            sigma += std::sqrt(static_cast<double>(v[i * 3 + k])) / 3.0;
+        }
+        diff.push_back(value - expected[i]);
+        var.push_back(sigma * sigma);
+        c.within += std::abs(value - expected[i]) <= 4.5 * sigma;
+        c.expectedMean += expected[i];
+    }
+    c.pixels = diff.size();
+    c.expectedMean /= static_cast<double>(std::max<std::size_t>(1, c.pixels));
+    c.mean = stats::meanTest(diff, var, 0.0, 4.0);
+    return c;
+}
+
+inline void report(const std::string& what, const PixelCheck& c) {
+    MESSAGE(what << ": " << c.pixels << " pixels, expected mean " << c.expectedMean << ", mean difference "
+                 << c.mean.mean << " +- " << c.mean.stdError << " (z " << c.mean.z << "), " << c.within
+                 << " within 4.5 sigma");
+    CHECK(c.pixels > 0);
+    CHECK(c.mean.passed);
+    CHECK(static_cast<double>(c.within) >= 0.99 * static_cast<double>(c.pixels));
 }
 
 // Camera rays of shaders/pathtrace.comp with the frame vectors of

@@ -1,6 +1,7 @@
 #include "pack/gpu_scene.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -14,6 +15,7 @@
 
 #include "pack/env_tables.h"
 #include "pack/light_tree.h"
+#include "scene/pose.h"
 #include "pack/textures.h"
 #include "util/memory.h"
 
@@ -31,7 +33,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureVertexColor, "vertex-colors"}, {gpu::kFeatureClearcoat, "clearcoat"},
         {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"},
         {gpu::kFeatureInstancing, "instancing"},   {gpu::kFeatureIridescence, "iridescence"},
-        {gpu::kFeatureLightTree, "light-tree"}};
+        {gpu::kFeatureLightTree, "light-tree"},
+        {gpu::kFeatureInstancedEmitters, "moving-lights"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -116,9 +119,19 @@ void packLights(const Scene& scene, GpuScene& g, std::vector<double>& weights) {
     if (env.width > 0) g.features.bits |= gpu::kFeatureEnvMap;
 }
 
+// Where a bottom level is placed: the first texel of the record of its
+// (last) placement, and that placement (an index into SceneBvh::placements).
+struct PlacedRecord {
+    std::uint32_t texel = 0;
+    std::size_t placement = SIZE_MAX;
+};
+
 // The instances array (GpuScene::instances) from the BVH stage's top level
-// and placements; the roots refer to the concatenated bottom levels.
-void packInstances(const Scene& scene, const SceneBvh& bvh, GpuScene& g) {
+// and placements; the roots refer to the concatenated bottom levels. With
+// `records`, each bottom level's PlacedRecord (SharedMesh::lights copies
+// have one placement each).
+void packInstances(const Scene& scene, const SceneBvh& bvh, GpuScene& g, std::vector<PlacedRecord>* records = nullptr) {
+    if (records) records->assign(bvh.bottoms.size(), {});
     const std::vector<gpu::BvhNode>& nodes = bvh.top.nodes;
     const std::size_t n = bvh.top.triIndices.size();
     const std::size_t recordBase = nodes.size() * gpu::kBvhNodeTexels;
@@ -134,6 +147,7 @@ void packInstances(const Scene& scene, const SceneBvh& bvh, GpuScene& g) {
     for (std::size_t k = 0; k < n; ++k) {
         const Placement& p = bvh.placements[bvh.top.triIndices[k]];
         const BottomLevel& b = bvh.bottoms[p.bottom];
+        if (records) (*records)[p.bottom] = {std::uint32_t(recordBase + k * gpu::kInstanceTexels), bvh.top.triIndices[k]};
         const glm::dmat4 toWorld(p.toWorld);
         const glm::dmat4 toObject = glm::inverse(toWorld);
         gpu::Instance rec{};
@@ -247,6 +261,73 @@ std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used)
     }
     return bits;
 }
+
+// The lights of moving meshes (SharedMesh::lights, one placement each):
+// which placement a scene triangle is a light of, the triangle at the
+// shutter's open and its bounds over the shutter (for the light tree).
+class InstancedLights {
+public:
+    InstancedLights(const Scene& scene, const SceneBvh& bvh, const std::vector<PlacedRecord>& records) : bvh_(bvh) {
+        for (std::size_t j = 0; j < scene.sharedMeshes.size(); ++j) {
+            const SharedMesh& m = scene.sharedMeshes[j];
+            if (m.lights && j + 1 < records.size() && records[j + 1].placement != SIZE_MAX)
+                ranges_.push_back({m.first, m.first + m.count, j + 1, records[j + 1].placement});
+        }
+    }
+
+    // The placement of scene triangle `index` where it is such a light, else SIZE_MAX.
+    std::size_t placementOf(std::size_t index) const {
+        const Range* r = find(index);
+        return r ? r->placement : SIZE_MAX;
+    }
+    // Its bottom level (an index into SceneBvh::bottoms); such a triangle only.
+    std::size_t bottomOf(std::size_t index) const { return find(index)->bottom; }
+
+    // The triangle (in its mesh's space) where `placement` puts it at the open.
+    Triangle atOpen(std::size_t placement, const Triangle& t) const {
+        const glm::dmat4 m(bvh_.placements[placement].toWorld);
+        Triangle w = t;
+        for (int k = 0; k < 3; ++k) w.v[k] = glm::vec3(m * glm::dvec4(glm::dvec3(t.v[k]), 1.0));
+        return w;
+    }
+
+    // Emitter `emitter`'s bounds over the shutter: the box its vertices'
+    // box sweeps (motionBox), and whether its normal turns between keys.
+    SweptLight swept(std::size_t placement, const Triangle& t, std::size_t emitter) const {
+        const Placement& p = bvh_.placements[placement];
+        BottomLevel box;
+        box.lo = glm::min(t.v[0], glm::min(t.v[1], t.v[2]));
+        box.hi = glm::max(t.v[0], glm::max(t.v[1], t.v[2]));
+        glm::vec3 lo, hi;
+        if (p.motion.empty()) placedBox(box, p.toWorld, lo, hi);
+        else motionBox(box, p.motion, lo, hi);
+        SweptLight out{static_cast<std::uint32_t>(emitter), glm::dvec3(lo), glm::dvec3(hi), false};
+        const glm::dvec3 n = glm::cross(glm::dvec3(t.v[1] - t.v[0]), glm::dvec3(t.v[2] - t.v[0]));
+        glm::dvec3 first(0.0);
+        for (const MotionKey& key : p.motion) {
+            const glm::dmat3 normals = glm::transpose(glm::inverse(glm::dmat3(interpolatePose(key, key, 0.0))));
+            const glm::dvec3 w = glm::normalize(normals * n);
+            if (&key == &p.motion.front()) first = w;
+            out.turns = out.turns || !(glm::dot(w, first) > 1.0 - 1e-9);
+        }
+        return out;
+    }
+
+private:
+    struct Range {
+        std::size_t first, end;  // scene triangles
+        std::size_t bottom, placement;
+    };
+    const Range* find(std::size_t index) const {
+        auto it = std::upper_bound(ranges_.begin(), ranges_.end(), index,
+                                   [](std::size_t i, const Range& r) { return i < r.first; });
+        if (it == ranges_.begin()) return nullptr;
+        --it;
+        return index < it->end ? &*it : nullptr;
+    }
+    const SceneBvh& bvh_;
+    std::vector<Range> ranges_;  // in order of `first`
+};
 
 // Elements of a trivially copyable type in storage that nothing touches
 // before it is written (no value-initialisation), so untouched pages cost no
@@ -395,8 +476,9 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
     std::vector<bool> used(g.materials.size(), false);
     for (const auto& t : scene.triangles) used[t.material] = true;
     g.sceneRadius = sceneRadius(scene);  // before the triangles are consumed
+    std::vector<PlacedRecord> records;  // per bottom level
     if (sceneBvh.instanced()) {
-        packInstances(scene, sceneBvh, g);
+        packInstances(scene, sceneBvh, g, &records);
         const gpu::BvhNode& root = sceneBvh.top.nodes[0];  // every placement's world box
         const double r = 0.5 * glm::length(glm::dvec3(root.bmax) - glm::dvec3(root.bmin));
         g.sceneRadius = r > 0.0 ? r : 1.0;
@@ -440,6 +522,9 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
     if (tangents) reserveHuge(g.tangents, n);
     if (colors) reserveHuge(g.colors, n);
     std::vector<double> weights;
+    // The lights of moving meshes (SharedMesh::lights): their records and bounds over the shutter.
+    const InstancedLights instancedLights(scene, sceneBvh, records);
+    std::vector<SweptLight> swept;
     for (std::size_t i = 0; i < n; ++i) {
         if constexpr (consume) reordered->advance(i);
         const Triangle t = triangle(i);
@@ -477,13 +562,16 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
                 glm::dvec3(le) * (m.emissiveTexture.used() ? emissiveMean(scene, m) : glm::dvec3(1.0));
             const double lum = luminance(scaled);
             gpu::Emitter e{};
-            e.v0 = t.v[0];
-            e.e1 = t.v[1] - t.v[0];
-            e.e2 = t.v[2] - t.v[0];
+            const std::size_t placed = instancedLights.placementOf(bvh.triIndices[i]);
+            const Triangle w = placed == SIZE_MAX ? t : instancedLights.atOpen(placed, t);
+            e.v0 = w.v[0];
+            e.e1 = w.v[1] - w.v[0];
+            e.e2 = w.v[2] - w.v[0];
             e.triangle = static_cast<std::uint32_t>(i);
-            e.area = triangleArea(t);
+            e.area = triangleArea(w);
             e.radiance = le;
             e.flags = m.doubleSided ? gpu::kMaterialDoubleSided : 0u;
+            if (placed != SIZE_MAX) swept.push_back(instancedLights.swept(placed, t, g.emitters.size()));
             const double sides = m.doubleSided ? 2.0 : 1.0;
             s.light = static_cast<std::uint32_t>(g.emitters.size());
             g.emitters.push_back(e);
@@ -504,7 +592,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         if (!isInfiniteLight(g.emitters[k])) ++bounded, boundedPower += weights[k];
     if (bounded > 0 && lightSampler != LightSampler::Power) {
         const auto t0 = std::chrono::steady_clock::now();
-        LightTree tree = buildLightTree(g.emitters, weights);
+        LightTree tree = buildLightTree(g.emitters, weights, swept);
         g.lightTreeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         g.lightClusters = lightClusters(tree);
         if (useLightTree(lightSampler, g.lightClusters)) {
@@ -518,6 +606,16 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
             for (gpu::Emitter& e : g.emitters) e.trail = 0;  // the emitters as without a tree
         }
     }
+    // The lights of moving meshes as the shaders read them (kEmitterInstanced).
+    for (const SweptLight& l : swept) {
+        gpu::Emitter& e = g.emitters[l.emitter];
+        const std::uint32_t record = records[instancedLights.bottomOf(bvh.triIndices[e.triangle])].texel;
+        e.v0 = glm::vec3(std::bit_cast<float>(record), 0.0f, 0.0f);
+        e.e1 = e.e2 = glm::vec3(0.0f);
+        e.area = 0.0f;
+        e.flags |= gpu::kEmitterInstanced;
+    }
+    if (!swept.empty()) g.features.bits |= gpu::kFeatureInstancedEmitters;
     // Features of the materials some triangle uses.
     for (std::size_t i = 0; i < g.materials.size(); ++i) {
         if (!used[i]) continue;

@@ -263,12 +263,23 @@ struct Builder {
 
 }  // namespace
 
-LightTree buildLightTree(std::vector<gpu::Emitter>& emitters, const std::vector<double>& weights) {
+LightTree buildLightTree(std::vector<gpu::Emitter>& emitters, const std::vector<double>& weights,
+                         const std::vector<SweptLight>& swept) {
     if (weights.size() != emitters.size()) throw std::invalid_argument("buildLightTree: one weight per emitter");
     std::vector<Item> items;
+    std::vector<std::size_t> itemOf(emitters.size(), SIZE_MAX);
     for (std::size_t i = 0; i < emitters.size(); ++i) {
         if (isInfiniteLight(emitters[i])) continue;
+        itemOf[i] = items.size();
         items.push_back({static_cast<std::uint32_t>(i), lightBounds(emitters[i], weights[i])});
+    }
+    for (const SweptLight& s : swept) {
+        if (s.emitter >= emitters.size() || itemOf[s.emitter] == SIZE_MAX)
+            throw std::invalid_argument("buildLightTree: a swept light that is not a bounded emitter");
+        Bounds& b = items[itemOf[s.emitter]].bounds;
+        b.lo = glm::min(b.lo, s.lo);
+        b.hi = glm::max(b.hi, s.hi);
+        if (s.turns) b.cone.cosTheta = -1.0;
     }
     if (items.empty()) throw std::invalid_argument("buildLightTree: no bounded light");
     // 2n - 1 nodes, each index within kLightNodeIndex.

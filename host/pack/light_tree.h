@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "../../shaders/shared/types.h"
 
 namespace strata {
@@ -41,6 +43,16 @@ struct LightTree {
 // A light's trail holds one bit per level.
 inline constexpr std::uint32_t kLightTreeMaxDepth = 32;
 
+// An emitter of a mesh that moves during the shutter (SharedMesh::lights):
+// the tree bounds it over the shutter, not by its Emitter's pose at the
+// open. `lo`, `hi`: a box around its vertices at every time; `turns`: its
+// normal changes, so its cone holds every direction.
+struct SweptLight {
+    std::uint32_t emitter = 0;
+    glm::dvec3 lo{0.0}, hi{0.0};
+    bool turns = false;
+};
+
 // Builds the tree over the bounded lights of `emitters` (every emitter
 // that is not isInfiniteLight), each with its estimated power from
 // `weights` (packScene's, one per emitter), top-down: each node's lights
@@ -50,8 +62,10 @@ inline constexpr std::uint32_t kLightTreeMaxDepth = 32;
 // cost), in O(n log n). Sets each bounded light's Emitter::trail. Every
 // leaf holds one light; where a split would leave the tree deeper than
 // kLightTreeMaxDepth the lights are halved by count instead. Throws
-// std::invalid_argument where no emitter is bounded.
-LightTree buildLightTree(std::vector<gpu::Emitter>& emitters, const std::vector<double>& weights);
+// std::invalid_argument where no emitter is bounded. Each of `swept` is
+// bounded as it says (and by its Emitter, which holds its pose at the open).
+LightTree buildLightTree(std::vector<gpu::Emitter>& emitters, const std::vector<double>& weights,
+                         const std::vector<SweptLight>& swept = {});
 
 // Spatially apart groups of lights: the subtrees, largest first, whose
 // bounding sphere's radius is at most `size` times the root's (a leaf

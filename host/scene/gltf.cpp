@@ -68,7 +68,7 @@ public:
         std::vector<gltf::GpuInstances> gpu(visits.size());
         const std::size_t meshCount = model_.meshes.size();
         std::vector<std::size_t> placements(meshCount, 0), meshTriangles(meshCount, 0);
-        std::vector<char> eligible(meshCount, 1), moving(meshCount, 0);
+        std::vector<char> eligible(meshCount, 1), moving(meshCount, 0), emits(meshCount, 0);
         for (std::size_t k = 0; k < visits.size(); ++k) {
             const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
             const int mesh = node.mesh;
@@ -81,31 +81,39 @@ public:
         std::size_t stillMoving = 0;  // moving meshes that cannot be instanced
         std::size_t triangles = 0, instances = 0;
         instanced_.assign(meshCount, 0);
+        emits_.assign(meshCount, 0);
         for (std::size_t m = 0; m < meshCount; ++m) {
             if (placements[m] == 0) continue;
             for (const LocalPrimitive& prim : decodedMesh(int(m)).primitives) {
                 meshTriangles[m] += prim.indices.size() / 3;
-                const bool emissive = prim.material >= 0 && isEmissive(scene_.materials[std::size_t(prim.material)]);
-                if (emissive) eligible[m] = 0;  // each of its triangles is a light of its own
+                if (prim.material >= 0 && isEmissive(scene_.materials[std::size_t(prim.material)])) emits[m] = 1;
             }
             for (const tinygltf::Primitive& prim : model_.meshes[m].primitives)
                 if (!prim.targets.empty()) eligible[m] = 0;  // each node may pose it differently
             std::size_t placed = 0;
             if (__builtin_mul_overflow(placements[m], meshTriangles[m], &placed)) placed = SIZE_MAX;
-            bool instance = eligible[m] && placements[m] >= 2 && instancing_ != Instancing::Off;
+            // Each triangle of an emitting mesh is a light of its own: it is
+            // flattened, unless it moves.
+            bool instance = eligible[m] && !emits[m] && placements[m] >= 2 && instancing_ != Instancing::Off;
             if (instancing_ == Instancing::Auto) instance = instance && placed > kInstancingMinTriangles;
-            // A mesh that moves during the shutter is instanced: its placements carry MotionKeys.
+            // A mesh that moves during the shutter is instanced: its placements
+            // carry MotionKeys. An emitting one gets a copy per placement
+            // (place), whose triangles are that placement's lights.
             if (moving[m] && eligible[m]) instance = true;
+            // Its lights are posed anew for each frame by loading it anew.
+            if (moving[m] && emits[m] && frames_) targets_.complete = false;
             if (moving[m] && !eligible[m]) ++stillMoving, targets_.complete = false;
             instanced_[m] = instance;
-            if (!instance && __builtin_add_overflow(triangles, placed, &triangles)) triangles = SIZE_MAX;
+            emits_[m] = emits[m];
+            // A flattened mesh's triangles, and the copies of an emitting one, are each stored.
+            if ((!instance || emits[m]) && __builtin_add_overflow(triangles, placed, &triangles)) triangles = SIZE_MAX;
             if (instance) instances += placements[m];  // a node adds at most max(2^20, its buffers' bytes): no overflow
         }
         checkHostMemory(triangles, instances, visits.size());
         for (std::size_t k = 0; k < visits.size(); ++k)  // their count checked above
             gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
         if (stillMoving > 0 && timeline_->blurs())
-            warn(path_, std::to_string(stillMoving) + " moving mesh(es) emit light, are skinned or have morph targets: "
+            warn(path_, std::to_string(stillMoving) + " moving mesh(es) are skinned or have morph targets: "
                         "rendered at the pose at the shutter's open, without motion blur");
         reserveHuge(scene_.triangles, triangles);
         for (std::size_t k = 0; k < visits.size(); ++k) visit(visits[k].node, visits[k].world, gpu[k]);
@@ -119,7 +127,9 @@ public:
             addMesh(key.node, glm::dmat4(1.0), key.mirrored);
             m.count = scene_.triangles.size() - m.first;
             const int mesh = model_.nodes[std::size_t(key.node)].mesh;
-            m.name = gltf::meshLabel(model_, mesh) + (key.mirrored ? " (mirrored)" : "");
+            m.name = gltf::meshLabel(model_, mesh) + (key.mirrored ? " (mirrored)" : "") +
+                     (key.copy > 0 ? " (placement " + std::to_string(key.copy) + ")" : "");
+            m.lights = key.copy > 0;
             scene_.sharedMeshes.push_back(m);
         }
     }
@@ -318,7 +328,7 @@ private:
             addMesh(nodeIndex, world);
             return;
         }
-        const SharedKey key{mesh, det < 0.0, nodeIndex};
+        const SharedKey key{mesh, det < 0.0, nodeIndex, emits_[std::size_t(mesh)] ? ++copies_ : 0};
         auto it = shared_.find(key);
         if (it == shared_.end()) it = shared_.emplace(key, std::uint32_t(shared_.size())).first;
         scene_.instances.push_back({it->second, glm::mat4(world), timeline_->keys(nodeIndex, local, label)});
@@ -420,14 +430,20 @@ private:
     }
 
     // A mesh's shared copy: a placement that mirrors gets one with the
-    // winding reversed. `node` is the first node that placed it (for the
-    // labels; such meshes have no skin or morph targets, so any node poses
-    // them alike) and takes no part in the order.
+    // winding reversed, and each placement of an emitting mesh one of its
+    // own (`copy` > 0: its triangles are that placement's lights). `node` is
+    // the first node that placed it (for the labels; such meshes have no
+    // skin or morph targets, so any node poses them alike) and takes no
+    // part in the order.
     struct SharedKey {
         int mesh;
         bool mirrored;
         int node;
-        bool operator<(const SharedKey& o) const { return mesh != o.mesh ? mesh < o.mesh : mirrored < o.mirrored; }
+        std::size_t copy;
+        bool operator<(const SharedKey& o) const {
+            if (mesh != o.mesh) return mesh < o.mesh;
+            return mirrored != o.mirrored ? mirrored < o.mirrored : copy < o.copy;
+        }
     };
 
     const std::string& path_;
@@ -463,6 +479,8 @@ private:
     bool frames_ = false;
     gltf::PoseTargets targets_;
     std::vector<char> instanced_;                    // per mesh: placed by instances
+    std::vector<char> emits_;                        // per mesh: some primitive's material emits
+    std::size_t copies_ = 0;                         // SharedKey::copy of the last emitting placement
     std::map<SharedKey, std::uint32_t> shared_;      // -> index into scene_.sharedMeshes
     std::vector<std::optional<LocalMesh>> meshes_;  // decoded on first use
     std::vector<std::string> skipped_;              // LocalMesh::skipped of each decoded mesh

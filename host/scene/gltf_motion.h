@@ -86,7 +86,7 @@ struct PoseTargets {
     };
     std::vector<Viewer> cameras;
     // False when something animated cannot be posed again (a light, or a
-    // mesh that stays flattened: emitting, skinned, morphed or degenerate):
+    // mesh that emits, or one that stays flattened: skinned, morphed or degenerate):
     // then the loader sets no poser and each frame is loaded anew.
     bool complete = true;
 };

@@ -229,6 +229,9 @@ struct SharedMesh {
     std::size_t first = 0;
     std::size_t count = 0;
     std::string name;  // "mesh 3 (\"Tree\")", for --stats
+    // A copy of an emitting mesh that moves (MotionOptions), placed once:
+    // its emissive triangles are that placement's lights.
+    bool lights = false;
 };
 
 // One placement of a SharedMesh: world = toWorld * object (affine). A
@@ -330,15 +333,17 @@ inline constexpr const char* kDefaultEnvironment = "default (no light in the sce
 // triangles together (flattened scenes render faster; above that line their
 // memory decides: docs/benchmarks.md);
 // On: every mesh placed twice or more; Off: everything flattened. Meshes that
-// emit, are skinned or have morph targets are always flattened.
+// are skinned or have morph targets are always flattened, and meshes that
+// emit unless they move.
 enum class Instancing { Auto, On, Off };
 inline constexpr std::size_t kInstancingMinTriangles = std::size_t(1) << 20;
 
 // glTF animation (--animation, --shutter): the scene is posed at `open` on
 // the chosen animation's timeline; with open < close every placement and
 // camera that moves within [open, close] gets MotionKeys (its mesh is then
-// instanced, whatever `instancing` says). Emitting, skinned and morphed
-// meshes stay at the pose at `open` (a warning says so).
+// instanced, whatever `instancing` says; an emitting mesh with a copy per
+// placement, SharedMesh::lights). Skinned and morphed meshes stay at the
+// pose at `open` (a warning says so).
 struct MotionOptions {
     bool enabled = false;   // off: the nodes' static transforms, as if no animation
     std::string animation;  // its name or index; empty: the first

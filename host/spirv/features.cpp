@@ -25,7 +25,7 @@ constexpr std::uint32_t kTraversing = bit(KernelId::Pathtrace) | bit(KernelId::T
 constexpr std::uint32_t kShading = bit(KernelId::Pathtrace) | bit(KernelId::Wavefront);
 
 // Axis indices, for implies and excludes.
-enum : std::uint32_t { kBvh2 = 1u << 0, kBvh4m = 1u << 1, kLayers = 1u << 2 };
+enum : std::uint32_t { kBvh2 = 1u << 0, kBvh4m = 1u << 1, kLayers = 1u << 2, kInst = 1u << 4 };
 
 // The table. The order is the order of the parts of a module's name and of
 // its defines.
@@ -59,6 +59,10 @@ const Axis kAxes[] = {
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureLightTree) != 0u; },
      "lights chosen by the light tree (`kFeatureLightTree`: `--light-sampler tree`, or `auto` where the lights form 16 clusters or more)",
      "the tree's descent and probabilities (lib/light_tree.glsl): lights chosen by power alone"},
+    {"movinglights", "STRATA_MOVING_LIGHTS", kShading, kInst, 0,
+     [](const VariantInputs& in) { return (in.features & gpu::kFeatureInstancedEmitters) != 0u; },
+     "emitting meshes that move during the shutter (`kFeatureInstancedEmitters`)",
+     "placing a light by its instance at the path's time (lib/lights.glsl `placeEmitter`)"},
 };
 
 std::uint32_t kernelAxes(KernelId k) {

@@ -79,17 +79,40 @@ float trianglePdf(Emitter e, float pmf, vec3 from, float dist, float cosLight) {
     return trianglePdfOmega(e, pmf, triangleSolidAngle(from, e.v0, e.v0 + e.e1, e.v0 + e.e2), dist, cosLight);
 }
 
+// An emitter of a moving mesh (kEmitterInstanced; the movinglights axis,
+// STRATA_MOVING_LIGHTS, with instancing) is placed in world space
+// at the path's time: its triangle from TriVerts by its record's rows, as
+// the hit's shading places it (lib/scene.glsl shadeTri). Returns that
+// record; kNoInstance (e unchanged) for any other emitter.
+#ifdef STRATA_MOVING_LIGHTS
+uint placeEmitter(inout Emitter e) {
+    if ((e.flags & kEmitterInstanced) == 0u) return kNoInstance;
+    uint record = floatBitsToUint(e.v0.x);
+    TriVerts tv = bvhFetchTri(e.triangle);
+    vec4 r0 = instanceRow(record, 3u), r1 = instanceRow(record, 4u), r2 = instanceRow(record, 5u);
+    e.v0 = rowsPoint(r0, r1, r2, tv.v0.xyz);
+    e.e1 = rowsPoint(r0, r1, r2, tv.v1.xyz) - e.v0;
+    e.e2 = rowsPoint(r0, r1, r2, tv.v2.xyz) - e.v0;
+    e.area = 0.5 * length(cross(e.e1, e.e2));
+    return record;
+}
+#else
+uint placeEmitter(inout Emitter e) { return kNoInstance; }
+#endif
+
 // For MIS when a BSDF-sampled ray from `from` hits emitter triangle `light`
 // at distance `dist` with |cosine| `cosLight` to its normal; with the light
 // tree, `n` is the normal the tree was asked with (sampleLight's p and n).
 #ifdef STRATA_LIGHT_TREE
 float lightPdfTriangle(uint light, float dist, float cosLight, vec3 from, vec3 n) {
     Emitter e = emitterAt(light);
+    placeEmitter(e);
     return trianglePdf(e, frame.scene.y * lightTreePmf(from, n, e.trail), from, dist, cosLight);
 }
 #else
 float lightPdfTriangle(uint light, float dist, float cosLight, vec3 from) {
     Emitter e = emitterAt(light);
+    placeEmitter(e);
     return trianglePdf(e, e.pmf, from, dist, cosLight);
 }
 #endif
@@ -108,6 +131,7 @@ LightSample noLight(vec3 p) {
 // (sampleBySolidAngle), else uniform over its area (the square-root map).
 // One-sided emitters give nothing behind them.
 LightSample sampleTriangleLight(Emitter e, float pmf, vec3 p, vec2 u) {
+    uint instance = placeEmitter(e);
     vec3 normal = normalize(cross(e.e1, e.e2));
     LightSample ls = noLight(p);
     vec3 v1 = e.v0 + e.e1, v2 = e.v0 + e.e2;
@@ -147,7 +171,7 @@ LightSample sampleTriangleLight(Emitter e, float pmf, vec3 p, vec2 u) {
         // darkens the emission by its Fresnel towards p (lib/material.glsl;
         // kernels without materials, such as sample_test.comp, skip this).
         if (hasFeature(kFeatureTextures)) ls.Li = emissionAt(sceneShading(e.triangle).material, e.triangle, b);
-        ls.Li = coatedEmission(sceneShading(e.triangle).material, e.triangle, b, ls.Li, -ls.wi);
+        ls.Li = coatedEmission(sceneShading(e.triangle).material, e.triangle, b, ls.Li, -ls.wi, instance);
 #endif
         ls.target = spawnOriginOnEmitter(pos, e.v0, e.e1, e.e2, cosSigned > 0.0 ? normal : -normal);
     }

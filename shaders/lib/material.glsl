@@ -224,20 +224,29 @@ vec3 emissionAt(uint materialIndex, uint triangle, vec2 bary) {
 // coat it is darkened by the coat's Fresnel, le (1 - clearcoat
 // Schlick(0.04, |toViewer . coat normal|)), as the extension specifies. The
 // path's emission hits and next-event estimation both take it from here.
-vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 toViewer) {
+// `instance`: the record that places the triangle (an emitter of a moving
+// mesh, kFeatureInstancedEmitters), else kNoInstance (stored in world space).
+vec3 coatedEmission(uint materialIndex, uint triangle, vec2 bary, vec3 le, vec3 toViewer, uint instance) {
 #ifdef STRATA_LAYERS
     if (!hasFeature(kFeatureClearcoat)) return le;
     Material mat = sceneMaterial(materialIndex);
     if ((mat.flags & kMaterialClearcoat) == 0u) return le;
+    // The emitter's triangle in world space: stored so, or placed by its
+    // instance (moving lights; the tangents too, through gInstance).
 #ifdef STRATA_INSTANCING
-    // Emitters are never instanced: their triangles are stored in world space.
     uint shaded = gInstance;
     gInstance = kNoInstance;
 #endif
+#ifdef STRATA_MOVING_LIGHTS
+    gInstance = instance;
+    TriVerts tv = shadeTri(triangle);
+    TriShading sh = shadeShading(triangle);
+#else
     TriVerts tv = bvhFetchTri(triangle);
+    TriShading sh = sceneShading(triangle);
+#endif
     vec3 n = normalize(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz));
     if (dot(n, toViewer) < 0.0) n = -n;
-    TriShading sh = sceneShading(triangle);
     vec3 ns = normalize((1.0 - bary.x - bary.y) * sh.n0 + bary.x * sh.n1 + bary.y * sh.n2);
     if (dot(ns, n) < 0.0) ns = -ns;
     vec3 coatNormal;

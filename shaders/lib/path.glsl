@@ -95,8 +95,10 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     gInstance = gHitInstance;
     vec3 spawnErr = shadeSpawnError(bvhFetchTri(hit.triangle));
 #define PATH_SPAWN(side) spawnOrigin(tv, hit.u, hit.v, side, spawnErr)
+#define PATH_INSTANCE gInstance
 #else
 #define PATH_SPAWN(side) spawnOrigin(tv, hit.u, hit.v, side)
+#define PATH_INSTANCE kNoInstance
 #endif
     TriVerts tv = shadeTri(hit.triangle);
     vec3 e1 = tv.v1.xyz - tv.v0.xyz, e2 = tv.v2.xyz - tv.v0.xyz;
@@ -127,7 +129,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
             vec2 bary = vec2(hit.u, hit.v);
             vec3 le = emissionAt(sh.material, hit.triangle, bary);
-            v.L += v.beta * w * coatedEmission(sh.material, hit.triangle, bary, le, -dir);
+            v.L += v.beta * w * coatedEmission(sh.material, hit.triangle, bary, le, -dir, PATH_INSTANCE);
 #ifdef STRATA_AOV
             if (!gAov.done) { AOV_RECORD(vec3(1.0), front ? ng : -ng, 1.0); }
 #endif
@@ -263,5 +265,6 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     return o;
 }
 #undef PATH_SPAWN
+#undef PATH_INSTANCE
 
 #endif

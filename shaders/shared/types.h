@@ -143,6 +143,8 @@ STRATA_CONST(uint, kFeatureSpecularColor, 16384u);  // KHR_materials_specular co
 STRATA_CONST(uint, kFeatureIridescence, 32768u);    // KHR_materials_iridescence: a thin film on the Fresnel
 STRATA_CONST(uint, kFeatureLightTree, 65536u);      // lights chosen through the light tree (LightNode),
                                                     // not by power alone (pack/light_tree.h)
+STRATA_CONST(uint, kFeatureInstancedEmitters, 131072u);  // emitters of an instanced mesh (one that
+                                                         // moves during the shutter): kEmitterInstanced
 // The material layers: compiled only into the modules with the layers axis
 // (STRATA_LAYERS, lib/features.glsl).
 STRATA_CONST(uint, kFeaturesLayers,
@@ -289,6 +291,11 @@ STRATA_CONST(uint, kLightEnvironment, 4u);
 // Fields by kind (unused ones are 0):
 //   kLightTriangle: v0, e1 = v1 - v0, e2 = v2 - v0, triangle, area;
 //                   radiance = emitted radiance (W sr^-1 m^-2); flags.
+//                   With kEmitterInstanced in flags (a triangle of a mesh
+//                   that moves: kFeatureInstancedEmitters), v0.x's bits are
+//                   the first texel of its placement's Instance record, e1,
+//                   e2 and area 0: its vertices are TriVerts[triangle] (object
+//                   space), placed by that record at the path's time.
 //   kLightPoint:    v0 = position; radiance = radiant intensity (W/sr).
 //   kLightSpot:     v0 = position, e1 = unit axis (where the light travels),
 //                   e2.x = scale, e2.y = offset of the cone falloff
@@ -304,7 +311,7 @@ struct Emitter {
     vec3 e2;
     float pmf;
     vec3 radiance;
-    uint flags;       // kMaterialDoubleSided: emits from both sides
+    uint flags;       // kMaterialDoubleSided: emits from both sides; kEmitterInstanced
     float aliasProb;
     uint alias;
     uint kind;        // kLight*
@@ -312,6 +319,8 @@ struct Emitter {
                       // light's path from the root: bit d = 1 takes the second
                       // child at depth d (LightNode)
 };
+
+STRATA_CONST(uint, kEmitterInstanced, 0x80000000u);  // Emitter.flags: stored by its instance (above)
 
 // A node of the light tree (pack/light_tree.h; Conty Estevez & Kulla 2018):
 // the bounds, total estimated power and orientation cone of the bounded
