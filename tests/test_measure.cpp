@@ -307,7 +307,8 @@ TEST_CASE("bench rejects bad flags and a mismatched reference with one line and 
              "bench", "bench " + kBox + " --spp 0", "bench " + kBox + " --width 0", "bench " + kBox + " --bogus",
              "bench " + kBox + " --spp", "bench " + kBox + " --max-depth -1",
              "bench " + kBox + " --traversal fast", "bench " + kBox + " --bvh 3",
-             "bench " + kBox + " --bvh-stack heap",
+             "bench " + kBox + " --bvh-stack heap", "bench " + kBox + " --texture-max-size 0",
+             "bench " + kBox + " --texture-max-size 65537",
              "bench " + kBox + " --quick --reference " + (d / "r.exr"),  // 1024x768 against 16x8
              "bench " + kBox + " --quick --width 16 --height 16 --reference " + (d / "r.exr"),
              "bench " + kBox + " --quick --width 16 --height 8 --reference " + (d / "none.exr"),

@@ -15,6 +15,7 @@
 #include <numbers>
 
 #include "pack/textures.h"
+#include "render/report.h"
 #include "measure/tracer.h"
 #include "scene/tangents.h"
 #include "stats/stats.h"
@@ -143,6 +144,51 @@ TEST_CASE("texture: an emissive checker seen directly is emissiveFactor x the sR
     CAPTURE(d16.maxRelError);
     CHECK(d16.skipped == 0);
     CHECK(d16.maxRelError < 1e-5);  // 16-bit PNG: decoded to 16 bits, not 8
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// --texture-max-size 2 halves checker.png (4 x 2) to 2 x 1: each texel the
+// mean of its 2 x 2 block in linear light, stored in sRGB again (8 bits).
+TEST_CASE("texture: --texture-max-size halves a texture in linear light, the render reads the smaller one") {
+    SceneRequest request = keptRequest(centreSettings(24, 4, 0, 3));
+    request.file = sourcePath(kDir + "nearest.gltf");
+    request.textureMaxSize = 2;
+    HostScene host = prepareScene(request);
+    REQUIRE(host.gpu.images.size() == 1);
+    CHECK(host.gpu.images[0].width == 2);
+    CHECK(host.gpu.images[0].height == 1);
+    CHECK(host.gpu.images[0].fileWidth == 4);
+    CHECK(host.gpu.images[0].bytes == 2 * 4);
+    const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera,
+                                  centreSettings(24, 4, 0, 3));
+    auto halfTexel = [](int x) {
+        glm::dvec3 c(0.0);
+        for (int y = 0; y < 2; ++y)
+            for (int dx = 0; dx < 2; ++dx) c += 0.25 * checkerTexel(2 * x + dx, y);
+        for (int k = 0; k < 3; ++k) {  // stored as 8-bit sRGB again
+            const double v = c[k] <= 0.0031308 ? c[k] * 12.92 : 1.055 * std::pow(c[k], 1.0 / 2.4) - 0.055;
+            c[k] = srgbToLinear(std::round(v * 255.0) / 255.0);
+        }
+        return c;
+    };
+    const auto mean = r.film.mean();
+    double worst = 0.0;
+    std::size_t compared = 0;
+    for (int py = 0; py < 24; ++py)
+        for (int px = 0; px < 24; ++px) {
+            const glm::dvec2 st((px + 0.5) / 24, (py + 0.5) / 24);
+            const double x = st.x * 2.0;  // the quad's uv spans [0, 1]: nearest texel of the 2 x 1 image
+            if (std::abs(x - std::round(x)) < 1e-5) continue;
+            const glm::dvec3 e = kEmissive * halfTexel(static_cast<int>(x) % 2);
+            for (int c = 0; c < 3; ++c) {
+                const double v = mean[(static_cast<std::size_t>(py) * 24 + px) * 3 + c];
+                worst = std::max(worst, std::abs(v - e[c]) / std::max(e[c], 1e-3));
+            }
+            ++compared;
+        }
+    CAPTURE(worst);
+    CHECK(compared > 500);
+    CHECK(worst < 1e-5);
     CHECK(vk::validationMessageCount() == 0);
 }
 
@@ -508,6 +554,66 @@ TEST_CASE("texture: generated tangents follow +u, with glTF handedness, and surv
         CHECK(std::abs(glm::dot(glm::vec3(t), n[0])) < 1e-6f);
         CHECK(glm::length(glm::vec3(t)) == doctest::Approx(1.0f));
     }
+}
+
+TEST_SUITE_END();
+
+TEST_SUITE_BEGIN("unit");
+
+namespace {
+
+TextureImage image8(int width, int height, const std::vector<std::array<int, 4>>& texels) {
+    TextureImage im;
+    im.width = width;
+    im.height = height;
+    for (const auto& t : texels)
+        for (int c : t) im.data.push_back(static_cast<std::uint8_t>(c));
+    return im;
+}
+
+}  // namespace
+
+TEST_CASE("texture: downsampling averages colour in linear light, renormalises normals, covers odd sizes") {
+    // sRGB: red and three black texels: a quarter of red's light, 137 in sRGB (not 64, the mean of the codes).
+    const TextureImage quad = image8(2, 2, {{255, 0, 0, 255}, {0, 0, 0, 255}, {0, 0, 0, 0}, {0, 0, 0, 0}});
+    const TextureImage srgb = downsampledTexture(quad, 1, TexelCoding::Srgb);
+    REQUIRE(srgb.width == 1);
+    REQUIRE(srgb.height == 1);
+    CHECK(int(srgb.data[0]) == 137);
+    CHECK(int(srgb.data[3]) == 128);  // alpha averaged as it is: 127.5 rounded
+    CHECK(int(downsampledTexture(quad, 1, TexelCoding::Linear).data[0]) == 64);
+    // Normals +X and +Y (encoded 2n - 1): their mean renormalised, (0.707, 0.707, 0).
+    const TextureImage normals = image8(2, 1, {{255, 128, 128, 255}, {128, 255, 128, 255}});
+    const TextureImage n = downsampledTexture(normals, 1, TexelCoding::Normal);
+    glm::dvec3 v;
+    for (int c = 0; c < 3; ++c) v[c] = 2.0 * n.data[std::size_t(c)] / 255.0 - 1.0;
+    CHECK(glm::length(v) == doctest::Approx(1.0).epsilon(0.01));
+    CHECK(v.x == doctest::Approx(std::sqrt(0.5)).epsilon(0.01));
+    // An odd side: 3 x 1 halves to 2 x 1, its last texel alone.
+    const TextureImage odd = image8(3, 1, {{0, 0, 0, 0}, {0, 0, 0, 0}, {10, 20, 30, 40}});
+    const TextureImage h = downsampledTexture(odd, 2, TexelCoding::Linear);
+    REQUIRE(h.width == 2);
+    CHECK(std::vector<int>(h.data.begin() + 4, h.data.end()) == std::vector<int>{10, 20, 30, 40});
+    // Halved until neither side exceeds the size: 64 x 16 at most 10 is 8 x 2.
+    TextureImage big = image8(64, 16, std::vector<std::array<int, 4>>(64 * 16, {200, 100, 50, 255}));
+    const TextureImage small = downsampledTexture(big, 10, TexelCoding::Srgb);
+    CHECK(small.width == 8);
+    CHECK(small.height == 2);
+    CHECK(int(small.data[0]) == 200);  // a uniform image stays itself
+    // --stats: the largest four, how many downsampled, the file's size where it differs.
+    nlohmann::json list = nlohmann::json::array();
+    for (int k = 0; k < 5; ++k)
+        list.push_back({{"name", "t" + std::to_string(k)}, {"width", 8}, {"height", 8}, {"file_width", k == 2 ? 16 : 8},
+                        {"file_height", k == 2 ? 16 : 8}, {"bytes", 256 * (k + 1)}});
+    CHECK(texturesText({{"images", 5}, {"bytes", 3840}, {"list", list}}) ==
+          "5 image(s), 3840 bytes on the device, 1 downsampled: t4 8x8 (1280 bytes), t3 8x8 (1024 bytes), t2 8x8 "
+          "(768 bytes, 16x16 in the file), t1 8x8 (512 bytes) and 1 more");
+    // 16 bits stay 16 bits.
+    big.bits = 16;
+    big.data.assign(std::size_t(64) * 16 * 8, 0xff);
+    const TextureImage wide = downsampledTexture(big, 32, TexelCoding::Linear);
+    CHECK(wide.bits == 16);
+    CHECK(wide.data.size() == std::size_t(32) * 8 * 8);
 }
 
 TEST_SUITE_END();

@@ -180,7 +180,8 @@ std::vector<Flag<T>> envFlags() {
     };
 }
 
-// --variant (the scene's materials), --instancing (its meshes), --restrict-paths (its files).
+// --variant (the scene's materials), --instancing (its meshes), --texture-max-size (its textures),
+// --restrict-paths (its files).
 template <class T>
 std::vector<Flag<T>> sceneFlags() {
     return {text<T>("--variant", "NAME",
@@ -192,6 +193,11 @@ std::vector<Flag<T>> sceneFlags() {
                                   "instanced when its placements hold more than 2^20 triangles",
                                   {{"auto", Instancing::Auto}, {"on", Instancing::On}, {"off", Instancing::Off}},
                                   [](auto& c) -> auto& { return c.instancing; }),
+            integer<T>("--texture-max-size", "N",
+                       "halve each texture (in linear light for colour, normal maps renormalised) until neither "
+                       "side exceeds N texels; --stats lists each texture's size and bytes",
+                       1, 1 << 16, [](auto& c) -> auto& { return c.textureMaxSize; })
+                .withDefault("none: every texture whole"),
             text<T>("--restrict-paths", "DIR",
                     "refuse a scene, an environment map, or a file the scene names that resolves (symlinks "
                     "followed) outside DIR: for rendering files from elsewhere",

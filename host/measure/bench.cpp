@@ -299,6 +299,7 @@ int runBench(const BenchCommand& cmd) {
     request.load.variant = cmd.variant;
     if (!cmd.restrictPaths.empty()) request.load.restrictPaths = restrictRoot(cmd.restrictPaths);
     request.load.instancing = cmd.instancing;
+    request.textureMaxSize = cmd.textureMaxSize;
     request.camera.reset();  // framed below, as the peer frames (the loaded triangles' bounds)
     request.consume = Consume::Scene;  // the packed scene is uploaded by each section
     auto t0 = std::chrono::steady_clock::now();

@@ -44,6 +44,7 @@ struct BenchCommand {
     std::string variant;                // --variant (KHR_materials_variants)
     std::string restrictPaths;          // --restrict-paths DIR (as given)
     Instancing instancing = Instancing::Auto;  // --instancing
+    std::uint32_t textureMaxSize = 0;   // --texture-max-size (0: every texture whole)
     int device = -1;
     std::string reference;            // EXR of the same size: relMSE of the path-tracing image
     EnvironmentOptions env;           // --env / --env-color, --env-intensity, --env-rotate (as render)

@@ -146,6 +146,7 @@ std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd) {
     request.load.variant = cmd.variant;
     if (!cmd.restrictPaths.empty()) request.load.restrictPaths = restrictRoot(cmd.restrictPaths);
     request.load.instancing = cmd.instancing;
+    request.textureMaxSize = cmd.textureMaxSize;
     request.camera->view = cmd.view;
     request.consume = Consume::None;
     const HostScene host = prepareScene(request);

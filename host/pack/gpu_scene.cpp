@@ -408,7 +408,7 @@ struct BvhOrderSource {
 // so the host never holds it twice) or const Scene (gathered in BVH order,
 // left as it was).
 template <class S>
-GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSampler) {
+GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSampler, std::uint32_t textureMaxSize) {
     constexpr bool consume = !std::is_const_v<S>;
     GpuScene g;
     g.source = scene.path;
@@ -485,9 +485,10 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
     } else {
         g.placedTriangles = n;
     }
-    PackedTextures packed = packTextures(scene, used, g.materials);
+    PackedTextures packed = packTextures(scene, used, g.materials, textureMaxSize);
     g.textureRefs = std::move(packed.refs);
     g.texels = std::move(packed.texels);
+    g.images = std::move(packed.images);
     g.features.bits |= textureFeatures(scene, used);
     const bool uvs = (g.features.bits & gpu::kFeatureTextures) != 0;
     const bool tangents = (g.features.bits & gpu::kFeatureNormalMap) != 0;
@@ -638,12 +639,13 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
 
 }  // namespace
 
-GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights) {
-    return pack(scene, std::move(bvh), bvhWidth, lights);
+GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights, std::uint32_t textureMaxSize) {
+    return pack(scene, std::move(bvh), bvhWidth, lights, textureMaxSize);
 }
 
-GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights) {
-    return pack(scene, std::move(bvh), bvhWidth, lights);
+GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights,
+                             std::uint32_t textureMaxSize) {
+    return pack(scene, std::move(bvh), bvhWidth, lights, textureMaxSize);
 }
 
 }  // namespace strata

@@ -7,6 +7,7 @@
 
 #include "bvh/scene_bvh.h"
 #include "pack/light_tree.h"
+#include "pack/textures.h"
 #include "scene/scene.h"
 
 namespace strata {
@@ -43,6 +44,7 @@ struct GpuScene {
     std::vector<gpu::TriColors> colors;        // BVH order; only with kFeatureVertexColor
     std::vector<gpu::TextureRef> textureRefs;
     std::vector<std::uint32_t> texels;         // R32UI words (types.h, TextureRef)
+    std::vector<PackedImage> images;           // what each packed image holds (--stats)
     std::vector<gpu::Emitter> emitters;     // triangles, then punctual lights, then the
                                             // environment; with the alias table filled in
     // With kFeatureLightTree: the light tree over the bounded emitters
@@ -88,7 +90,10 @@ struct GpuScene {
 // shaders will traverse; both trees are kept. `lights` (--light-sampler)
 // decides whether the light tree is built (pack/light_tree.h; the alias
 // table is built either way).
-GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4, LightSampler lights = LightSampler::Auto);
+// `textureMaxSize` (--texture-max-size; 0: none) halves each texture
+// until neither side exceeds it (downsampledTexture, pack/textures.h).
+GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4, LightSampler lights = LightSampler::Auto,
+                   std::uint32_t textureMaxSize = 0);
 
 // The same, consuming the scene's geometry (releaseGeometry(scene) done):
 // each page of the triangles is handed back as soon as it has been read, so
@@ -96,7 +101,7 @@ GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4, LightSamp
 // Where the four-wide tree will be traversed (GpuScene::bvhWidth 4) it also
 // drops `nodes`, the BVH2, once that tree is built.
 GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth = 4,
-                             LightSampler lights = LightSampler::Auto);
+                             LightSampler lights = LightSampler::Auto, std::uint32_t textureMaxSize = 0);
 
 // The instances array alone (GpuScene::instances) of a scene posed again
 // (--frames): `bvh` holds the bottom levels' roots and the new top level.

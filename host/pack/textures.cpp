@@ -48,6 +48,61 @@ void appendWords(const TextureImage& image, std::vector<std::uint32_t>& texels) 
     }
 }
 
+// The sRGB encoding curve, the inverse of srgbToLinear.
+double linearToSrgb(double v) {
+    return v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+// One halving (each side to ceil(side / 2)).
+TextureImage halved(const TextureImage& in, TexelCoding coding) {
+    TextureImage out;
+    out.name = in.name;
+    out.bits = in.bits;
+    out.width = (in.width + 1) / 2;
+    out.height = (in.height + 1) / 2;
+    const std::size_t bytes = in.bits == 16 ? 2 : 1;
+    const double scale = in.bits == 16 ? 65535.0 : 255.0;
+    out.data.resize(std::size_t(out.width) * std::size_t(out.height) * 4 * bytes);
+    auto put = [&](std::size_t i, int c, double v) {
+        const auto q = static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0, 1.0) * scale));
+        if (bytes == 2) {
+            const auto w = static_cast<std::uint16_t>(q);
+            std::memcpy(out.data.data() + (i * 4 + std::size_t(c)) * 2, &w, 2);
+        } else {
+            out.data[i * 4 + std::size_t(c)] = static_cast<std::uint8_t>(q);
+        }
+    };
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            double sum[4] = {0.0, 0.0, 0.0, 0.0};
+            int n = 0;
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dx = 0; dx < 2; ++dx) {
+                    const int sx = 2 * x + dx, sy = 2 * y + dy;
+                    if (sx >= in.width || sy >= in.height) continue;
+                    const std::size_t i = std::size_t(sy) * std::size_t(in.width) + std::size_t(sx);
+                    for (int c = 0; c < 4; ++c) {
+                        double v = channel(in, i, c);
+                        if (c < 3 && coding == TexelCoding::Srgb) v = srgbToLinear(v);
+                        if (c < 3 && coding == TexelCoding::Normal) v = 2.0 * v - 1.0;
+                        sum[c] += v;
+                    }
+                    ++n;
+                }
+            const std::size_t o = std::size_t(y) * std::size_t(out.width) + std::size_t(x);
+            glm::dvec3 rgb(sum[0] / n, sum[1] / n, sum[2] / n);
+            if (coding == TexelCoding::Normal) {
+                const double len = glm::length(rgb);
+                rgb = len > 0.0 ? 0.5 * (rgb / len) + 0.5 : glm::dvec3(0.5, 0.5, 1.0);
+            } else if (coding == TexelCoding::Srgb) {
+                rgb = {linearToSrgb(rgb.x), linearToSrgb(rgb.y), linearToSrgb(rgb.z)};
+            }
+            for (int c = 0; c < 3; ++c) put(o, c, rgb[c]);
+            put(o, 3, sum[3] / n);
+        }
+    return out;
+}
+
 std::uint32_t wrapBits(Wrap w) {
     switch (w) {
         case Wrap::ClampToEdge: return gpu::kWrapClamp;
@@ -58,6 +113,12 @@ std::uint32_t wrapBits(Wrap w) {
 }
 
 }  // namespace
+
+TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding) {
+    TextureImage out = halved(image, coding);
+    while (std::uint32_t(std::max(out.width, out.height)) > maxSize) out = halved(out, coding);
+    return out;
+}
 
 glm::dvec3 meanColor(const TextureImage& image, bool srgb) {
     const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
@@ -98,26 +159,41 @@ std::vector<std::uint32_t> sheenAlbedoWords() {
 }
 
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
-                            std::vector<gpu::Material>& materials) {
+                            std::vector<gpu::Material>& materials, std::uint32_t maxSize) {
     PackedTextures out;
     // KHR_materials_sheen's albedo table first (lib/sheen.glsl reads it there).
     bool sheen = false;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) sheen = sheen || (used[i] && scene.materials[i].sheened());
     if (sheen) out.texels = sheenAlbedoWords();
     std::vector<std::int64_t> imageOffset(scene.images.size(), -1);
-    auto addRef = [&](const MaterialDesc& m, const TextureSlot& slot, bool srgb) -> std::uint32_t {
+    std::vector<std::size_t> packedIndex(scene.images.size(), 0);  // into out.images
+    auto addRef = [&](const MaterialDesc& m, const TextureSlot& slot, TexelCoding coding) -> std::uint32_t {
         if (!slot.used()) return gpu::kNoTexture;
+        const bool srgb = coding == TexelCoding::Srgb;
         const Texture& texture = scene.textures[static_cast<std::size_t>(slot.texture)];
         const TextureImage& image = scene.images[static_cast<std::size_t>(texture.image)];
         std::int64_t& offset = imageOffset[static_cast<std::size_t>(texture.image)];
         if (offset < 0) {
             offset = static_cast<std::int64_t>(out.texels.size());
-            appendWords(image, out.texels);
+            const std::string name = image.name.empty() ? "image " + std::to_string(texture.image) : image.name;
+            PackedImage p{name, image.width, image.height, image.width, image.height, 0};
+            if (maxSize > 0 && std::uint32_t(std::max(image.width, image.height)) > maxSize) {
+                const TextureImage small = downsampledTexture(image, maxSize, coding);
+                appendWords(small, out.texels);
+                p.width = small.width;
+                p.height = small.height;
+            } else {
+                appendWords(image, out.texels);
+            }
+            p.bytes = (out.texels.size() - std::size_t(offset)) * sizeof(std::uint32_t);
+            packedIndex[static_cast<std::size_t>(texture.image)] = out.images.size();
+            out.images.push_back(p);
         }
+        const PackedImage& packed = out.images[packedIndex[static_cast<std::size_t>(texture.image)]];
         gpu::TextureRef ref{};
         ref.offset = static_cast<std::uint32_t>(offset);
-        ref.width = static_cast<std::uint32_t>(image.width);
-        ref.height = static_cast<std::uint32_t>(image.height);
+        ref.width = static_cast<std::uint32_t>(packed.width);
+        ref.height = static_cast<std::uint32_t>(packed.height);
         ref.flags = wrapBits(texture.wrapS) | wrapBits(texture.wrapT) << 2;
         if (texture.nearest) ref.flags |= gpu::kTexNearest;
         if (m.uvSlot(slot.texCoord) == 1) ref.flags |= gpu::kTexCoord1;
@@ -131,31 +207,31 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
         if (!used[i]) continue;
         const MaterialDesc& m = scene.materials[i];
         gpu::Material& g = materials[i];
-        g.baseColorTex = addRef(m, m.baseColorTexture, true);
-        g.metallicRoughnessTex = addRef(m, m.metallicRoughnessTexture, false);
-        g.normalTex = addRef(m, m.normalTexture, false);
-        g.emissiveTex = addRef(m, m.emissiveTexture, true);
-        g.transmissionTex = addRef(m, m.transmissionTexture, false);
+        g.baseColorTex = addRef(m, m.baseColorTexture, TexelCoding::Srgb);
+        g.metallicRoughnessTex = addRef(m, m.metallicRoughnessTexture, TexelCoding::Linear);
+        g.normalTex = addRef(m, m.normalTexture, TexelCoding::Normal);
+        g.emissiveTex = addRef(m, m.emissiveTexture, TexelCoding::Srgb);
+        g.transmissionTex = addRef(m, m.transmissionTexture, TexelCoding::Linear);
         g.clearcoatTex = g.clearcoatRoughnessTex = g.clearcoatNormalTex = gpu::kNoTexture;
         if (m.coated()) {
-            g.clearcoatTex = addRef(m, m.clearcoatTexture, false);
-            g.clearcoatRoughnessTex = addRef(m, m.clearcoatRoughnessTexture, false);
-            g.clearcoatNormalTex = addRef(m, m.clearcoatNormalTexture, false);
+            g.clearcoatTex = addRef(m, m.clearcoatTexture, TexelCoding::Linear);
+            g.clearcoatRoughnessTex = addRef(m, m.clearcoatRoughnessTexture, TexelCoding::Linear);
+            g.clearcoatNormalTex = addRef(m, m.clearcoatNormalTexture, TexelCoding::Normal);
         }
         g.specularTex = g.specularColorTex = gpu::kNoTexture;
         if (m.tinted()) {
-            g.specularTex = addRef(m, m.specularTexture, false);
-            g.specularColorTex = addRef(m, m.specularColorTexture, true);
+            g.specularTex = addRef(m, m.specularTexture, TexelCoding::Linear);
+            g.specularColorTex = addRef(m, m.specularColorTexture, TexelCoding::Srgb);
         }
         g.sheenColorTex = g.sheenRoughnessTex = gpu::kNoTexture;
         if (m.sheened()) {
-            g.sheenColorTex = addRef(m, m.sheenColorTexture, true);
-            g.sheenRoughnessTex = addRef(m, m.sheenRoughnessTexture, false);
+            g.sheenColorTex = addRef(m, m.sheenColorTexture, TexelCoding::Srgb);
+            g.sheenRoughnessTex = addRef(m, m.sheenRoughnessTexture, TexelCoding::Linear);
         }
         g.iridescenceTex = g.iridescenceThicknessTex = gpu::kNoTexture;
         if (m.iridescent()) {
-            g.iridescenceTex = addRef(m, m.iridescenceTexture, false);
-            g.iridescenceThicknessTex = addRef(m, m.iridescenceThicknessTexture, false);
+            g.iridescenceTex = addRef(m, m.iridescenceTexture, TexelCoding::Linear);
+            g.iridescenceThicknessTex = addRef(m, m.iridescenceThicknessTexture, TexelCoding::Linear);
         }
     }
     return out;

@@ -3,6 +3,7 @@
 // every used texture slot becomes a gpu::TextureRef (types.h).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "../../shaders/shared/types.h"
@@ -10,17 +11,41 @@
 
 namespace strata {
 
+// One packed image, for --stats: its name, its size as packed and as the
+// file has it, and its bytes on the device.
+struct PackedImage {
+    std::string name;
+    int width = 0, height = 0;
+    int fileWidth = 0, fileHeight = 0;
+    std::uint64_t bytes = 0;
+    bool downsampled() const { return width != fileWidth || height != fileHeight; }
+};
+
 struct PackedTextures {
     std::vector<gpu::TextureRef> refs;
     std::vector<std::uint32_t> texels;  // the words of every packed image
+    std::vector<PackedImage> images;    // in the order they were packed
 };
 
 // Fills the *Tex fields of `materials` (parallel to scene.materials) with
 // indices into refs, for the materials marked in `used`; other slots stay
 // gpu::kNoTexture. When a used material has a sheen (kFeatureSheen), the
-// texels start with the sheen albedo table (sheenAlbedoWords).
+// texels start with the sheen albedo table (sheenAlbedoWords). Each image
+// is packed once, at most `maxSize` texels a side (0: whole;
+// downsampledTexture as its first slot reads it).
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
-                            std::vector<gpu::Material>& materials);
+                            std::vector<gpu::Material>& materials, std::uint32_t maxSize = 0);
+
+// How a texture slot reads its image, for downsampling: colour in sRGB
+// (base colour, emissive, sheen and specular colour), a normal map, or
+// other linear data.
+enum class TexelCoding { Srgb, Normal, Linear };
+
+// The image halved (each side to ceil(side / 2), a texel the mean of the up
+// to 2x2 it covers) until neither side exceeds `maxSize` (>= 1): the mean
+// taken in linear light for sRGB colour, and a normal map's mean vector
+// renormalised; alpha is averaged as it is. Bits per channel kept.
+TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding);
 
 // KHR_materials_sheen's albedo table as texel words (tools/sheen-albedo).
 std::vector<std::uint32_t> sheenAlbedoWords();

@@ -49,6 +49,7 @@ SceneRequest sceneRequest(const RenderCommand& cmd) {
     r.load.variant = cmd.variant;
     if (!cmd.restrictPaths.empty()) r.load.restrictPaths = restrictRoot(cmd.restrictPaths);
     r.load.instancing = cmd.instancing;
+    r.textureMaxSize = cmd.textureMaxSize;
     r.load.motion.frames = cmd.frames.enabled;
     r.camera->view = cmd.view;
     r.consume = Consume::All;

@@ -44,6 +44,7 @@ struct RenderCommand {
     std::string variant;                // --variant (KHR_materials_variants)
     std::string restrictPaths;          // --restrict-paths DIR (as given)
     Instancing instancing = Instancing::Auto;  // --instancing
+    std::uint32_t textureMaxSize = 0;   // --texture-max-size (0: every texture whole)
     int device = -1;
     bool quiet = false;
     bool stats = false;

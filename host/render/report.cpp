@@ -1,10 +1,12 @@
 #include "render/report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
 #include "render/sampler_kind.h"
 #include "spirv/cache.h"
+#include "upload/device_scene.h"
 #include "util/interrupt.h"
 #include "util/memory.h"
 #include "vk/buffer.h"
@@ -42,6 +44,16 @@ nlohmann::json statsJson(const StatsInput& in) {
                            {"build_ms", in.gpu->lightTreeMs},
                            {"tree_probability", in.gpu->lightTreeProb},
                            {"clusters", in.gpu->lightClusters}};
+    if (!in.gpu->images.empty()) {
+        nlohmann::json list = nlohmann::json::array();
+        std::uint64_t bytes = 0;
+        for (const PackedImage& p : in.gpu->images) {
+            bytes += p.bytes;
+            list.push_back({{"name", p.name},           {"width", p.width},   {"height", p.height},
+                            {"file_width", p.fileWidth}, {"file_height", p.fileHeight}, {"bytes", p.bytes}});
+        }
+        j["textures"] = {{"images", in.gpu->images.size()}, {"bytes", bytes}, {"list", list}};
+    }
     const BvhStats& b = in.gpu->bvh;
     j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
                 {"sah_cost", b.sahCost}, {"build_ms", b.buildMs}, {"bytes", b.bytes}};
@@ -125,6 +137,7 @@ std::string statsText(const nlohmann::json& j) {
                       t["max_depth"].get<unsigned>(), t["build_ms"].get<double>(), t["tree_probability"].get<double>());
         o << line;
     }
+    if (j.contains("textures")) o << "textures   " << texturesText(j["textures"]) << "\n";
     const auto& b = j["bvh"];
     std::snprintf(line, sizeof line,
                   "bvh        %u nodes, %u leaves, max depth %u, SAH cost %.2f, build %.1f ms, %.2f MiB\n",
@@ -173,6 +186,30 @@ std::string startupText(const nlohmann::json& su) {
                   su["load_ms"].get<double>(), su["bvh_build_ms"].get<double>(), su["pack_ms"].get<double>(),
                   su["device_init_ms"].get<double>(), su["upload_ms"].get<double>());
     return line;
+}
+
+std::string texturesText(const nlohmann::json& t) {
+    std::vector<nlohmann::json> list(t["list"].begin(), t["list"].end());
+    std::stable_sort(list.begin(), list.end(), [](const nlohmann::json& a, const nlohmann::json& b) {
+        return a["bytes"].get<std::uint64_t>() > b["bytes"].get<std::uint64_t>();
+    });
+    std::size_t downsampled = 0;
+    for (const auto& i : list)
+        downsampled += i["width"] != i["file_width"] || i["height"] != i["file_height"];
+    std::ostringstream o;
+    o << list.size() << " image(s), " << sizeText(t["bytes"].get<std::uint64_t>()) << " on the device";
+    if (downsampled > 0) o << ", " << downsampled << " downsampled";
+    constexpr std::size_t kNamed = 4;
+    for (std::size_t k = 0; k < std::min(list.size(), kNamed); ++k) {
+        const auto& i = list[k];
+        o << (k == 0 ? ": " : ", ") << i["name"].get<std::string>()
+          << " " << i["width"] << "x" << i["height"] << " (" << sizeText(i["bytes"].get<std::uint64_t>());
+        if (i["width"] != i["file_width"] || i["height"] != i["file_height"])
+            o << ", " << i["file_width"] << "x" << i["file_height"] << " in the file";
+        o << ")";
+    }
+    if (list.size() > kNamed) o << " and " << list.size() - kNamed << " more";
+    return o.str();
 }
 
 std::string memoryText(const nlohmann::json& m) {

@@ -25,6 +25,10 @@ struct StatsInput {
 nlohmann::json statsJson(const StatsInput& in);
 std::string statsText(const nlohmann::json& stats);
 
+// The packed textures (StatsInput's GpuScene::images) in one line: count,
+// bytes, how many were downsampled, the largest four with their sizes.
+std::string texturesText(const nlohmann::json& textures);
+
 // Memory: the scene's arrays as packed and the device memory holding them,
 // the process's peak device memory (vk::peakDeviceMemoryBytes) and peak host
 // resident set size, in bytes; memoryText is its one-line summary.

@@ -53,13 +53,14 @@ HostScene prepareScene(const SceneRequest& request, Scene scene) {
     SceneBvh bvh = buildSceneBvh(h.scene, request.build);
     if (request.keepPlacements) h.bottoms = bvh.bottoms;
     if (request.consume == Consume::None) {
-        h.gpu = packScene(h.scene, std::move(bvh), request.bvhWidth, request.lights);
+        h.gpu = packScene(h.scene, std::move(bvh), request.bvhWidth, request.lights, request.textureMaxSize);
     } else {
         // Packing releases the placements with the triangles; a sequence of
         // frames poses them again.
         std::vector<MeshInstance> instances;
         if (request.keepPlacements) instances = h.scene.instances;
-        h.gpu = packSceneAndRelease(h.scene, std::move(bvh), request.bvhWidth, request.lights);
+        h.gpu = packSceneAndRelease(h.scene, std::move(bvh), request.bvhWidth, request.lights,
+                                    request.textureMaxSize);
         if (request.keepPlacements) h.scene.instances = std::move(instances);
     }
     h.packMs = msSince(t0);

@@ -52,8 +52,10 @@ struct SceneRequest {
     BvhBuildOptions build;
     int bvhWidth = 4;
     BvhStack stack = BvhStack::Auto;
-    // Pack: whether the light tree is built (--light-sampler).
+    // Pack: whether the light tree is built (--light-sampler), the largest
+    // texture side kept (--texture-max-size; 0: every texture whole).
     LightSampler lights = LightSampler::Auto;
+    std::uint32_t textureMaxSize = 0;
     // Upload: the reads (--reads), lowered device limits (tests), and the
     // image's sample sums counted beside the scene against device memory.
     ReadMode reads = ReadMode::Auto;
