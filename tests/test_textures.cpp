@@ -192,6 +192,38 @@ TEST_CASE("texture: --texture-max-size halves a texture in linear light, the ren
     CHECK(vk::validationMessageCount() == 0);
 }
 
+// The materials board's three 64x64 textures (48 KiB of words) on a device
+// whose texel view holds 4096 texels (16 KiB): each is halved once, the
+// largest first, and the render is --texture-max-size 32's, bit for bit.
+TEST_CASE("texture: textures past a texel view's range are halved to fit, as --texture-max-size would") {
+    RenderSettings s = centreSettings(24, 2, 2, 1);
+    RenderTuning lowered;
+    lowered.limits.texelElements = 4096;
+    SceneRequest request = keptRequest(s, lowered);
+    request.file = sourcePath("scenes/materials-board.gltf");
+    HostScene host = prepareScene(request);
+    REQUIRE(host.gpu.images.size() == 3);
+    const RenderResult fitted = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s, lowered);
+    for (const PackedImage& p : host.gpu.images) {
+        CHECK(p.width == 32);
+        CHECK(p.fileWidth == 64);
+    }
+    CHECK(host.gpu.texels.size() * 4 <= 4096 * 4);
+    SceneRequest halved = keptRequest(s);
+    halved.file = request.file;
+    halved.textureMaxSize = 32;
+    HostScene small = prepareScene(halved);
+    const RenderResult expected = render(context(), uploadPrepared(context(), halved, small.gpu), small.camera, s);
+    CHECK(sameImage(fitted.film, expected.film));
+    // Without the lowered range nothing is halved.
+    SceneRequest whole = keptRequest(s);
+    whole.file = request.file;
+    HostScene full = prepareScene(whole);
+    (void)uploadPrepared(context(), whole, full.gpu);
+    for (const PackedImage& p : full.gpu.images) CHECK(p.width == 64);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("texture: wrap modes REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT per axis") {
     struct Case {
         const char* file;

@@ -120,6 +120,61 @@ TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize
     return out;
 }
 
+std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std::vector<gpu::TextureRef>& refs,
+                                        std::vector<PackedImage>& images, std::uint64_t maxBytes) {
+    std::vector<std::size_t> halvedImages;
+    if (images.empty() || texels.size() * sizeof(std::uint32_t) <= maxBytes) return halvedImages;
+    // Each image's words as an image (the words are the texels' bytes, little-endian).
+    std::vector<TextureImage> unpacked(images.size());
+    std::uint64_t first = texels.size();
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const PackedImage& p = images[i];
+        TextureImage& im = unpacked[i];
+        im.width = p.width;
+        im.height = p.height;
+        im.bits = p.bits;
+        im.data.resize(p.bytes);
+        std::memcpy(im.data.data(), texels.data() + p.offset, p.bytes);
+        first = std::min(first, p.offset);
+    }
+    std::uint64_t bytes = texels.size() * sizeof(std::uint32_t);
+    std::vector<char> halvedOnce(images.size(), 0);
+    while (bytes > maxBytes) {
+        std::size_t largest = images.size();
+        for (std::size_t i = 0; i < images.size(); ++i)
+            if (unpacked[i].width * unpacked[i].height > 1 &&
+                (largest == images.size() || unpacked[i].data.size() > unpacked[largest].data.size()))
+                largest = i;
+        if (largest == images.size()) break;  // every image 1x1
+        const std::size_t before = unpacked[largest].data.size();
+        unpacked[largest] = halved(unpacked[largest], images[largest].coding);
+        bytes -= before - unpacked[largest].data.size();
+        if (!halvedOnce[largest]) halvedOnce[largest] = 1, halvedImages.push_back(largest);
+    }
+    // The words again: what precedes the images (the sheen table), then each image.
+    std::vector<std::uint32_t> out(texels.begin(), texels.begin() + std::ptrdiff_t(first));
+    std::vector<std::uint64_t> oldOffset(images.size());
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        PackedImage& p = images[i];
+        oldOffset[i] = p.offset;
+        p.offset = out.size();
+        p.width = unpacked[i].width;
+        p.height = unpacked[i].height;
+        appendWords(unpacked[i], out);
+        p.bytes = (out.size() - p.offset) * sizeof(std::uint32_t);
+    }
+    for (gpu::TextureRef& r : refs)
+        for (std::size_t i = 0; i < images.size(); ++i)
+            if (r.offset == oldOffset[i]) {
+                r.offset = static_cast<std::uint32_t>(images[i].offset);
+                r.width = static_cast<std::uint32_t>(images[i].width);
+                r.height = static_cast<std::uint32_t>(images[i].height);
+                break;
+            }
+    texels = std::move(out);
+    return halvedImages;
+}
+
 glm::dvec3 meanColor(const TextureImage& image, bool srgb) {
     const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
     // The 256 decoded 8-bit values, looked up: the same doubles as
@@ -176,7 +231,8 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
         if (offset < 0) {
             offset = static_cast<std::int64_t>(out.texels.size());
             const std::string name = image.name.empty() ? "image " + std::to_string(texture.image) : image.name;
-            PackedImage p{name, image.width, image.height, image.width, image.height, 0};
+            PackedImage p{name, image.width, image.height, image.width, image.height, 0,
+                          static_cast<std::uint64_t>(offset), image.bits, coding};
             if (maxSize > 0 && std::uint32_t(std::max(image.width, image.height)) > maxSize) {
                 const TextureImage small = downsampledTexture(image, maxSize, coding);
                 appendWords(small, out.texels);

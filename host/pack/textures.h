@@ -11,13 +11,22 @@
 
 namespace strata {
 
-// One packed image, for --stats: its name, its size as packed and as the
-// file has it, and its bytes on the device.
+// How a texture slot reads its image, for downsampling: colour in sRGB
+// (base colour, emissive, sheen and specular colour), a normal map, or
+// other linear data.
+enum class TexelCoding { Srgb, Normal, Linear };
+
+// One packed image: its name, its size as packed and as the file has it,
+// its bytes on the device (--stats), and where its words start, their bits
+// per channel and its coding (to halve it again: shrinkTextures).
 struct PackedImage {
     std::string name;
     int width = 0, height = 0;
     int fileWidth = 0, fileHeight = 0;
     std::uint64_t bytes = 0;
+    std::uint64_t offset = 0;  // into PackedTextures::texels, in words
+    int bits = 8;
+    TexelCoding coding = TexelCoding::Linear;
     bool downsampled() const { return width != fileWidth || height != fileHeight; }
 };
 
@@ -36,16 +45,18 @@ struct PackedTextures {
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
                             std::vector<gpu::Material>& materials, std::uint32_t maxSize = 0);
 
-// How a texture slot reads its image, for downsampling: colour in sRGB
-// (base colour, emissive, sheen and specular colour), a normal map, or
-// other linear data.
-enum class TexelCoding { Srgb, Normal, Linear };
-
 // The image halved (each side to ceil(side / 2), a texel the mean of the up
 // to 2x2 it covers) until neither side exceeds `maxSize` (>= 1): the mean
 // taken in linear light for sRGB colour, and a normal map's mean vector
 // renormalised; alpha is averaged as it is. Bits per channel kept.
 TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding);
+
+// Halves the largest packed images, one halving at a time, until the texel
+// words take at most `maxBytes` (or every image is 1x1), then lays the
+// words out again and points the refs at them. Returns the indices into
+// `images` of those halved (empty where they fitted).
+std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std::vector<gpu::TextureRef>& refs,
+                                        std::vector<PackedImage>& images, std::uint64_t maxBytes);
 
 // KHR_materials_sheen's albedo table as texel words (tools/sheen-albedo).
 std::vector<std::uint32_t> sheenAlbedoWords();

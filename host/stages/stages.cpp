@@ -72,6 +72,7 @@ UploadOptions uploadOptions(const SceneRequest& request) {
 }
 
 DeviceScene uploadPrepared(const vk::Context& ctx, const SceneRequest& request, GpuScene& gpu) {
+    fitTextures(ctx, gpu, uploadOptions(request));
     if (request.consume == Consume::All) return uploadAndRelease(ctx, gpu, uploadOptions(request));
     return uploadScene(ctx, gpu, uploadOptions(request));
 }

@@ -159,6 +159,42 @@ DeviceScene upload(const vk::Context& ctx, G& scene, const UploadOptions& option
 
 }  // namespace
 
+void fitTextures(const vk::Context& ctx, GpuScene& scene, const UploadOptions& options) {
+    if (scene.images.empty()) return;
+    const SceneLimits limits = sceneLimits(ctx, options.limits);
+    // One R32UI view and one buffer hold the words; the device's memory
+    // holds them with every other array and the image's sample sums.
+    std::uint64_t room = limits.texelElements * sizeof(std::uint32_t);
+    std::string what = "one texel view's " + std::to_string(limits.texelElements) + " texels";
+    if (limits.allocation > 0 && limits.allocation < room)
+        room = limits.allocation, what = "one buffer's " + sizeText(limits.allocation);
+    const MemoryLimit memory = deviceMemory(ctx, options.limits.memory);
+    if (memory.bytes > 0) {
+        const bool cpu = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+        std::uint64_t others = options.imageBytes * (cpu ? 2u : 1u);
+        for (const ArrayUse& a : arrayUses(scene, scene.bvhWidth == 4))
+            if (std::string(a.what) != "texture texels") others += paddedSize(a.bytes);
+        const std::uint64_t left = memory.bytes > others ? memory.bytes - others : 0;
+        if (left < room) room = left, what = "the " + sizeText(left) + " of device memory the rest leaves";
+    }
+    // Padded as the upload pads the buffer.
+    if (paddedSize(scene.texels.size() * sizeof(std::uint32_t)) <= room) return;
+    std::vector<PackedImage> before = scene.images;
+    const std::vector<std::size_t> halved = shrinkTextures(scene.texels, scene.textureRefs, scene.images, room & ~std::uint64_t(15));
+    if (halved.empty() || scene.texels.size() * sizeof(std::uint32_t) > room) return;  // refused by the checks after
+    std::string list;
+    constexpr std::size_t kNamed = 3;
+    for (std::size_t k = 0; k < std::min(halved.size(), kNamed); ++k) {
+        const PackedImage& a = before[halved[k]];
+        const PackedImage& b = scene.images[halved[k]];
+        list += (k == 0 ? "" : ", ") + a.name + " " + std::to_string(a.width) + "x" + std::to_string(a.height) + " to " +
+                std::to_string(b.width) + "x" + std::to_string(b.height);
+    }
+    if (halved.size() > kNamed) list += " and " + std::to_string(halved.size() - kNamed) + " more";
+    warn(scene.source, std::to_string(halved.size()) + " texture(s) downsampled to fit " + what + " (" +
+                           sizeText(scene.texels.size() * sizeof(std::uint32_t)) + " of texels): " + list);
+}
+
 std::string sizeText(std::uint64_t bytes) {
     if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
     const bool gib = bytes >= (std::uint64_t(1) << 30);

@@ -114,6 +114,13 @@ struct UploadOptions {
                                       // counted with the scene's arrays against limits.memory
 };
 
+// Textures past what the device holds (one texel view's elements, one
+// buffer's size, or the device memory the scene's other arrays and the
+// sample sums leave) are made to fit: the largest halved first
+// (shrinkTextures), with one warning naming them. A scene that fits is
+// left as it is.
+void fitTextures(const vk::Context& ctx, GpuScene& scene, const UploadOptions& options = {});
+
 DeviceScene uploadScene(const vk::Context& ctx, const GpuScene& scene, const UploadOptions& options = {});
 
 // The same, and frees each of the scene's large arrays (BVH, triangles,
