@@ -72,6 +72,13 @@ TextureImage halved(const TextureImage& in, TexelCoding coding) {
             out.data[i * 4 + std::size_t(c)] = static_cast<std::uint8_t>(q);
         }
     };
+    // The 256 8-bit sRGB codes decoded once (a pow per texel otherwise).
+    static const std::array<double, 256> decoded8 = [] {
+        std::array<double, 256> t{};
+        for (int k = 0; k < 256; ++k) t[std::size_t(k)] = srgbToLinear(k / 255.0);
+        return t;
+    }();
+    const bool lookup = coding == TexelCoding::Srgb && in.bits != 16;
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {
             double sum[4] = {0.0, 0.0, 0.0, 0.0};
@@ -82,6 +89,10 @@ TextureImage halved(const TextureImage& in, TexelCoding coding) {
                     if (sx >= in.width || sy >= in.height) continue;
                     const std::size_t i = std::size_t(sy) * std::size_t(in.width) + std::size_t(sx);
                     for (int c = 0; c < 4; ++c) {
+                        if (c < 3 && lookup) {
+                            sum[c] += decoded8[in.data[i * 4 + std::size_t(c)]];
+                            continue;
+                        }
                         double v = channel(in, i, c);
                         if (c < 3 && coding == TexelCoding::Srgb) v = srgbToLinear(v);
                         if (c < 3 && coding == TexelCoding::Normal) v = 2.0 * v - 1.0;
