@@ -233,6 +233,38 @@ def broken_scenes(out):
     direct_scene(os.path.join(out, "bad-texture-index.gltf"), "checker.png", index=3)  # of 1
 
 
+def receding_scene(path):
+    """A floor (x in [-20, 20], z in [-60, 0], y = 0) emitting a 64x64
+    checker of single texels (sRGB 0 and 255, bilinear, repeated once per
+    world unit), seen from (0, 1, 2) looking 15 degrees down: minified by up
+    to hundreds of texels per pixel towards the horizon (texture LOD)."""
+    s = Scene()
+    rows = [[(255, 255, 255) if (x + y) % 2 else (0, 0, 0) for x in range(64)] for y in range(64)]
+    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
+    mat = s.material(name="Floor", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                     emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    s.quad("Floor", [(-20, 0, 0), (20, 0, 0), (20, 0, -60), (-20, 0, -60)],
+           [(0, 0), (40, 0), (40, 60), (0, 60)], mat, (0, 1, 0))
+    a = math.radians(-15) / 2
+    s.camera(2 * math.atan(0.5), (0, 1, 2), [math.sin(a), 0, 0, math.cos(a)])
+    s.write(path)
+
+
+def lod_plane_scene(path):
+    """The plane z = 0 (x, y in [-10, 10], facing +Z) emitting a 64x64
+    checker of single texels (bilinear) repeated 10 times across: a texel is
+    20 / 640 world units. The test views it from several places (texture
+    LOD's level against the ray cone's footprint)."""
+    s = Scene()
+    rows = [[(255, 255, 255) if (x + y) % 2 else (0, 0, 0) for x in range(64)] for y in range(64)]
+    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
+    mat = s.material(name="Plane", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                     emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    s.quad("Plane", view_quad(0.0, 10.0), [(0, 10), (10, 10), (10, 0), (0, 0)], mat, (0, 0, 1))
+    s.camera(math.radians(20), (0, 0, 4))
+    s.write(path)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "tests", "data", "textures")
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
@@ -274,6 +306,8 @@ def main():
     plane_scene(p("plane-tilted-map.gltf"), TILTED_NORMAL)
     plane_scene(p("plane-half-light.gltf"), None, half_light=True)
     loader_scene(p("loader.gltf"))
+    receding_scene(p("receding.gltf"))
+    lod_plane_scene(p("lod-plane.gltf"))
     broken_scenes(os.path.join(out, "broken"))
 
 

@@ -39,6 +39,11 @@ uint gShadowRays = 0u;
 
 vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     PathVertex v = pathStart();
+#ifdef STRATA_TEXTURE_LOD
+    // A pinhole's cone: no width, a pixel's angle of spread.
+    gConeWidth = 0.0;
+    gConeSpread = 2.0 * length(frame.camUp.xyz) / float(frame.image.y);
+#endif
 #ifdef STRATA_AOV
     aovStart();
 #endif

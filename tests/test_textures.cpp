@@ -158,7 +158,8 @@ TEST_CASE("texture: --texture-max-size halves a texture in linear light, the ren
     CHECK(host.gpu.images[0].width == 2);
     CHECK(host.gpu.images[0].height == 1);
     CHECK(host.gpu.images[0].fileWidth == 4);
-    CHECK(host.gpu.images[0].bytes == 2 * 4);
+    CHECK(host.gpu.images[0].levels == 2);       // and its 1x1 mip level (--texture-lod on)
+    CHECK(host.gpu.images[0].bytes == (2 + 1) * 4);
     const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera,
                                   centreSettings(24, 4, 0, 3));
     auto halfTexel = [](int x) {
@@ -221,6 +222,112 @@ TEST_CASE("texture: textures past a texel view's range are halved to fit, as --t
     HostScene full = prepareScene(whole);
     (void)uploadPrepared(context(), whole, full.gpu);
     for (const PackedImage& p : full.gpu.images) CHECK(p.width == 64);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// receding.gltf at max depth 0 (the floor's emission seen directly), 64x64,
+// 4 spp: rows 22-40 lie on the floor, minified by about 2 to 100 texels a
+// pixel. Texture LOD reads the checker's mean grey there instead of single
+// black and white texels: the same mean over the region (4 standard
+// errors), and a per-sample variance at least 10 times lower.
+TEST_CASE("texture: LOD on a receding checker: the same mean, at least 10x less variance a sample") {
+    RenderSettings s;
+    s.width = s.height = 64;
+    s.spp = 4;
+    s.maxDepth = 0;
+    s.seed = 5;
+    struct Region {
+        double mean = 0.0, stdError = 0.0, variance = 0.0;
+    };
+    auto region = [&](bool lod) {
+        s.textureLod = lod;
+        const Rendered r = renderFile(kDir + "receding.gltf", s);
+        CHECK(((r.gpu.features.bits & gpu::kFeatureTextureLod) != 0u) == lod);
+        const auto mean = r.result.film.mean(), var = r.result.film.varianceOfMean();
+        Region out;
+        std::size_t n = 0;
+        double varOfSum = 0.0;
+        for (int y = 22; y <= 40; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const std::size_t i = (std::size_t(y) * 64 + std::size_t(x)) * 3;  // green: the channels are equal
+                out.mean += mean[i + 1];
+                varOfSum += var[i + 1];
+                out.variance += var[i + 1] * s.spp;
+                ++n;
+            }
+        out.mean /= double(n);
+        out.stdError = std::sqrt(varOfSum) / double(n);
+        out.variance /= double(n);
+        return out;
+    };
+    const Region on = region(true), off = region(false);
+    MESSAGE("mean " << on.mean << " +- " << on.stdError << " with LOD, " << off.mean << " +- " << off.stdError
+                    << " without; variance a sample " << on.variance << " against " << off.variance << " ("
+                    << off.variance / on.variance << "x)");
+    CHECK(std::abs(on.mean - off.mean) <= 4.0 * std::sqrt(on.stdError * on.stdError + off.stdError * off.stdError));
+    CHECK(off.variance >= 10.0 * on.variance);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// lod-plane.gltf (a texel 1/32 world units, a checker of single texels)
+// seen at max depth 0, 32x32 pixels of 20 degrees, 16 spp. Where the
+// footprint asks for a level lambda in (0, 1) a lookup reads level 0 with
+// probability 1 - lambda and level 1, the checker's uniform grey, otherwise:
+// so a pixel's variance a sample is 1 - lambda times the variance without
+// LOD. The level measured so, 1 - sum(var on) / sum(var off) over the
+// pixels whose analytic level (pixel angle x distance / |cos| / texel) is
+// in [0.15, 0.85], against their mean analytic level: within a quarter
+// level, at two distances and at 40 degrees.
+TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (distances and an angle)") {
+    struct View {
+        glm::vec3 from;
+        std::string what;
+    };
+    for (const View& view : {View{{0.0f, 0.0f, 3.2f}, "3.2 away"}, View{{0.0f, 0.0f, 4.2f}, "4.2 away"},
+                             View{{0.0f, -2.0f, 2.4f}, "40 degrees"}}) {
+        CAPTURE(view.what);
+        RenderSettings s;
+        s.width = s.height = 32;
+        s.spp = 16;
+        s.maxDepth = 0;
+        s.seed = 9;
+        std::vector<double> variance[2];
+        Camera camera;
+        for (int lod = 0; lod < 2; ++lod) {
+            s.textureLod = lod == 1;
+            SceneRequest request = keptRequest(s);
+            request.file = sourcePath(kDir + "lod-plane.gltf");
+            request.camera->view.lookFrom = view.from;
+            request.camera->view.lookAt = glm::vec3(0.0f);
+            request.camera->view.fovDegrees = 20.0f;
+            HostScene host = prepareScene(request);
+            camera = host.camera;
+            const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s);
+            const auto v = r.film.varianceOfMean();
+            for (std::size_t i = 0; i < 32 * 32; ++i) variance[lod].push_back(v[i * 3 + 1] * s.spp);
+        }
+        const CameraRays rays(camera, 32, 32);
+        const double spread = 2.0 * std::tan(0.5 * double(camera.yfov)) / 32.0;
+        double on = 0.0, off = 0.0, analytic = 0.0;
+        std::size_t n = 0;
+        for (int py = 0; py < 32; ++py)
+            for (int px = 0; px < 32; ++px) {
+                const glm::dvec3 d = rays.dir(px + 0.5, py + 0.5);
+                const double t = -rays.origin.z / d.z;
+                const double lambda = std::log2(spread * t / std::abs(d.z) * 32.0);
+                if (lambda < 0.15 || lambda > 0.85) continue;
+                const std::size_t i = std::size_t(py) * 32 + std::size_t(px);
+                on += variance[1][i];
+                off += variance[0][i];
+                analytic += lambda;
+                ++n;
+            }
+        REQUIRE(n >= 200);
+        analytic /= double(n);
+        const double measured = 1.0 - on / off;
+        MESSAGE(view.what << ": level " << measured << " measured, " << analytic << " analytic (" << n << " pixels)");
+        CHECK(std::abs(measured - analytic) <= 0.25);
+    }
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -114,6 +114,11 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
                                 "clusters",
                                 {{"auto", LightSampler::Auto}, {"tree", LightSampler::Tree}, {"power", LightSampler::Power}},
                                 [settings](auto& c) -> auto& { return settings(c).lightSampler; }),
+        choice<T, bool>("--texture-lod",
+                        "on: each texture lookup reads the mip level of its ray cone's footprint (one level or the "
+                        "next at random, bilinear within it); off: every lookup at full resolution",
+                        {{"on", true}, {"off", false}},
+                        [settings](auto& c) -> auto& { return settings(c).textureLod; }),
         positive<T>("--noise-threshold", "T",
                     "adaptive sampling: an 8x8 block of pixels stops once each pixel's standard error is within T "
                     "of sqrt(mean^2 + 0.01) (its relMSE term within T^2), checked every 16 samples; --spp is the cap",

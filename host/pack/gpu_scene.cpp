@@ -34,7 +34,7 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"},
         {gpu::kFeatureInstancing, "instancing"},   {gpu::kFeatureIridescence, "iridescence"},
         {gpu::kFeatureLightTree, "light-tree"},
-        {gpu::kFeatureInstancedEmitters, "moving-lights"}};
+        {gpu::kFeatureInstancedEmitters, "moving-lights"}, {gpu::kFeatureTextureLod, "texture-lod"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -408,7 +408,7 @@ struct BvhOrderSource {
 // so the host never holds it twice) or const Scene (gathered in BVH order,
 // left as it was).
 template <class S>
-GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSampler, std::uint32_t textureMaxSize) {
+GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSampler, TexturePacking textures) {
     constexpr bool consume = !std::is_const_v<S>;
     GpuScene g;
     g.source = scene.path;
@@ -485,10 +485,13 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
     } else {
         g.placedTriangles = n;
     }
-    PackedTextures packed = packTextures(scene, used, g.materials, textureMaxSize);
+    PackedTextures packed = packTextures(scene, used, g.materials, textures.maxSize, textures.mips);
     g.textureRefs = std::move(packed.refs);
     g.texels = std::move(packed.texels);
     g.images = std::move(packed.images);
+    g.mipMs = packed.mipMs;
+    for (const PackedImage& p : g.images)
+        if (p.levels > 1) g.features.bits |= gpu::kFeatureTextureLod;
     g.features.bits |= textureFeatures(scene, used);
     const bool uvs = (g.features.bits & gpu::kFeatureTextures) != 0;
     const bool tangents = (g.features.bits & gpu::kFeatureNormalMap) != 0;
@@ -639,13 +642,13 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
 
 }  // namespace
 
-GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights, std::uint32_t textureMaxSize) {
-    return pack(scene, std::move(bvh), bvhWidth, lights, textureMaxSize);
+GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights, TexturePacking textures) {
+    return pack(scene, std::move(bvh), bvhWidth, lights, textures);
 }
 
 GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth, LightSampler lights,
-                             std::uint32_t textureMaxSize) {
-    return pack(scene, std::move(bvh), bvhWidth, lights, textureMaxSize);
+                             TexturePacking textures) {
+    return pack(scene, std::move(bvh), bvhWidth, lights, textures);
 }
 
 }  // namespace strata

@@ -45,6 +45,7 @@ struct GpuScene {
     std::vector<gpu::TextureRef> textureRefs;
     std::vector<std::uint32_t> texels;         // R32UI words (types.h, TextureRef)
     std::vector<PackedImage> images;           // what each packed image holds (--stats)
+    double mipMs = 0.0;                        // building the mip chains (--texture-lod)
     std::vector<gpu::Emitter> emitters;     // triangles, then punctual lights, then the
                                             // environment; with the alias table filled in
     // With kFeatureLightTree: the light tree over the bounded emitters
@@ -90,10 +91,15 @@ struct GpuScene {
 // shaders will traverse; both trees are kept. `lights` (--light-sampler)
 // decides whether the light tree is built (pack/light_tree.h; the alias
 // table is built either way).
-// `textureMaxSize` (--texture-max-size; 0: none) halves each texture
-// until neither side exceeds it (downsampledTexture, pack/textures.h).
+// `textures`: --texture-max-size (halving each texture until neither side
+// exceeds it, downsampledTexture in pack/textures.h) and --texture-lod
+// (mip chains, kFeatureTextureLod).
+struct TexturePacking {
+    std::uint32_t maxSize = 0;  // 0: every texture whole
+    bool mips = false;
+};
 GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4, LightSampler lights = LightSampler::Auto,
-                   std::uint32_t textureMaxSize = 0);
+                   TexturePacking textures = {});
 
 // The same, consuming the scene's geometry (releaseGeometry(scene) done):
 // each page of the triangles is handed back as soon as it has been read, so
@@ -101,7 +107,7 @@ GpuScene packScene(const Scene& scene, SceneBvh bvh, int bvhWidth = 4, LightSamp
 // Where the four-wide tree will be traversed (GpuScene::bvhWidth 4) it also
 // drops `nodes`, the BVH2, once that tree is built.
 GpuScene packSceneAndRelease(Scene& scene, SceneBvh bvh, int bvhWidth = 4,
-                             LightSampler lights = LightSampler::Auto, std::uint32_t textureMaxSize = 0);
+                             LightSampler lights = LightSampler::Auto, TexturePacking textures = {});
 
 // The instances array alone (GpuScene::instances) of a scene posed again
 // (--frames): `bvh` holds the bottom levels' roots and the new top level.

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
+#include <thread>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -131,11 +134,27 @@ TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize
     return out;
 }
 
+namespace {
+
+// Bytes of an image of w x h texels (`bits` per channel) and, with `mips`, its chain.
+std::uint64_t packedBytes(std::uint64_t w, std::uint64_t h, int bits, bool mips) {
+    const std::uint64_t texel = bits == 16 ? 8 : 4;
+    std::uint64_t bytes = w * h * texel;
+    while (mips && (w > 1 || h > 1)) {
+        w = (w + 1) / 2;
+        h = (h + 1) / 2;
+        bytes += w * h * texel;
+    }
+    return bytes;
+}
+
+}  // namespace
+
 std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std::vector<gpu::TextureRef>& refs,
                                         std::vector<PackedImage>& images, std::uint64_t maxBytes) {
     std::vector<std::size_t> halvedImages;
     if (images.empty() || texels.size() * sizeof(std::uint32_t) <= maxBytes) return halvedImages;
-    // Each image's words as an image (the words are the texels' bytes, little-endian).
+    // Each image's first level as an image (the words are the texels' bytes, little-endian).
     std::vector<TextureImage> unpacked(images.size());
     std::uint64_t first = texels.size();
     for (std::size_t i = 0; i < images.size(); ++i) {
@@ -144,8 +163,8 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
         im.width = p.width;
         im.height = p.height;
         im.bits = p.bits;
-        im.data.resize(p.bytes);
-        std::memcpy(im.data.data(), texels.data() + p.offset, p.bytes);
+        im.data.resize(packedBytes(std::uint64_t(p.width), std::uint64_t(p.height), p.bits, false));
+        std::memcpy(im.data.data(), texels.data() + p.offset, im.data.size());
         first = std::min(first, p.offset);
     }
     std::uint64_t bytes = texels.size() * sizeof(std::uint32_t);
@@ -157,12 +176,15 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
                 (largest == images.size() || unpacked[i].data.size() > unpacked[largest].data.size()))
                 largest = i;
         if (largest == images.size()) break;  // every image 1x1
-        const std::size_t before = unpacked[largest].data.size();
-        unpacked[largest] = halved(unpacked[largest], images[largest].coding);
-        bytes -= before - unpacked[largest].data.size();
+        TextureImage& im = unpacked[largest];
+        const bool mips = images[largest].levels > 1;
+        const std::uint64_t before = packedBytes(std::uint64_t(im.width), std::uint64_t(im.height), im.bits, mips);
+        im = halved(im, images[largest].coding);
+        bytes -= before - packedBytes(std::uint64_t(im.width), std::uint64_t(im.height), im.bits, mips);
         if (!halvedOnce[largest]) halvedOnce[largest] = 1, halvedImages.push_back(largest);
     }
-    // The words again: what precedes the images (the sheen table), then each image.
+    // The words again: what precedes the images (the sheen table), then each
+    // image with its chain built again where it had one.
     std::vector<std::uint32_t> out(texels.begin(), texels.begin() + std::ptrdiff_t(first));
     std::vector<std::uint64_t> oldOffset(images.size());
     for (std::size_t i = 0; i < images.size(); ++i) {
@@ -172,14 +194,22 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
         p.width = unpacked[i].width;
         p.height = unpacked[i].height;
         appendWords(unpacked[i], out);
+        if (p.levels > 1) {
+            const std::vector<TextureImage> chain = textureMips(unpacked[i], p.coding);
+            for (const TextureImage& level : chain) appendWords(level, out);
+            p.levels = 1 + static_cast<int>(chain.size());
+        }
         p.bytes = (out.size() - p.offset) * sizeof(std::uint32_t);
     }
+    const std::uint32_t levelBits = ~std::uint32_t(0) << gpu::kTexLevelsShift;
     for (gpu::TextureRef& r : refs)
         for (std::size_t i = 0; i < images.size(); ++i)
             if (r.offset == oldOffset[i]) {
                 r.offset = static_cast<std::uint32_t>(images[i].offset);
                 r.width = static_cast<std::uint32_t>(images[i].width);
                 r.height = static_cast<std::uint32_t>(images[i].height);
+                r.flags &= ~levelBits;
+                if (images[i].levels > 1) r.flags |= static_cast<std::uint32_t>(images[i].levels) << gpu::kTexLevelsShift;
                 break;
             }
     texels = std::move(out);
@@ -224,43 +254,85 @@ std::vector<std::uint32_t> sheenAlbedoWords() {
     return words;
 }
 
+std::vector<TextureImage> textureMips(const TextureImage& image, TexelCoding coding) {
+    std::vector<TextureImage> levels;
+    const TextureImage* last = &image;
+    while (last->width > 1 || last->height > 1) {
+        levels.push_back(halved(*last, coding));
+        last = &levels.back();
+    }
+    return levels;
+}
+
+namespace {
+
+// The words of one packed image: downsampled to `maxSize` (0: whole), then
+// with its mip chain where `mips`.
+std::vector<std::uint32_t> imageWords(const TextureImage& image, TexelCoding coding, std::uint32_t maxSize, bool mips,
+                                      PackedImage& p) {
+    std::vector<std::uint32_t> words;
+    TextureImage small;
+    const TextureImage* base = &image;
+    if (maxSize > 0 && std::uint32_t(std::max(image.width, image.height)) > maxSize) {
+        small = downsampledTexture(image, maxSize, coding);
+        base = &small;
+    }
+    p.width = base->width;
+    p.height = base->height;
+    appendWords(*base, words);
+    p.levels = 1;
+    if (mips) {
+        std::vector<TextureImage> chain = textureMips(*base, coding);
+        for (const TextureImage& level : chain) appendWords(level, words);
+        p.levels += static_cast<int>(chain.size());
+    }
+    return words;
+}
+
+// Runs job(i) for i in [0, n) on up to the machine's threads.
+template <class Job>
+void parallelFor(std::size_t n, Job job) {
+    const std::size_t threads = std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+    if (threads <= 1) {
+        for (std::size_t i = 0; i < n; ++i) job(i);
+        return;
+    }
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (std::size_t i = next++; i < n; i = next++) job(i);
+        });
+    for (std::thread& t : pool) t.join();
+}
+
+}  // namespace
+
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
-                            std::vector<gpu::Material>& materials, std::uint32_t maxSize) {
+                            std::vector<gpu::Material>& materials, std::uint32_t maxSize, bool mips) {
     PackedTextures out;
     // KHR_materials_sheen's albedo table first (lib/sheen.glsl reads it there).
     bool sheen = false;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) sheen = sheen || (used[i] && scene.materials[i].sheened());
     if (sheen) out.texels = sheenAlbedoWords();
-    std::vector<std::int64_t> imageOffset(scene.images.size(), -1);
-    std::vector<std::size_t> packedIndex(scene.images.size(), 0);  // into out.images
+    // Each image once, in the order slots first read it, as that slot reads
+    // it; the refs hold its index in out.images until the words are laid out.
+    std::vector<std::int64_t> packedIndex(scene.images.size(), -1);  // into out.images
+    std::vector<std::size_t> sourceImage;                           // out.images -> scene.images
     auto addRef = [&](const MaterialDesc& m, const TextureSlot& slot, TexelCoding coding) -> std::uint32_t {
         if (!slot.used()) return gpu::kNoTexture;
         const bool srgb = coding == TexelCoding::Srgb;
         const Texture& texture = scene.textures[static_cast<std::size_t>(slot.texture)];
         const TextureImage& image = scene.images[static_cast<std::size_t>(texture.image)];
-        std::int64_t& offset = imageOffset[static_cast<std::size_t>(texture.image)];
-        if (offset < 0) {
-            offset = static_cast<std::int64_t>(out.texels.size());
+        std::int64_t& index = packedIndex[static_cast<std::size_t>(texture.image)];
+        if (index < 0) {
+            index = static_cast<std::int64_t>(out.images.size());
             const std::string name = image.name.empty() ? "image " + std::to_string(texture.image) : image.name;
-            PackedImage p{name, image.width, image.height, image.width, image.height, 0,
-                          static_cast<std::uint64_t>(offset), image.bits, coding};
-            if (maxSize > 0 && std::uint32_t(std::max(image.width, image.height)) > maxSize) {
-                const TextureImage small = downsampledTexture(image, maxSize, coding);
-                appendWords(small, out.texels);
-                p.width = small.width;
-                p.height = small.height;
-            } else {
-                appendWords(image, out.texels);
-            }
-            p.bytes = (out.texels.size() - std::size_t(offset)) * sizeof(std::uint32_t);
-            packedIndex[static_cast<std::size_t>(texture.image)] = out.images.size();
-            out.images.push_back(p);
+            out.images.push_back({name, image.width, image.height, image.width, image.height, 0, 0, image.bits, coding});
+            sourceImage.push_back(static_cast<std::size_t>(texture.image));
         }
-        const PackedImage& packed = out.images[packedIndex[static_cast<std::size_t>(texture.image)]];
         gpu::TextureRef ref{};
-        ref.offset = static_cast<std::uint32_t>(offset);
-        ref.width = static_cast<std::uint32_t>(packed.width);
-        ref.height = static_cast<std::uint32_t>(packed.height);
+        ref.offset = static_cast<std::uint32_t>(index);  // laid out below
         ref.flags = wrapBits(texture.wrapS) | wrapBits(texture.wrapT) << 2;
         if (texture.nearest) ref.flags |= gpu::kTexNearest;
         if (m.uvSlot(slot.texCoord) == 1) ref.flags |= gpu::kTexCoord1;
@@ -301,6 +373,29 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
             g.iridescenceThicknessTex = addRef(m, m.iridescenceThicknessTexture, TexelCoding::Linear);
         }
     }
+    // The images' words, built in parallel, then laid out in order.
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<std::vector<std::uint32_t>> words(out.images.size());
+    parallelFor(out.images.size(), [&](std::size_t i) {
+        words[i] = imageWords(scene.images[sourceImage[i]], out.images[i].coding, maxSize, mips, out.images[i]);
+    });
+    std::size_t total = out.texels.size();
+    for (const auto& w : words) total += w.size();
+    out.texels.reserve(total);
+    for (std::size_t i = 0; i < out.images.size(); ++i) {
+        out.images[i].offset = out.texels.size();
+        out.images[i].bytes = words[i].size() * sizeof(std::uint32_t);
+        out.texels.insert(out.texels.end(), words[i].begin(), words[i].end());
+        std::vector<std::uint32_t>().swap(words[i]);
+    }
+    for (gpu::TextureRef& r : out.refs) {
+        const PackedImage& p = out.images[r.offset];
+        r.offset = static_cast<std::uint32_t>(p.offset);
+        r.width = static_cast<std::uint32_t>(p.width);
+        r.height = static_cast<std::uint32_t>(p.height);
+        if (p.levels > 1) r.flags |= static_cast<std::uint32_t>(p.levels) << gpu::kTexLevelsShift;
+    }
+    if (mips) out.mipMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }
 

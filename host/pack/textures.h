@@ -27,6 +27,7 @@ struct PackedImage {
     std::uint64_t offset = 0;  // into PackedTextures::texels, in words
     int bits = 8;
     TexelCoding coding = TexelCoding::Linear;
+    int levels = 1;            // with its mip chain (kTexLevelsShift)
     bool downsampled() const { return width != fileWidth || height != fileHeight; }
 };
 
@@ -34,6 +35,7 @@ struct PackedTextures {
     std::vector<gpu::TextureRef> refs;
     std::vector<std::uint32_t> texels;  // the words of every packed image
     std::vector<PackedImage> images;    // in the order they were packed
+    double mipMs = 0.0;                 // building the mip chains (wall time)
 };
 
 // Fills the *Tex fields of `materials` (parallel to scene.materials) with
@@ -41,9 +43,14 @@ struct PackedTextures {
 // gpu::kNoTexture. When a used material has a sheen (kFeatureSheen), the
 // texels start with the sheen albedo table (sheenAlbedoWords). Each image
 // is packed once, at most `maxSize` texels a side (0: whole;
-// downsampledTexture as its first slot reads it).
+// downsampledTexture as its first slot reads it); with `mips` each image
+// is followed by its mip chain (textureMips), built in parallel.
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
-                            std::vector<gpu::Material>& materials, std::uint32_t maxSize = 0);
+                            std::vector<gpu::Material>& materials, std::uint32_t maxSize = 0, bool mips = false);
+
+// The mip levels after `image`: each the one before halved as `coding`
+// reads it (halving's rule: ceil sides, the mean of up to 2x2), down to 1x1.
+std::vector<TextureImage> textureMips(const TextureImage& image, TexelCoding coding);
 
 // The image halved (each side to ceil(side / 2), a texel the mean of the up
 // to 2x2 it covers) until neither side exceeds `maxSize` (>= 1): the mean

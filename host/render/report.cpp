@@ -52,7 +52,7 @@ nlohmann::json statsJson(const StatsInput& in) {
             list.push_back({{"name", p.name},           {"width", p.width},   {"height", p.height},
                             {"file_width", p.fileWidth}, {"file_height", p.fileHeight}, {"bytes", p.bytes}});
         }
-        j["textures"] = {{"images", in.gpu->images.size()}, {"bytes", bytes}, {"list", list}};
+        j["textures"] = {{"images", in.gpu->images.size()}, {"bytes", bytes}, {"list", list}, {"mip_ms", in.gpu->mipMs}};
     }
     const BvhStats& b = in.gpu->bvh;
     j["bvh"] = {{"nodes", b.nodes},   {"leaves", b.leaves},     {"max_depth", b.maxDepth},
@@ -209,6 +209,11 @@ std::string texturesText(const nlohmann::json& t) {
         o << ")";
     }
     if (list.size() > kNamed) o << " and " << list.size() - kNamed << " more";
+    if (t.contains("mip_ms") && t["mip_ms"].get<double>() > 0.0) {
+        char ms[64];
+        std::snprintf(ms, sizeof ms, "; with mip chains (%.1f ms)", t["mip_ms"].get<double>());
+        o << ms;
+    }
     return o.str();
 }
 

@@ -162,7 +162,7 @@ struct TextureImage {
 };
 
 // glTF sampler wrap modes and magnification filter (minFilter is ignored:
-// strata has no mipmaps).
+// minification is texture LOD's, lib/material.glsl textureLevel).
 enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
 struct Texture {
     int image = 0;     // index into Scene::images; -1 for a texture no material may use (no decodable image)

@@ -19,6 +19,7 @@ SceneRequest sceneRequest(const RenderSettings& settings, const RenderTuning& tu
     r.camera = CameraChoice{{}, settings.width, settings.height};
     r.bvhWidth = settings.bvhWidth;
     r.lights = settings.packedLightSampler();
+    r.textureLod = settings.packedTextureLod();
     r.stack = settings.bvhStack;
     r.reads = settings.reads;
     r.limits = tuning.limits;
@@ -53,14 +54,15 @@ HostScene prepareScene(const SceneRequest& request, Scene scene) {
     SceneBvh bvh = buildSceneBvh(h.scene, request.build);
     if (request.keepPlacements) h.bottoms = bvh.bottoms;
     if (request.consume == Consume::None) {
-        h.gpu = packScene(h.scene, std::move(bvh), request.bvhWidth, request.lights, request.textureMaxSize);
+        h.gpu = packScene(h.scene, std::move(bvh), request.bvhWidth, request.lights,
+                          {request.textureMaxSize, request.textureLod});
     } else {
         // Packing releases the placements with the triangles; a sequence of
         // frames poses them again.
         std::vector<MeshInstance> instances;
         if (request.keepPlacements) instances = h.scene.instances;
         h.gpu = packSceneAndRelease(h.scene, std::move(bvh), request.bvhWidth, request.lights,
-                                    request.textureMaxSize);
+                                    {request.textureMaxSize, request.textureLod});
         if (request.keepPlacements) h.scene.instances = std::move(instances);
     }
     h.packMs = msSince(t0);

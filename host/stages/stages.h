@@ -53,9 +53,11 @@ struct SceneRequest {
     int bvhWidth = 4;
     BvhStack stack = BvhStack::Auto;
     // Pack: whether the light tree is built (--light-sampler), the largest
-    // texture side kept (--texture-max-size; 0: every texture whole).
+    // texture side kept (--texture-max-size; 0: every texture whole), and
+    // whether textures get mip chains (--texture-lod; the megakernel only).
     LightSampler lights = LightSampler::Auto;
     std::uint32_t textureMaxSize = 0;
+    bool textureLod = true;
     // Upload: the reads (--reads), lowered device limits (tests), and the
     // image's sample sums counted beside the scene against device memory.
     ReadMode reads = ReadMode::Auto;

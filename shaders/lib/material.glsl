@@ -58,11 +58,64 @@ vec4 vertexColorAt(uint triangle, vec2 bary) {
     return (1.0 - bary.x - bary.y) * tc.c0 + bary.x * tc.c1 + bary.y * tc.c2;
 }
 
+#ifdef STRATA_TEXTURE_LOD
+// Texture level of detail (the texlod axis, kFeatureTextureLod): the ray
+// cone's footprint at the hit being shaded (Akenine-Moller et al., "Improved
+// Shader and Texture Level of Detail Using Ray Cones", JCGT 2021). gTexLod:
+// per texture-coordinate set, log2 of the cone's width over |cos| at the hit
+// times the uv units per world unit there (sqrt of the triangle's uv area
+// over its area); kNoLod while nothing is being shaded (the first level).
+// A lookup's level is that plus log2 of the texture's texels per uv unit;
+// a fractional level reads one of the two levels around it at random
+// (stochastic trilinear: the expectation of the trilinear blend).
+const float kNoLod = -1.0e30;
+vec2 gTexLod = vec2(kNoLod);
+uint gTexLodHash = 0u;
+
+// The hit at `t`, barycentrics `bary`, on `triangle` (world edges e1, e2),
+// reached along `dir` by a cone `width` wide.
+void texLodAt(uint triangle, vec3 e1, vec3 e2, vec3 dir, float width, float t, vec2 bary) {
+    vec3 c = cross(e1, e2);
+    float area2 = length(c);
+    float cosine = abs(dot(dir, c)) / area2;
+    TriTexcoords tc = sceneTexcoords(triangle);
+    vec4 d1 = tc.uv1 - tc.uv0, d2 = tc.uv2 - tc.uv0;
+    vec2 uvArea2 = abs(vec2(d1.x * d2.y - d1.y * d2.x, d1.z * d2.w - d1.w * d2.z));
+    gTexLod = vec2(log2(width / max(cosine, 1e-3))) + 0.5 * log2(uvArea2 / area2);
+    gTexLodHash = hash4(floatBitsToUint(t), triangle, floatBitsToUint(bary.x), floatBitsToUint(bary.y));
+}
+
+// The level of `r` a lookup at footprint `base` (gTexLod) reads: its offset
+// and size in r (the levels follow the image, sides halved rounding up).
+TextureRef textureLevel(TextureRef r, float base) {
+    uint levels = r.flags >> kTexLevelsShift;
+    // The transform's scale of uv area: |det| of its 2x2 part.
+    float det = abs(r.row0.x * r.row1.y - r.row0.y * r.row1.x);
+    float lambda = base + 0.5 * log2(float(r.width) * float(r.height) * det);
+    if (levels <= 1u || !(lambda > 0.0)) return r;
+    float top = float(levels - 1u);
+    float l = min(floor(lambda), top);
+    gTexLodHash = hash4(gTexLodHash, r.offset, 0x27d4eb2du, 0x165667b1u);
+    if (l < top && uintToUnit(gTexLodHash) < lambda - l) l += 1.0;
+    uint level = uint(l), words = (r.flags & kTex16Bit) != 0u ? 2u : 1u;
+    for (uint k = 0u; k < level; ++k) {
+        r.offset += r.width * r.height * words;
+        r.width = (r.width + 1u) / 2u;
+        r.height = (r.height + 1u) / 2u;
+    }
+    return r;
+}
+#endif
+
 // Texture slot `ref` (an index into textureRefs[]) at interpolated texture
-// coordinates `uvs` (texcoordsAt).
+// coordinates `uvs` (texcoordsAt); with texture LOD at the level gTexLod asks for.
 vec4 materialTexture(uint ref, vec4 uvs) {
     TextureRef r = textureRefAt(ref);
-    return sampleTextureRef(r, (r.flags & kTexCoord1) != 0u ? uvs.zw : uvs.xy);
+    bool second = (r.flags & kTexCoord1) != 0u;
+#ifdef STRATA_TEXTURE_LOD
+    r = textureLevel(r, second ? gTexLod.y : gTexLod.x);
+#endif
+    return sampleTextureRef(r, second ? uvs.zw : uvs.xy);
 }
 
 // The shading normal mapped by texture slot `tex` with scale `scale`
@@ -280,8 +333,17 @@ bool alphaHole(uint triangle, vec2 bary, uint rayHash) {
     Material mat = sceneMaterial(materialIndex);
     float alpha = mat.baseColor.a;
     if (hasFeature(kFeatureVertexColor)) alpha *= vertexColorAt(triangle, bary).a;
-    if ((kFeatures & kFeatureTextures) != 0u && mat.baseColorTex != kNoTexture)
+    if ((kFeatures & kFeatureTextures) != 0u && mat.baseColorTex != kNoTexture) {
+#ifdef STRATA_TEXTURE_LOD
+        // The traversal's cut-outs at the first level: their coverage exact.
+        vec2 lod = gTexLod;
+        gTexLod = vec2(kNoLod);
+#endif
         alpha *= materialTexture(mat.baseColorTex, texcoordsAt(triangle, bary)).a;
+#ifdef STRATA_TEXTURE_LOD
+        gTexLod = lod;
+#endif
+    }
     if ((flags & kMaterialAlphaMask) != 0u) return alpha < mat.alphaCutoff;
     return uintToUnit(hash4(rayHash, triangle, 0x85ebca6bu, 0xc2b2ae35u)) >= alpha;
 }

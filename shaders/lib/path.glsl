@@ -56,6 +56,13 @@ PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true, vec3
 PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true); }
 #endif
 
+#ifdef STRATA_TEXTURE_LOD
+// The path's ray cone (texture LOD, lib/material.glsl texLodAt): its width
+// at the last vertex and its spread angle; tracePath starts it at the camera.
+float gConeWidth = 0.0;
+float gConeSpread = 0.0;
+#endif
+
 // What shading a hit asks for next.
 struct PathNext {
     bool shadowTried;  // a light sample the BSDF passes (SPEC_COUNT_RAYS counts a shadow ray)
@@ -106,6 +113,12 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     bool front = dot(dir, ng) < 0.0;
     TriShading sh = shadeShading(hit.triangle);
     Material mat = sceneMaterial(sh.material);
+#ifdef STRATA_TEXTURE_LOD
+    // The ray cone reaches the hit; its footprint sets the texture levels
+    // until the surface point is read.
+    gConeWidth += gConeSpread * hit.t;
+    texLodAt(hit.triangle, e1, e2, dir, gConeWidth, hit.t, vec2(hit.u, hit.v));
+#endif
 #ifdef STRATA_AOV
     if (depth == 0u) gAov.depth = hit.t;
 #endif
@@ -150,6 +163,9 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
         if (dot(ns, n) < 0.0) ns = -ns;
         SurfacePoint sp = surfacePoint(mat, hit.triangle, vec2(hit.u, hit.v), n, ns);
+#ifdef STRATA_TEXTURE_LOD
+        gTexLod = vec2(kNoLod);  // lights' emission at their first level
+#endif
         ns = sp.ns;
         if (dot(ns, wo) <= 0.0) ns = n;  // the viewer is behind the shading normal
         vec3 t, b;
@@ -246,6 +262,11 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
 #endif
             v.prevBsdfPdf = bs.pdf;
             v.prevDelta = bs.delta;
+#ifdef STRATA_TEXTURE_LOD
+            // A rough lobe widens the cone by twice its GGX alpha (a smooth
+            // one, by nothing: the surface's curvature is not modelled).
+            if (!bs.delta) gConeSpread += 2.0 * sp.roughness * sp.roughness;
+#endif
 #ifdef STRATA_LIGHT_TREE
             v.prevP = p;
             v.prevN = ns;

@@ -1,10 +1,9 @@
 // Texture lookups by hand from the packed texel words (BINDING_TEXELS, an
 // R32UI texel view; layout in shared/types.h, TextureRef): KHR_texture_transform,
 // wrap modes REPEAT / CLAMP_TO_EDGE / MIRRORED_REPEAT (OpenGL 4.6 sec. 8.14.2),
-// and NEAREST or bilinear filtering of the top level only: strata has no
-// mipmaps, so minification aliases (a path tracer averages it away over
-// samples per pixel). sRGB texels are decoded before filtering, as GPUs do
-// for sRGB formats.
+// and NEAREST or bilinear filtering of the level a TextureRef names (texture
+// LOD picks the mip level: lib/material.glsl textureLevel). sRGB texels are
+// decoded before filtering, as GPUs do for sRGB formats.
 #ifndef STRATA_LIB_TEXTURES_GLSL
 #define STRATA_LIB_TEXTURES_GLSL
 

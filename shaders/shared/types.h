@@ -145,6 +145,8 @@ STRATA_CONST(uint, kFeatureLightTree, 65536u);      // lights chosen through the
                                                     // not by power alone (pack/light_tree.h)
 STRATA_CONST(uint, kFeatureInstancedEmitters, 131072u);  // emitters of an instanced mesh (one that
                                                          // moves during the shutter): kEmitterInstanced
+STRATA_CONST(uint, kFeatureTextureLod, 262144u);  // textures with mip levels, read at the level a
+                                                  // ray cone's footprint asks for (--texture-lod)
 // The material layers: compiled only into the modules with the layers axis
 // (STRATA_LAYERS, lib/features.glsl).
 STRATA_CONST(uint, kFeaturesLayers,
@@ -261,6 +263,10 @@ STRATA_CONST(uint, kTexNearest, 16u);    // magFilter NEAREST (else bilinear)
 STRATA_CONST(uint, kTexCoord1, 32u);     // reads the second set (uv.zw) of TriTexcoords (else uv.xy)
 STRATA_CONST(uint, kTex16Bit, 64u);      // 2 texel-buffer words per texel (else 1)
 STRATA_CONST(uint, kTexSrgb, 128u);      // rgb is sRGB-encoded (baseColor, emissive)
+// flags >> kTexLevelsShift: the mip levels stored (kFeatureTextureLod): each
+// after the one before, sides halved rounding up (ceil) down to 1x1; 0 or 1:
+// the image alone.
+STRATA_CONST(uint, kTexLevelsShift, 16u);
 
 // One texture reference of a material slot: the image's place in the packed
 // texel buffer (BINDING_TEXELS, R32UI words, rows top to bottom; an 8-bit
