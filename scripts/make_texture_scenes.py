@@ -265,6 +265,27 @@ def lod_plane_scene(path):
     s.write(path)
 
 
+def lod_mirror_scene(path):
+    """lod-plane.gltf's plane and a mirror (metal, white, smooth) at (0, 0, 3)
+    facing (0, -1, -1): the camera at (0, -1.5, 3) looking along +Y sees the
+    plane 3 below the mirror (texture LOD after a delta bounce)."""
+    s = Scene()
+    rows = [[(255, 255, 255) if (x + y) % 2 else (0, 0, 0) for x in range(64)] for y in range(64)]
+    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
+    plane = s.material(name="Plane", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                       emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    s.quad("Plane", view_quad(0.0, 10.0), [(0, 10), (10, 10), (10, 0), (0, 0)], plane, (0, 0, 1))
+    mirror = s.material(name="Mirror", pbrMetallicRoughness={"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0,
+                                                             "roughnessFactor": 0.0})
+    h = 1.0 / math.sqrt(2)
+    n = (0, -h, -h)
+    s.quad("Mirror", [(-1, h, 3 - h), (1, h, 3 - h), (1, -h, 3 + h), (-1, -h, 3 + h)],
+           [(0, 0), (1, 0), (1, 1), (0, 1)], mirror, n)
+    a = math.radians(90) / 2  # the camera's -Z turned to +Y
+    s.camera(math.radians(20), (0, -1.5, 3), [math.sin(a), 0, 0, math.cos(a)])
+    s.write(path)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "tests", "data", "textures")
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
@@ -308,6 +329,7 @@ def main():
     loader_scene(p("loader.gltf"))
     receding_scene(p("receding.gltf"))
     lod_plane_scene(p("lod-plane.gltf"))
+    lod_mirror_scene(p("lod-mirror.gltf"))
     broken_scenes(os.path.join(out, "broken"))
 
 

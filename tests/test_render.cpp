@@ -229,9 +229,11 @@ namespace {
 // Renders `scene` with the megakernel and with the wavefront integrator (in
 // tiles of 16 pixels, so that an image spans several) and checks that the
 // images are the same bits: the stages do pathtrace.comp's arithmetic in its
-// order, and each pixel's sums are added in sample order either way.
+// order, and each pixel's sums are added in sample order either way. Both
+// read textures at full resolution (the wavefront integrator has no
+// texture LOD: its renders pack no mip chains).
 void checkWavefrontMatches(const Scene& scene, RenderSettings s) {
-    const GpuScene gpu = buildAndPack(scene);
+    const GpuScene gpu = buildAndPack(scene, {}, 4, false);
     RenderTuning t;
     t.tileSize = 16;
     s.integrator = IntegratorKind::Megakernel;

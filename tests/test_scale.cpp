@@ -222,7 +222,8 @@ void checkConsumingPack(const Scene& scene, int bvhWidth) {
     CAPTURE(bvhWidth);
     const GpuScene kept = buildAndPack(scene);
     Scene consumed = scene;
-    const GpuScene g = packSceneAndRelease(consumed, buildSceneBvh(consumed), bvhWidth);
+    const GpuScene g = packSceneAndRelease(consumed, buildSceneBvh(consumed), bvhWidth, LightSampler::Auto,
+                                           {0, true});  // mip chains, as buildAndPack's
     CHECK(consumed.triangles.empty());  // released
     CHECK(consumed.texcoords.empty());
     CHECK(consumed.tangents.empty());

@@ -331,6 +331,57 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
     CHECK(vk::validationMessageCount() == 0);
 }
 
+// lod-mirror.gltf at max depth 1: the plane seen in a smooth white metal
+// mirror (reflectance 1; a delta bounce leaves the cone's spread as it is),
+// the level measured as above against log2(pixel angle x (t1 + t2) / |cos|
+// at the plane / texel).
+TEST_CASE("texture: LOD after a mirror bounce reads the level of the cone's whole length") {
+    RenderSettings s;
+    s.width = s.height = 32;
+    s.spp = 16;
+    s.maxDepth = 1;
+    s.seed = 4;
+    std::vector<double> variance[2];
+    Camera camera;
+    for (int lod = 0; lod < 2; ++lod) {
+        s.textureLod = lod == 1;
+        SceneRequest request = keptRequest(s);
+        request.file = sourcePath(kDir + "lod-mirror.gltf");
+        HostScene host = prepareScene(request);
+        camera = host.camera;
+        const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s);
+        const auto v = r.film.varianceOfMean();
+        for (std::size_t i = 0; i < 32 * 32; ++i) variance[lod].push_back(v[i * 3 + 1] * s.spp);
+    }
+    const CameraRays rays(camera, 32, 32);
+    const double spread = 2.0 * std::tan(0.5 * double(camera.yfov)) / 32.0;
+    const glm::dvec3 n = glm::normalize(glm::dvec3(0.0, -1.0, -1.0)), centre(0.0, 0.0, 3.0);
+    double on = 0.0, off = 0.0, analytic = 0.0;
+    std::size_t count = 0;
+    for (int py = 0; py < 32; ++py)
+        for (int px = 0; px < 32; ++px) {
+            const glm::dvec3 d = rays.dir(px + 0.5, py + 0.5);
+            const double t1 = glm::dot(centre - rays.origin, n) / glm::dot(d, n);
+            const glm::dvec3 m = rays.origin + t1 * d;
+            if (std::abs(m.x) > 0.9 || std::abs(m.y) > 0.6) continue;  // within the mirror, off its edges
+            const glm::dvec3 r = d - 2.0 * glm::dot(d, n) * n;
+            const double t2 = -m.z / r.z;
+            const double lambda = std::log2(spread * (t1 + t2) / std::abs(r.z) * 32.0);
+            if (lambda < 0.15 || lambda > 0.85) continue;
+            const std::size_t i = std::size_t(py) * 32 + std::size_t(px);
+            on += variance[1][i];
+            off += variance[0][i];
+            analytic += lambda;
+            ++count;
+        }
+    REQUIRE(count >= 200);
+    analytic /= double(count);
+    const double measured = 1.0 - on / off;
+    MESSAGE("after the mirror: level " << measured << " measured, " << analytic << " analytic (" << count << " pixels)");
+    CHECK(std::abs(measured - analytic) <= 0.25);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("texture: wrap modes REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT per axis") {
     struct Case {
         const char* file;

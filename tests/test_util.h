@@ -44,12 +44,15 @@ inline SceneRequest keptRequest(const RenderSettings& settings = {}, const Rende
 }
 
 // The BVH and packing stages of a render, as `strata render` runs them
-// (without releasing the scene); `bvhWidth` chooses the tree traversed.
-inline GpuScene buildAndPack(const Scene& scene, const BvhBuildOptions& options = {}, int bvhWidth = 4) {
+// (without releasing the scene); `bvhWidth` chooses the tree traversed,
+// `textureLod` whether textures get mip chains (the megakernel's default).
+inline GpuScene buildAndPack(const Scene& scene, const BvhBuildOptions& options = {}, int bvhWidth = 4,
+                             bool textureLod = true) {
     SceneRequest r = keptRequest();
     r.camera.reset();
     r.build = options;
     r.bvhWidth = bvhWidth;
+    r.textureLod = textureLod;
     return prepareScene(r, scene).gpu;
 }
 
