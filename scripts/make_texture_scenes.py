@@ -233,16 +233,22 @@ def broken_scenes(out):
     direct_scene(os.path.join(out, "bad-texture-index.gltf"), "checker.png", index=3)  # of 1
 
 
+def checker_emitter(s, name):
+    """A material emitting a 64x64 checker of single texels (sRGB 0 and 255,
+    bilinear, repeated), on black."""
+    rows = [[(255, 255, 255) if (x + y) % 2 else (0, 0, 0) for x in range(64)] for y in range(64)]
+    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
+    return s.material(name=name, pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                      emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+
+
 def receding_scene(path):
     """A floor (x in [-20, 20], z in [-60, 0], y = 0) emitting a 64x64
     checker of single texels (sRGB 0 and 255, bilinear, repeated once per
     world unit), seen from (0, 1, 2) looking 15 degrees down: minified by up
     to hundreds of texels per pixel towards the horizon (texture LOD)."""
     s = Scene()
-    rows = [[(255, 255, 255) if (x + y) % 2 else (0, 0, 0) for x in range(64)] for y in range(64)]
-    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
-    mat = s.material(name="Floor", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
-                     emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    mat = checker_emitter(s, "Floor")
     s.quad("Floor", [(-20, 0, 0), (20, 0, 0), (20, 0, -60), (-20, 0, -60)],
            [(0, 0), (40, 0), (40, 60), (0, 60)], mat, (0, 1, 0))
     a = math.radians(-15) / 2
@@ -256,10 +262,7 @@ def lod_plane_scene(path):
     20 / 640 world units. The test views it from several places (texture
     LOD's level against the ray cone's footprint)."""
     s = Scene()
-    rows = [[(255, 255, 255) if (x + y) % 2 else (0, 0, 0) for x in range(64)] for y in range(64)]
-    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
-    mat = s.material(name="Plane", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
-                     emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    mat = checker_emitter(s, "Plane")
     s.quad("Plane", view_quad(0.0, 10.0), [(0, 10), (10, 10), (10, 0), (0, 0)], mat, (0, 0, 1))
     s.camera(math.radians(20), (0, 0, 4))
     s.write(path)
@@ -270,10 +273,7 @@ def lod_mirror_scene(path):
     facing (0, -1, -1): the camera at (0, -1.5, 3) looking along +Y sees the
     plane 3 below the mirror (texture LOD after a delta bounce)."""
     s = Scene()
-    rows = [[(255, 255, 255) if (x + y) % 2 else (0, 0, 0) for x in range(64)] for y in range(64)]
-    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
-    plane = s.material(name="Plane", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
-                       emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    plane = checker_emitter(s, "Plane")
     s.quad("Plane", view_quad(0.0, 10.0), [(0, 10), (10, 10), (10, 0), (0, 0)], plane, (0, 0, 1))
     mirror = s.material(name="Mirror", pbrMetallicRoughness={"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0,
                                                              "roughnessFactor": 0.0})

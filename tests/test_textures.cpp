@@ -269,15 +269,62 @@ TEST_CASE("texture: LOD on a receding checker: the same mean, at least 10x less 
     CHECK(vk::validationMessageCount() == 0);
 }
 
-// lod-plane.gltf (a texel 1/32 world units, a checker of single texels)
-// seen at max depth 0, 32x32 pixels of 20 degrees, 16 spp. Where the
+namespace {
+
+// Texture LOD's level, measured: a scene whose texture is a checker of
+// single texels (1/32 world units), 32x32 pixels at 16 spp. Where the
 // footprint asks for a level lambda in (0, 1) a lookup reads level 0 with
 // probability 1 - lambda and level 1, the checker's uniform grey, otherwise:
 // so a pixel's variance a sample is 1 - lambda times the variance without
-// LOD. The level measured so, 1 - sum(var on) / sum(var off) over the
-// pixels whose analytic level (pixel angle x distance / |cos| / texel) is
-// in [0.15, 0.85], against their mean analytic level: within a quarter
-// level, at two distances and at 40 degrees.
+// LOD. `analytic(direction)` gives a camera ray's level (pixel angle x the
+// cone's length / |cos| at the plane / texel), NaN off the measured part.
+// Returns the level measured, 1 - sum(var on) / sum(var off), and the mean
+// analytic one over the pixels whose analytic level is in [0.15, 0.85].
+struct MeasuredLevel {
+    double measured = 0.0, analytic = 0.0;
+    std::size_t pixels = 0;
+};
+
+MeasuredLevel measureLevel(const std::string& file, RenderSettings s, const ViewOptions& view,
+                           const std::function<double(const CameraRays&, double, glm::dvec3)>& analytic) {
+    s.width = s.height = 32;
+    s.spp = 16;
+    std::vector<double> variance[2];
+    Camera camera;
+    for (int lod = 0; lod < 2; ++lod) {
+        s.textureLod = lod == 1;
+        SceneRequest request = keptRequest(s);
+        request.file = sourcePath(kDir + file);
+        request.camera->view = view;
+        HostScene host = prepareScene(request);
+        camera = host.camera;
+        const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s);
+        const auto v = r.film.varianceOfMean();
+        for (std::size_t i = 0; i < 32 * 32; ++i) variance[lod].push_back(v[i * 3 + 1] * s.spp);
+    }
+    const CameraRays rays(camera, 32, 32);
+    const double spread = 2.0 * std::tan(0.5 * double(camera.yfov)) / 32.0;
+    MeasuredLevel out;
+    double on = 0.0, off = 0.0;
+    for (int py = 0; py < 32; ++py)
+        for (int px = 0; px < 32; ++px) {
+            const double lambda = analytic(rays, spread, rays.dir(px + 0.5, py + 0.5));
+            if (!(lambda >= 0.15 && lambda <= 0.85)) continue;
+            const std::size_t i = std::size_t(py) * 32 + std::size_t(px);
+            on += variance[1][i];
+            off += variance[0][i];
+            out.analytic += lambda;
+            ++out.pixels;
+        }
+    out.analytic /= double(std::max<std::size_t>(out.pixels, 1));
+    out.measured = 1.0 - on / off;
+    return out;
+}
+
+}  // namespace
+
+// lod-plane.gltf at max depth 0, seen from 3.2 and 4.2 away and at 40
+// degrees: the level measured within a quarter of the analytic one.
 TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (distances and an angle)") {
     struct View {
         glm::vec3 from;
@@ -287,98 +334,45 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
                              View{{0.0f, -2.0f, 2.4f}, "40 degrees"}}) {
         CAPTURE(view.what);
         RenderSettings s;
-        s.width = s.height = 32;
-        s.spp = 16;
         s.maxDepth = 0;
         s.seed = 9;
-        std::vector<double> variance[2];
-        Camera camera;
-        for (int lod = 0; lod < 2; ++lod) {
-            s.textureLod = lod == 1;
-            SceneRequest request = keptRequest(s);
-            request.file = sourcePath(kDir + "lod-plane.gltf");
-            request.camera->view.lookFrom = view.from;
-            request.camera->view.lookAt = glm::vec3(0.0f);
-            request.camera->view.fovDegrees = 20.0f;
-            HostScene host = prepareScene(request);
-            camera = host.camera;
-            const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s);
-            const auto v = r.film.varianceOfMean();
-            for (std::size_t i = 0; i < 32 * 32; ++i) variance[lod].push_back(v[i * 3 + 1] * s.spp);
-        }
-        const CameraRays rays(camera, 32, 32);
-        const double spread = 2.0 * std::tan(0.5 * double(camera.yfov)) / 32.0;
-        double on = 0.0, off = 0.0, analytic = 0.0;
-        std::size_t n = 0;
-        for (int py = 0; py < 32; ++py)
-            for (int px = 0; px < 32; ++px) {
-                const glm::dvec3 d = rays.dir(px + 0.5, py + 0.5);
-                const double t = -rays.origin.z / d.z;
-                const double lambda = std::log2(spread * t / std::abs(d.z) * 32.0);
-                if (lambda < 0.15 || lambda > 0.85) continue;
-                const std::size_t i = std::size_t(py) * 32 + std::size_t(px);
-                on += variance[1][i];
-                off += variance[0][i];
-                analytic += lambda;
-                ++n;
-            }
-        REQUIRE(n >= 200);
-        analytic /= double(n);
-        const double measured = 1.0 - on / off;
-        MESSAGE(view.what << ": level " << measured << " measured, " << analytic << " analytic (" << n << " pixels)");
-        CHECK(std::abs(measured - analytic) <= 0.25);
+        ViewOptions v;
+        v.lookFrom = view.from;
+        v.lookAt = glm::vec3(0.0f);
+        v.fovDegrees = 20.0f;
+        const MeasuredLevel m =
+            measureLevel("lod-plane.gltf", s, v, [](const CameraRays& rays, double spread, glm::dvec3 d) {
+                const double t = -rays.origin.z / d.z;  // the plane z = 0
+                return std::log2(spread * t / std::abs(d.z) * 32.0);
+            });
+        MESSAGE(view.what << ": level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
+                          << " pixels)");
+        REQUIRE(m.pixels >= 200);
+        CHECK(std::abs(m.measured - m.analytic) <= 0.25);
     }
     CHECK(vk::validationMessageCount() == 0);
 }
 
 // lod-mirror.gltf at max depth 1: the plane seen in a smooth white metal
 // mirror (reflectance 1; a delta bounce leaves the cone's spread as it is),
-// the level measured as above against log2(pixel angle x (t1 + t2) / |cos|
-// at the plane / texel).
+// against the level of the cone's whole length, t1 + t2, and |cos| at the plane.
 TEST_CASE("texture: LOD after a mirror bounce reads the level of the cone's whole length") {
     RenderSettings s;
-    s.width = s.height = 32;
-    s.spp = 16;
     s.maxDepth = 1;
     s.seed = 4;
-    std::vector<double> variance[2];
-    Camera camera;
-    for (int lod = 0; lod < 2; ++lod) {
-        s.textureLod = lod == 1;
-        SceneRequest request = keptRequest(s);
-        request.file = sourcePath(kDir + "lod-mirror.gltf");
-        HostScene host = prepareScene(request);
-        camera = host.camera;
-        const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s);
-        const auto v = r.film.varianceOfMean();
-        for (std::size_t i = 0; i < 32 * 32; ++i) variance[lod].push_back(v[i * 3 + 1] * s.spp);
-    }
-    const CameraRays rays(camera, 32, 32);
-    const double spread = 2.0 * std::tan(0.5 * double(camera.yfov)) / 32.0;
     const glm::dvec3 n = glm::normalize(glm::dvec3(0.0, -1.0, -1.0)), centre(0.0, 0.0, 3.0);
-    double on = 0.0, off = 0.0, analytic = 0.0;
-    std::size_t count = 0;
-    for (int py = 0; py < 32; ++py)
-        for (int px = 0; px < 32; ++px) {
-            const glm::dvec3 d = rays.dir(px + 0.5, py + 0.5);
-            const double t1 = glm::dot(centre - rays.origin, n) / glm::dot(d, n);
-            const glm::dvec3 m = rays.origin + t1 * d;
-            if (std::abs(m.x) > 0.9 || std::abs(m.y) > 0.6) continue;  // within the mirror, off its edges
-            const glm::dvec3 r = d - 2.0 * glm::dot(d, n) * n;
-            const double t2 = -m.z / r.z;
-            const double lambda = std::log2(spread * (t1 + t2) / std::abs(r.z) * 32.0);
-            if (lambda < 0.15 || lambda > 0.85) continue;
-            const std::size_t i = std::size_t(py) * 32 + std::size_t(px);
-            on += variance[1][i];
-            off += variance[0][i];
-            analytic += lambda;
-            ++count;
-        }
-    REQUIRE(count >= 200);
-    analytic /= double(count);
-    const double measured = 1.0 - on / off;
-    MESSAGE("after the mirror: level " << measured << " measured, " << analytic << " analytic (" << count << " pixels)");
-    CHECK(std::abs(measured - analytic) <= 0.25);
+    const MeasuredLevel m = measureLevel("lod-mirror.gltf", s, {}, [&](const CameraRays& rays, double spread, glm::dvec3 d) {
+        const double t1 = glm::dot(centre - rays.origin, n) / glm::dot(d, n);
+        const glm::dvec3 p = rays.origin + t1 * d;
+        if (std::abs(p.x) > 0.9 || std::abs(p.y) > 0.6) return std::nan("");  // off the mirror or near its edges
+        const glm::dvec3 r = d - 2.0 * glm::dot(d, n) * n;
+        const double t2 = -p.z / r.z;
+        return std::log2(spread * (t1 + t2) / std::abs(r.z) * 32.0);
+    });
+    MESSAGE("after the mirror: level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
+                                       << " pixels)");
+    REQUIRE(m.pixels >= 200);
+    CHECK(std::abs(m.measured - m.analytic) <= 0.25);
     CHECK(vk::validationMessageCount() == 0);
 }
 
