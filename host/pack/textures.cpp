@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
-#include <thread>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 #include "sheen_albedo.h"
 
@@ -289,7 +291,8 @@ std::vector<std::uint32_t> imageWords(const TextureImage& image, TexelCoding cod
     return words;
 }
 
-// Runs job(i) for i in [0, n) on up to the machine's threads.
+// Runs job(i) for i in [0, n) on up to the machine's threads; the first
+// exception a job throws (std::bad_alloc) is thrown again here.
 template <class Job>
 void parallelFor(std::size_t n, Job job) {
     const std::size_t threads = std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
@@ -298,12 +301,21 @@ void parallelFor(std::size_t n, Job job) {
         return;
     }
     std::atomic<std::size_t> next{0};
+    std::exception_ptr failed;
+    std::mutex failedMutex;
     std::vector<std::thread> pool;
     for (std::size_t t = 0; t < threads; ++t)
         pool.emplace_back([&] {
-            for (std::size_t i = next++; i < n; i = next++) job(i);
+            try {
+                for (std::size_t i = next++; i < n; i = next++) job(i);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(failedMutex);
+                if (!failed) failed = std::current_exception();
+                next = n;  // the others stop after their current job
+            }
         });
     for (std::thread& t : pool) t.join();
+    if (failed) std::rethrow_exception(failed);
 }
 
 }  // namespace
