@@ -673,6 +673,29 @@ TEST_CASE("wide bvh: collapsed tree covers every triangle once, boxes nest") {
     }
 }
 
+// Triangles along one line: every box has no area, so the plan finds an
+// interior node no dearer as one slot than its children and keeps it in
+// one (a fuzzed scene found this: the collapse then gathered five children
+// into a node's four slots, tests/data/fuzz/gltf/stack-overflow-bvh4-*).
+TEST_CASE("wide bvh: subtrees whose cost is not a number still fill at most four slots") {
+    // Flat (y = 0) triangles, three of them across the float range in x:
+    // the boxes above those have an infinite side and a zero one, so their
+    // area, inf x 0, is NaN. The plan then keeps such a node in one slot
+    // (a fuzzed scene found this: the collapse gathered five children into
+    // a node's four slots, tests/data/fuzz/gltf/stack-overflow-bvh4-*).
+    std::mt19937 rng(5u);
+    std::uniform_real_distribution<float> u(0.0f, 10.0f);
+    Mesh m;
+    for (int i = 0; i < 300; ++i) {
+        const glm::vec3 a(u(rng), 0.0f, u(rng));
+        m.add(a, a + glm::vec3(0.3f, 0.0f, 0.1f), a + glm::vec3(0.1f, 0.0f, 0.3f));
+    }
+    for (int i = 0; i < 3; ++i) m.add({-3.0e38f, 0.0f, float(i)}, {3.0e38f, 0.0f, float(i)}, {0.0f, 0.0f, float(i) + 1.0f});
+    const Bvh bvh = buildBvh(m.v0, m.v1, m.v2);
+    const WideBvh w = collapseBvh4(bvh.nodes);
+    checkWide(m, bvh, w);
+}
+
 // Large enough that the plan splits into subtrees planned in parallel
 // (kPlanMinNodes in host/bvh/wide.cpp): the tree must not depend on the
 // thread count.

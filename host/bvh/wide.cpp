@@ -213,7 +213,10 @@ struct Collapser {
     std::uint32_t node(std::uint32_t root, std::uint32_t depth) {
         std::uint32_t kids[4] = {0, 0, 0, 0};
         int n = 0;
-        const int left = splitOf(root, 4);
+        // The plan may keep this subtree in one slot (0: a node whose box
+        // has no area costs no more than its children, or costs are not
+        // finite); a node opened here spreads it over both children.
+        const int left = std::clamp(splitOf(root, 4), 1, 3);
         gather(root + 1, left, kids, n);
         gather(in[root].leftOrFirst, 4 - left, kids, n);
         const std::uint32_t index = newNode();
