@@ -28,6 +28,7 @@ then black along u = x + 0.5: only its half x < 0 emits.
 
 import base64
 import math
+import random
 import os
 import struct
 import sys
@@ -286,6 +287,44 @@ def lod_mirror_scene(path):
     s.write(path)
 
 
+def leaves_rows(size=256, seed=7, coverage=0.35):
+    """A tileable cut-out: discs of radius 4-12 texels (leaf: sRGB green,
+    alpha 255) on holes (sRGB red, alpha 0) until `coverage` of the texels
+    are leaf."""
+    rng = random.Random(seed)
+    leaf = [[False] * size for _ in range(size)]
+    kept = 0
+    while kept < coverage * size * size:
+        cx, cy, r = rng.randrange(size), rng.randrange(size), rng.uniform(4, 12)
+        for y in range(int(cy - r), int(cy + r) + 1):
+            for x in range(int(cx - r), int(cx + r) + 1):
+                if (x - cx) ** 2 + (y - cy) ** 2 <= r * r and not leaf[y % size][x % size]:
+                    leaf[y % size][x % size] = True
+                    kept += 1
+    return [[(0, 255, 0, 255) if leaf[y][x] else (255, 0, 0, 0) for x in range(size)] for y in range(size)]
+
+
+def foliage_scene(path):
+    """A cut-out plane (z = 1, x and y in [-2, 2]) of leaves_rows repeated 8
+    times across (MASK, cutoff 0.5, bilinear), its leaves emitting their
+    colour (the same texture as emissive), in front of a blue emitter (z = 0),
+    seen from (0, 0, 4): minified about 24 texels a pixel at 64x64 (texture
+    LOD's alpha coverage and the colour of its levels)."""
+    s = Scene()
+    backdrop = s.material(name="Backdrop", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1],
+                                                                 "metallicFactor": 0.0},
+                          emissiveFactor=[0, 0, 1])
+    s.quad("Backdrop", view_quad(0.0, 20.0), uv_corners((0, 0), (1, 1)), backdrop, (0, 0, 1))
+    tex = s.texture(s.image(data_uri(png(leaves_rows()))), REPEAT, REPEAT, LINEAR)
+    leaves = s.material(name="Leaves", alphaMode="MASK", alphaCutoff=0.5,
+                        pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0,
+                                              "baseColorTexture": {"index": tex}},
+                        emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    s.quad("Leaves", view_quad(1.0, 2.0), uv_corners((0, 0), (8, 8)), leaves, (0, 0, 1))
+    s.camera(2 * math.atan(0.5), (0, 0, 4))
+    s.write(path)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "tests", "data", "textures")
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
@@ -330,6 +369,7 @@ def main():
     receding_scene(p("receding.gltf"))
     lod_plane_scene(p("lod-plane.gltf"))
     lod_mirror_scene(p("lod-mirror.gltf"))
+    foliage_scene(p("foliage.gltf"))
     broken_scenes(os.path.join(out, "broken"))
 
 

@@ -376,6 +376,60 @@ TEST_CASE("texture: LOD after a mirror bounce reads the level of the cone's whol
     CHECK(vk::validationMessageCount() == 0);
 }
 
+// foliage.gltf at max depth 0: leaves (MASK, 35% of the texels, emitting
+// green) over holes (red texels, alpha 0) in front of a blue emitter,
+// minified about 24 texels a pixel. Blue is the share of camera rays that
+// pass the cut-out, red the holes' colour seen on leaves. With LOD the
+// alpha test reads the first level (its coverage exact) and the levels the
+// leaves' colour is read from take it over the leaves alone: no more red
+// than bilinear lookups of the first level show at the leaves' edges (4
+// standard errors). --texture-max-size 16 (the texture 16x smaller) keeps
+// the coverage within 5% of the whole texture's (Castano's scaled alpha).
+TEST_CASE("texture: an alpha cut-out keeps its coverage and its colour minified and downsampled") {
+    RenderSettings s;
+    s.width = s.height = 64;
+    s.spp = 16;
+    s.maxDepth = 0;
+    s.seed = 3;
+    struct Means {
+        double coverage = 0.0, red = 0.0, redError = 0.0, coverageError = 0.0;
+    };
+    auto measure = [&](bool lod, std::uint32_t maxSize) {
+        s.textureLod = lod;
+        SceneRequest request = keptRequest(s);
+        request.file = sourcePath(kDir + "foliage.gltf");
+        request.textureMaxSize = maxSize;
+        HostScene host = prepareScene(request);
+        CHECK(((host.gpu.features.bits & gpu::kFeatureTextureLod) != 0u) == lod);
+        const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s);
+        const auto mean = r.film.mean(), var = r.film.varianceOfMean();
+        Means m;
+        double varRed = 0.0, varBlue = 0.0;
+        const std::size_t n = std::size_t(64) * 64;
+        for (std::size_t i = 0; i < n; ++i) {
+            m.red += mean[i * 3];
+            m.coverage += 1.0 - mean[i * 3 + 2];
+            varRed += var[i * 3];
+            varBlue += var[i * 3 + 2];
+        }
+        m.red /= double(n);
+        m.coverage /= double(n);
+        m.redError = std::sqrt(varRed) / double(n);
+        m.coverageError = std::sqrt(varBlue) / double(n);
+        return m;
+    };
+    const Means on = measure(true, 0), off = measure(false, 0), small = measure(false, 16);
+    MESSAGE("coverage " << on.coverage << " +- " << on.coverageError << " with LOD, " << off.coverage << " +- "
+                        << off.coverageError << " without, " << small.coverage << " +- " << small.coverageError
+                        << " at 16x16; red " << on.red << " +- " << on.redError << " against " << off.red << " +- "
+                        << off.redError);
+    CHECK(off.coverage == doctest::Approx(0.35).epsilon(0.05));  // the texture's share of leaf texels, about
+    CHECK(std::abs(on.coverage - off.coverage) <= 4.0 * std::hypot(on.coverageError, off.coverageError));
+    CHECK(on.red <= off.red + 4.0 * std::hypot(on.redError, off.redError));
+    CHECK(std::abs(small.coverage - off.coverage) <= 0.05 * off.coverage);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("texture: wrap modes REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT per axis") {
     struct Case {
         const char* file;
@@ -798,6 +852,70 @@ TEST_CASE("texture: downsampling averages colour in linear light, renormalises n
     const TextureImage wide = downsampledTexture(big, 32, TexelCoding::Linear);
     CHECK(wide.bits == 16);
     CHECK(wide.data.size() == std::size_t(32) * 8 * 8);
+}
+
+// The share of bilinear lookups (repeat wrap) of an 8-bit image whose
+// alpha is at least 128 (cutoff 0.5), at 8 x 8 points a texel.
+double bilinearCoverage(const TextureImage& im) {
+    const int w = im.width, h = im.height;
+    auto alpha = [&](int x, int y) { return double(im.data[(std::size_t((y + h) % h) * std::size_t(w) + std::size_t((x + w) % w)) * 4 + 3]); };
+    std::size_t passed = 0, total = 0;
+    for (int y = 0; y < h * 8; ++y)
+        for (int x = 0; x < w * 8; ++x) {
+            const double u = (x + 0.5) / 8.0 - 0.5, v = (y + 0.5) / 8.0 - 0.5;
+            const int x0 = int(std::floor(u)), y0 = int(std::floor(v));
+            const double fx = u - x0, fy = v - y0;
+            const double a = (1 - fx) * (1 - fy) * alpha(x0, y0) + fx * (1 - fy) * alpha(x0 + 1, y0) +
+                             (1 - fx) * fy * alpha(x0, y0 + 1) + fx * fy * alpha(x0 + 1, y0 + 1);
+            passed += a >= 127.5;
+            ++total;
+        }
+    return double(passed) / double(total);
+}
+
+// A MASK texture downsampled keeps its coverage (the share of bilinear
+// lookups at or above the cutoff) within 2% down to 8 x 8, where plain
+// means lose it; its mip levels take colour over the leaves alone; BLEND
+// weights colour by alpha.
+TEST_CASE("texture: cut-outs downsampled keep MASK coverage, their levels take colour over what is seen") {
+    // 64 x 64: green leaves (alpha 255) where a smooth pattern is high, about
+    // 23% of the lookups, on red holes (alpha 0).
+    std::vector<std::array<int, 4>> texels;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const bool leaf = std::sin(0.7 * x) * std::cos(0.45 * y) + 0.3 * std::sin(0.2 * (x + y)) > 0.4;
+            texels.push_back(leaf ? std::array<int, 4>{0, 255, 0, 255} : std::array<int, 4>{255, 0, 0, 0});
+        }
+    const TextureImage base = image8(64, 64, texels);
+    const double share = bilinearCoverage(base);
+    REQUIRE(share > 0.2);
+    REQUIRE(share < 0.4);
+    AlphaUse mask;
+    mask.mode = AlphaUse::Mode::Mask;
+    mask.cutoff = 0.5f;
+    double plainWorst = 0.0;
+    for (std::uint32_t size = 32; size >= 8; size /= 2) {
+        CAPTURE(size);
+        const TextureImage small = downsampledTexture(base, size, TexelCoding::Srgb, mask);
+        const TextureImage plain = downsampledTexture(base, size, TexelCoding::Srgb);
+        const double kept = bilinearCoverage(small);
+        MESSAGE(size << "x" << size << ": coverage " << kept << " (base " << share << ", plain means "
+                     << bilinearCoverage(plain) << ")");
+        CHECK(std::abs(kept - share) <= 0.02);
+        plainWorst = std::max(plainWorst, std::abs(bilinearCoverage(plain) - share));
+    }
+    CHECK(plainWorst > 0.1);  // what the test guards against
+    const std::vector<TextureImage> chain = textureMips(base, TexelCoding::Srgb, mask);
+    REQUIRE(chain.size() == 6);
+    for (const TextureImage& level : chain)
+        for (std::size_t i = 0; i < std::size_t(level.width) * std::size_t(level.height); ++i)
+            if (level.data[i * 4 + 3] > 0) CHECK(int(level.data[i * 4]) == 0);  // no red where any leaf is
+    // BLEND: transparent red and opaque green are green at half alpha.
+    AlphaUse blend;
+    blend.mode = AlphaUse::Mode::Blend;
+    const std::vector<TextureImage> b = textureMips(image8(2, 1, {{255, 0, 0, 0}, {0, 255, 0, 255}}), TexelCoding::Srgb, blend);
+    REQUIRE(b.size() == 1);
+    CHECK(std::vector<int>(b[0].data.begin(), b[0].data.end()) == std::vector<int>{0, 255, 0, 128});
 }
 
 TEST_SUITE_END();

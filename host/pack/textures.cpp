@@ -58,8 +58,23 @@ double linearToSrgb(double v) {
     return v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
 }
 
-// One halving (each side to ceil(side / 2)).
-TextureImage halved(const TextureImage& in, TexelCoding coding) {
+// The 256 8-bit sRGB codes decoded once: the same doubles as
+// srgbToLinear(k / 255.0), without a pow per texel.
+const std::array<double, 256>& decodedSrgb8() {
+    static const std::array<double, 256> table = [] {
+        std::array<double, 256> t{};
+        for (int k = 0; k < 256; ++k) t[std::size_t(k)] = srgbToLinear(k / 255.0);
+        return t;
+    }();
+    return table;
+}
+
+// One halving (each side to ceil(side / 2)): each texel the mean of the up
+// to 2x2 it covers, its colour weighted by `weight` (one per texel of `in`;
+// none: equal weights; where the weights sum to 0, equal weights too).
+// `meanWeight`, when given, receives each new texel's mean weight.
+TextureImage halved(const TextureImage& in, TexelCoding coding, const std::vector<double>* weight = nullptr,
+                    std::vector<double>* meanWeight = nullptr) {
     TextureImage out;
     out.name = in.name;
     out.bits = in.bits;
@@ -68,6 +83,7 @@ TextureImage halved(const TextureImage& in, TexelCoding coding) {
     const std::size_t bytes = in.bits == 16 ? 2 : 1;
     const double scale = in.bits == 16 ? 65535.0 : 255.0;
     out.data.resize(std::size_t(out.width) * std::size_t(out.height) * 4 * bytes);
+    if (meanWeight) meanWeight->assign(std::size_t(out.width) * std::size_t(out.height), 0.0);
     auto put = [&](std::size_t i, int c, double v) {
         const auto q = static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0, 1.0) * scale));
         if (bytes == 2) {
@@ -77,36 +93,37 @@ TextureImage halved(const TextureImage& in, TexelCoding coding) {
             out.data[i * 4 + std::size_t(c)] = static_cast<std::uint8_t>(q);
         }
     };
-    // The 256 8-bit sRGB codes decoded once (a pow per texel otherwise).
-    static const std::array<double, 256> decoded8 = [] {
-        std::array<double, 256> t{};
-        for (int k = 0; k < 256; ++k) t[std::size_t(k)] = srgbToLinear(k / 255.0);
-        return t;
-    }();
+    const std::array<double, 256>& decoded8 = decodedSrgb8();
     const bool lookup = coding == TexelCoding::Srgb && in.bits != 16;
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {
-            double sum[4] = {0.0, 0.0, 0.0, 0.0};
+            double sum[4] = {0.0, 0.0, 0.0, 0.0}, weighted[3] = {0.0, 0.0, 0.0}, weights = 0.0;
             int n = 0;
             for (int dy = 0; dy < 2; ++dy)
                 for (int dx = 0; dx < 2; ++dx) {
                     const int sx = 2 * x + dx, sy = 2 * y + dy;
                     if (sx >= in.width || sy >= in.height) continue;
                     const std::size_t i = std::size_t(sy) * std::size_t(in.width) + std::size_t(sx);
+                    const double w = weight ? (*weight)[i] : 1.0;
                     for (int c = 0; c < 4; ++c) {
+                        double v;
                         if (c < 3 && lookup) {
-                            sum[c] += decoded8[in.data[i * 4 + std::size_t(c)]];
-                            continue;
+                            v = decoded8[in.data[i * 4 + std::size_t(c)]];
+                        } else {
+                            v = channel(in, i, c);
+                            if (c < 3 && coding == TexelCoding::Srgb) v = srgbToLinear(v);
+                            if (c < 3 && coding == TexelCoding::Normal) v = 2.0 * v - 1.0;
                         }
-                        double v = channel(in, i, c);
-                        if (c < 3 && coding == TexelCoding::Srgb) v = srgbToLinear(v);
-                        if (c < 3 && coding == TexelCoding::Normal) v = 2.0 * v - 1.0;
                         sum[c] += v;
+                        if (c < 3) weighted[c] += w * v;
                     }
+                    weights += w;
                     ++n;
                 }
             const std::size_t o = std::size_t(y) * std::size_t(out.width) + std::size_t(x);
             glm::dvec3 rgb(sum[0] / n, sum[1] / n, sum[2] / n);
+            if (weight && weights > 0.0) rgb = glm::dvec3(weighted[0], weighted[1], weighted[2]) / weights;
+            if (meanWeight) (*meanWeight)[o] = weights / n;
             if (coding == TexelCoding::Normal) {
                 const double len = glm::length(rgb);
                 rgb = len > 0.0 ? 0.5 * (rgb / len) + 0.5 : glm::dvec3(0.5, 0.5, 1.0);
@@ -119,6 +136,163 @@ TextureImage halved(const TextureImage& in, TexelCoding coding) {
     return out;
 }
 
+// Alpha channel of texel i as its code (0-255 or 0-65535).
+std::uint32_t alphaCode(const TextureImage& image, std::size_t i) {
+    if (image.bits == 16) {
+        std::uint16_t v;
+        std::memcpy(&v, image.data.data() + (i * 4 + 3) * 2, 2);
+        return v;
+    }
+    return image.data[i * 4 + 3];
+}
+
+void setAlphaCode(TextureImage& image, std::size_t i, std::uint32_t code) {
+    if (image.bits == 16) {
+        const auto v = static_cast<std::uint16_t>(code);
+        std::memcpy(image.data.data() + (i * 4 + 3) * 2, &v, 2);
+    } else {
+        image.data[i * 4 + 3] = static_cast<std::uint8_t>(code);
+    }
+}
+
+// Lookup points a texel for forLookupPoints: 4 x 4 up to 2^16 texels (the
+// small levels, where each texel's share is large), the 2 x 2 quarter
+// points above.
+int lookupSide(std::uint64_t texels) { return texels <= (std::uint64_t(1) << 16) ? 4 : 2; }
+
+// How many points forLookupPoints visits.
+std::uint64_t lookupPoints(int w, int h) {
+    const std::uint64_t texels = std::uint64_t(w) * std::uint64_t(h);
+    const auto n = std::uint64_t(lookupSide(texels));
+    return texels * n * n;
+}
+
+// Calls use(v) for the bilinear lookups v of values[texel index] at n x n
+// points spread evenly over every texel of a w x h image (repeat wrap; n =
+// lookupSide).
+template <class Use>
+void forLookupPoints(int w, int h, const std::vector<double>& values, Use use) {
+    const int n = lookupSide(std::uint64_t(w) * std::uint64_t(h));
+    for (int y = 0; y < h; ++y)
+        for (int j = 0; j < n; ++j) {
+            // The points' offsets from the texel's centre, and the row and
+            // column on their side.
+            const double fy = std::abs((j + 0.5) / n - 0.5);
+            const int y2 = 2 * j < n ? (y == 0 ? h - 1 : y - 1) : (y + 1 == h ? 0 : y + 1);
+            const double* row = values.data() + std::size_t(y) * std::size_t(w);
+            const double* row2 = values.data() + std::size_t(y2) * std::size_t(w);
+            for (int x = 0; x < w; ++x)
+                for (int i = 0; i < n; ++i) {
+                    const double fx = std::abs((i + 0.5) / n - 0.5);
+                    const int x2 = 2 * i < n ? (x == 0 ? w - 1 : x - 1) : (x + 1 == w ? 0 : x + 1);
+                    use((1.0 - fy) * ((1.0 - fx) * row[x] + fx * row[x2]) + fy * ((1.0 - fx) * row2[x] + fx * row2[x2]));
+                }
+        }
+}
+
+// Successive halvings of one image (a mip chain, or downsampling) as its
+// materials' alpha reads it (AlphaUse). MASK takes colour as the mean over
+// the base texels that pass the cutoff; with `keepCoverage` (downsampling,
+// whose result the alpha test reads) each level's alpha is also scaled so
+// that its bilinear lookups pass as often as the base's (Castano 2010,
+// coverage-preserving alpha); mip levels, which only shading reads, keep
+// the plain mean. BLEND takes colour weighted by alpha (premultiplied).
+class Halver {
+public:
+    Halver(const TextureImage& base, TexelCoding coding, AlphaUse alpha, bool keepCoverage)
+        : coding_(coding), alpha_(alpha), keepCoverage_(keepCoverage) {
+        if (alpha_.mode != AlphaUse::Mode::Mask) return;
+        const std::uint32_t top = base.bits == 16 ? 65535u : 255u;
+        // The first code that passes, with the shader's float arithmetic
+        // (lib/material.glsl alphaHole: factor x texel < cutoff is a hole).
+        passCode_ = top + 1;
+        for (std::uint32_t c = 0; c <= top; ++c)
+            if (!(alpha_.factor * (float(c) / float(top)) < alpha_.cutoff)) {
+                passCode_ = c;
+                break;
+            }
+        const std::size_t count = std::size_t(base.width) * std::size_t(base.height);
+        coverage_.resize(count);
+        for (std::size_t i = 0; i < count; ++i) coverage_[i] = alphaCode(base, i) >= passCode_ ? 1.0 : 0.0;
+        if (!keepCoverage_) return;
+        // The base's share: its bilinear lookups (forLookupPoints) that pass.
+        const double cutoff = double(passCode_) / double(top);
+        std::vector<double> values(count);
+        for (std::size_t i = 0; i < count; ++i) values[i] = double(alphaCode(base, i)) / double(top);
+        std::uint64_t passed = 0;
+        forLookupPoints(base.width, base.height, values, [&](double v) { passed += v >= cutoff; });
+        target_ = count ? double(passed) / double(lookupPoints(base.width, base.height)) : 0.0;
+    }
+
+    // The level after `previous` (the base first, then each level returned).
+    TextureImage next(const TextureImage& previous) {
+        if (alpha_.mode == AlphaUse::Mode::Blend) {
+            std::vector<double> w(std::size_t(previous.width) * std::size_t(previous.height));
+            for (std::size_t i = 0; i < w.size(); ++i) w[i] = channel(previous, i, 3);
+            return halved(previous, coding_, &w);
+        }
+        if (alpha_.mode != AlphaUse::Mode::Mask || passCode_ > (previous.bits == 16 ? 65535u : 255u))
+            return halved(previous, coding_);
+        std::vector<double> coverage;
+        TextureImage out = halved(previous, coding_, &coverage_, &coverage);
+        coverage_ = std::move(coverage);
+        if (!keepCoverage_) return out;
+        // Alpha = coverage x s, quantised, s chosen so that the level's
+        // bilinear lookups (forLookupPoints) pass as often as the base's.
+        // Unclamped they are linear in s: s = cutoff / q, q their quantile
+        // at the base's share (a histogram of 2^16 bins); alpha clamped at 1
+        // passes less, so a few bisections above that start follow.
+        const double top = previous.bits == 16 ? 65535.0 : 255.0;
+        const double cutoff = double(passCode_) / top;
+        const std::uint64_t points = lookupPoints(out.width, out.height);
+        constexpr std::size_t kBins = 65536;
+        std::vector<std::uint64_t> bins(kBins, 0);
+        forLookupPoints(out.width, out.height, coverage_,
+                        [&](double v) { ++bins[std::min(kBins - 1, static_cast<std::size_t>(v * double(kBins)))]; });
+        const auto k = static_cast<std::uint64_t>(std::llround(target_ * double(points)));
+        double q = 2.0;  // no lookup passes
+        for (std::uint64_t above = 0, b = kBins; k > 0 && b-- > 0;)
+            if ((above += bins[b]) >= k) {
+                q = double(b) / double(kBins);
+                break;
+            }
+        const auto code = [&](std::size_t i, double scale) {
+            return static_cast<std::uint32_t>(std::lround(std::min(1.0, coverage_[i] * scale) * top));
+        };
+        double scale = q <= 0.0 ? 1.0e30 : cutoff / q;
+        if (q > 0.0 && q <= 1.0) {
+            std::vector<double> alpha(coverage_.size());
+            const auto passing = [&](double sc) {
+                for (std::size_t i = 0; i < alpha.size(); ++i) alpha[i] = double(code(i, sc)) / top;
+                std::uint64_t n = 0;
+                forLookupPoints(out.width, out.height, alpha, [&](double v) { n += v >= cutoff; });
+                return n;
+            };
+            // Bisection until within a thousandth of the points (8 steps at most).
+            double lo = scale, hi = 4.0 * scale, best = scale;
+            std::uint64_t bestMiss = ~std::uint64_t(0);
+            for (int step = 0; step < 8 && bestMiss > points / 1000; ++step) {
+                const double mid = step == 0 ? lo : 0.5 * (lo + hi);
+                const std::uint64_t n = passing(mid);
+                const std::uint64_t miss = n > k ? n - k : k - n;
+                if (miss < bestMiss) bestMiss = miss, best = mid;
+                (n < k ? lo : hi) = mid;
+            }
+            scale = best;
+        }
+        for (std::size_t i = 0; i < coverage_.size(); ++i) setAlphaCode(out, i, code(i, scale));
+        return out;
+    }
+
+private:
+    TexelCoding coding_;
+    AlphaUse alpha_;
+    bool keepCoverage_;
+    std::uint32_t passCode_ = 0;    // MASK: the first alpha code at or above the cutoff
+    std::vector<double> coverage_;  // MASK: per texel of the last level, the share of base texels that pass
+    double target_ = 0.0;           // MASK: the base's share
+};
+
 std::uint32_t wrapBits(Wrap w) {
     switch (w) {
         case Wrap::ClampToEdge: return gpu::kWrapClamp;
@@ -130,9 +304,10 @@ std::uint32_t wrapBits(Wrap w) {
 
 }  // namespace
 
-TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding) {
-    TextureImage out = halved(image, coding);
-    while (std::uint32_t(std::max(out.width, out.height)) > maxSize) out = halved(out, coding);
+TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding, AlphaUse alpha) {
+    Halver halver(image, coding, alpha, true);
+    TextureImage out = halver.next(image);
+    while (std::uint32_t(std::max(out.width, out.height)) > maxSize) out = halver.next(out);
     return out;
 }
 
@@ -181,7 +356,7 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
         TextureImage& im = unpacked[largest];
         const bool mips = images[largest].levels > 1;
         const std::uint64_t before = packedBytes(std::uint64_t(im.width), std::uint64_t(im.height), im.bits, mips);
-        im = halved(im, images[largest].coding);
+        im = Halver(im, images[largest].coding, images[largest].alpha, true).next(im);
         bytes -= before - packedBytes(std::uint64_t(im.width), std::uint64_t(im.height), im.bits, mips);
         if (!halvedOnce[largest]) halvedOnce[largest] = 1, halvedImages.push_back(largest);
     }
@@ -197,7 +372,7 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
         p.height = unpacked[i].height;
         appendWords(unpacked[i], out);
         if (p.levels > 1) {
-            const std::vector<TextureImage> chain = textureMips(unpacked[i], p.coding);
+            const std::vector<TextureImage> chain = textureMips(unpacked[i], p.coding, p.alpha);
             for (const TextureImage& level : chain) appendWords(level, out);
             p.levels = 1 + static_cast<int>(chain.size());
         }
@@ -220,13 +395,7 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
 
 glm::dvec3 meanColor(const TextureImage& image, bool srgb) {
     const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
-    // The 256 decoded 8-bit values, looked up: the same doubles as
-    // srgbToLinear(v / 255.0), without a pow per texel.
-    static const std::array<double, 256> decoded8 = [] {
-        std::array<double, 256> t{};
-        for (int k = 0; k < 256; ++k) t[std::size_t(k)] = srgbToLinear(k / 255.0);
-        return t;
-    }();
+    const std::array<double, 256>& decoded8 = decodedSrgb8();
     glm::dvec3 sum(0.0);
     for (std::size_t i = 0; i < count; ++i) {
         for (int c = 0; c < 3; ++c) {
@@ -256,11 +425,12 @@ std::vector<std::uint32_t> sheenAlbedoWords() {
     return words;
 }
 
-std::vector<TextureImage> textureMips(const TextureImage& image, TexelCoding coding) {
+std::vector<TextureImage> textureMips(const TextureImage& image, TexelCoding coding, AlphaUse alpha) {
     std::vector<TextureImage> levels;
+    Halver halver(image, coding, alpha, false);
     const TextureImage* last = &image;
     while (last->width > 1 || last->height > 1) {
-        levels.push_back(halved(*last, coding));
+        levels.push_back(halver.next(*last));
         last = &levels.back();
     }
     return levels;
@@ -276,7 +446,7 @@ std::vector<std::uint32_t> imageWords(const TextureImage& image, TexelCoding cod
     TextureImage small;
     const TextureImage* base = &image;
     if (maxSize > 0 && std::uint32_t(std::max(image.width, image.height)) > maxSize) {
-        small = downsampledTexture(image, maxSize, coding);
+        small = downsampledTexture(image, maxSize, coding, p.alpha);
         base = &small;
     }
     p.width = base->width;
@@ -284,7 +454,7 @@ std::vector<std::uint32_t> imageWords(const TextureImage& image, TexelCoding cod
     appendWords(*base, words);
     p.levels = 1;
     if (mips) {
-        std::vector<TextureImage> chain = textureMips(*base, coding);
+        std::vector<TextureImage> chain = textureMips(*base, coding, p.alpha);
         for (const TextureImage& level : chain) appendWords(level, words);
         p.levels += static_cast<int>(chain.size());
     }
@@ -384,6 +554,20 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
             g.iridescenceTex = addRef(m, m.iridescenceTexture, TexelCoding::Linear);
             g.iridescenceThicknessTex = addRef(m, m.iridescenceThicknessTexture, TexelCoding::Linear);
         }
+    }
+    // How the used materials' alpha reads each image as base colour: one
+    // MASK cutoff (with its factor) or BLEND; OPAQUE reads no alpha, and an
+    // image read two other ways keeps plain means.
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const MaterialDesc& m = scene.materials[i];
+        if (!used[i] || !m.baseColorTexture.used() || m.alphaMode == MaterialDesc::AlphaMode::Opaque) continue;
+        const int image = scene.textures[static_cast<std::size_t>(m.baseColorTexture.texture)].image;
+        PackedImage& p = out.images[static_cast<std::size_t>(packedIndex[static_cast<std::size_t>(image)])];
+        AlphaUse use;
+        use.mode = m.alphaMode == MaterialDesc::AlphaMode::Mask ? AlphaUse::Mode::Mask : AlphaUse::Mode::Blend;
+        if (use.mode == AlphaUse::Mode::Mask) use.cutoff = m.alphaCutoff, use.factor = m.baseColor.a;
+        if (!p.alphaSeen) p.alpha = use, p.alphaSeen = true;
+        else if (p.alpha.mode != use.mode || p.alpha.cutoff != use.cutoff || p.alpha.factor != use.factor) p.alpha = {};
     }
     // The images' words, built in parallel, then laid out in order.
     const auto t0 = std::chrono::steady_clock::now();

@@ -16,6 +16,18 @@ namespace strata {
 // other linear data.
 enum class TexelCoding { Srgb, Normal, Linear };
 
+// How the used materials' alpha reads an image as their base colour, for
+// downsampling and mip chains: MASK with alphaCutoff and baseColorFactor's
+// alpha takes colour over the texels that pass the cutoff, and
+// downsampling keeps the share of lookups that pass (the alpha test reads
+// the first level); BLEND weights colour by alpha; None (no alpha read, or
+// read two different ways) takes plain means.
+struct AlphaUse {
+    enum class Mode { None, Mask, Blend } mode = Mode::None;
+    float cutoff = 0.5f;
+    float factor = 1.0f;
+};
+
 // One packed image: its name, its size as packed and as the file has it,
 // its bytes on the device (--stats), and where its words start, their bits
 // per channel and its coding (to halve it again: shrinkTextures).
@@ -28,6 +40,8 @@ struct PackedImage {
     int bits = 8;
     TexelCoding coding = TexelCoding::Linear;
     int levels = 1;            // with its mip chain (kTexLevelsShift)
+    AlphaUse alpha;            // how its levels treat alpha (packTextures)
+    bool alphaSeen = false;    // a material's alpha has set `alpha`
     bool downsampled() const { return width != fileWidth || height != fileHeight; }
 };
 
@@ -49,14 +63,18 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
                             std::vector<gpu::Material>& materials, std::uint32_t maxSize = 0, bool mips = false);
 
 // The mip levels after `image`: each the one before halved as `coding`
-// reads it (halving's rule: ceil sides, the mean of up to 2x2), down to 1x1.
-std::vector<TextureImage> textureMips(const TextureImage& image, TexelCoding coding);
+// reads it (halving's rule: ceil sides, the mean of up to 2x2), down to 1x1;
+// colour as `alpha` says (AlphaUse), alpha the plain mean.
+std::vector<TextureImage> textureMips(const TextureImage& image, TexelCoding coding, AlphaUse alpha = {});
 
 // The image halved (each side to ceil(side / 2), a texel the mean of the up
 // to 2x2 it covers) until neither side exceeds `maxSize` (>= 1): the mean
 // taken in linear light for sRGB colour, and a normal map's mean vector
-// renormalised; alpha is averaged as it is. Bits per channel kept.
-TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding);
+// renormalised; alpha is averaged as it is, except as `alpha` says
+// (AlphaUse: MASK keeps the share of bilinear lookups that pass). Bits per
+// channel kept.
+TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding,
+                                AlphaUse alpha = {});
 
 // Halves the largest packed images, one halving at a time, until the texel
 // words take at most `maxBytes` (or every image is 1x1), then lays the
