@@ -257,6 +257,33 @@ def receding_scene(path):
     s.write(path)
 
 
+def receding_octaves_scene(path):
+    """receding.gltf's floor emitting a 256x256 texture with detail at every
+    level: the sum of checkers of 1 to 32 texels (weights 1/sqrt(2)^k) in
+    red, its complement in green, a ramp in blue; repeated 10 x 15 times.
+    docs/benchmarks.md measures texture LOD's error and blur on it (a
+    single-texel checker is uniform from its second level on, so it cannot
+    show blur)."""
+    n, sizes = 256, [1, 2, 4, 8, 16, 32]
+    total = sum(0.5 ** (k * 0.5) for k in range(len(sizes)))
+    rows = []
+    for y in range(n):
+        row = []
+        for x in range(n):
+            v = sum(((x // c + y // c) % 2) * 0.5 ** (k * 0.5) for k, c in enumerate(sizes)) / total
+            row.append((round(255 * v), round(255 * (1 - v)), x * 255 // (n - 1)))
+        rows.append(row)
+    s = Scene()
+    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
+    mat = s.material(name="Floor", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                     emissiveFactor=[1, 1, 1], emissiveTexture={"index": tex})
+    s.quad("Floor", [(-20, 0, 0), (20, 0, 0), (20, 0, -60), (-20, 0, -60)],
+           [(0, 0), (10, 0), (10, 15), (0, 15)], mat, (0, 1, 0))
+    a = math.radians(-15) / 2
+    s.camera(2 * math.atan(0.5), (0, 1, 2), [math.sin(a), 0, 0, math.cos(a)])
+    s.write(path)
+
+
 def lod_plane_scene(path):
     """The plane z = 0 (x, y in [-10, 10], facing +Z) emitting a 64x64
     checker of single texels (bilinear) repeated 10 times across: a texel is
@@ -367,6 +394,7 @@ def main():
     plane_scene(p("plane-half-light.gltf"), None, half_light=True)
     loader_scene(p("loader.gltf"))
     receding_scene(p("receding.gltf"))
+    receding_octaves_scene(p("receding-octaves.gltf"))
     lod_plane_scene(p("lod-plane.gltf"))
     lod_mirror_scene(p("lod-mirror.gltf"))
     foliage_scene(p("foliage.gltf"))

@@ -62,26 +62,32 @@ vec4 vertexColorAt(uint triangle, vec2 bary) {
 // Texture level of detail (the texlod axis, kFeatureTextureLod): the ray
 // cone's footprint at the hit being shaded (Akenine-Moller et al., "Improved
 // Shader and Texture Level of Detail Using Ray Cones", JCGT 2021). gTexLod:
-// per texture-coordinate set, log2 of the cone's width over |cos| at the hit
-// times the uv units per world unit there (sqrt of the triangle's uv area
-// over its area); kNoLod while nothing is being shaded (the first level).
-// A lookup's level is that plus log2 of the texture's texels per uv unit;
-// a fractional level reads one of the two levels around it at random
-// (stochastic trilinear: the expectation of the trilinear blend).
+// per texture-coordinate set, log2 of the cone's width at the hit times the
+// uv units per world unit there (sqrt of the triangle's uv area over its
+// area), plus kLodBias; kNoLod while nothing is being shaded (the first
+// level). The width is the footprint's minor axis: at a grazing angle the
+// footprint stretches by 1/|cos| along the view, and the pixel's own samples
+// integrate that axis, so an isotropic level at the major axis only blurs
+// (docs/experiments/textures.md). A lookup's level is that plus log2 of the
+// texture's texels per uv unit; a fractional level reads one of the two
+// levels around it at random (stochastic trilinear: the expectation of the
+// trilinear blend).
 const float kNoLod = -1.0e30;
+// Half a level sharper than the footprint: a level's box and bilinear
+// lookup span about two of its texels, and the pixel filter already
+// averages over the footprint (measured: docs/experiments/textures.md).
+const float kLodBias = -0.5;
 vec2 gTexLod = vec2(kNoLod);
 uint gTexLodHash = 0u;
 
 // The hit at `t`, barycentrics `bary`, on `triangle` (world edges e1, e2),
-// reached along `dir` by a cone `width` wide.
-void texLodAt(uint triangle, vec3 e1, vec3 e2, vec3 dir, float width, float t, vec2 bary) {
-    vec3 c = cross(e1, e2);
-    float area2 = length(c);
-    float cosine = abs(dot(dir, c)) / area2;
+// reached by a cone `width` wide.
+void texLodAt(uint triangle, vec3 e1, vec3 e2, float width, float t, vec2 bary) {
+    float area2 = length(cross(e1, e2));
     TriTexcoords tc = sceneTexcoords(triangle);
     vec4 d1 = tc.uv1 - tc.uv0, d2 = tc.uv2 - tc.uv0;
     vec2 uvArea2 = abs(vec2(d1.x * d2.y - d1.y * d2.x, d1.z * d2.w - d1.w * d2.z));
-    gTexLod = vec2(log2(width / max(cosine, 1e-3))) + 0.5 * log2(uvArea2 / area2);
+    gTexLod = vec2(log2(width) + kLodBias) + 0.5 * log2(uvArea2 / area2);
     gTexLodHash = hash4(floatBitsToUint(t), triangle, floatBitsToUint(bary.x), floatBitsToUint(bary.y));
 }
 

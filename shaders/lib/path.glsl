@@ -117,7 +117,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     // The ray cone reaches the hit; its footprint sets the texture levels
     // until the surface point is read.
     gConeWidth += gConeSpread * hit.t;
-    texLodAt(hit.triangle, e1, e2, dir, gConeWidth, hit.t, vec2(hit.u, hit.v));
+    texLodAt(hit.triangle, e1, e2, gConeWidth, hit.t, vec2(hit.u, hit.v));
 #endif
 #ifdef STRATA_AOV
     if (depth == 0u) gAov.depth = hit.t;
