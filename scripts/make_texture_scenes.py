@@ -352,6 +352,43 @@ def foliage_scene(path):
     s.write(path)
 
 
+def lod_sphere_scene(path):
+    """A smooth white metal mirror sphere (radius 1 at (0, 0, -4), 48 x 24
+    segments, its vertex normals exact) seen from the origin along -Z (20
+    degrees), reflecting a plane behind the camera (z = 0.5, facing -Z,
+    x and y in [-12.8, 12.8]) that emits a 64x64 checker of single texels
+    repeated twice across: a texel is 0.2 world units (texture LOD after a
+    reflection off a curved surface)."""
+    s = Scene()
+    plane = checker_emitter(s, "Plane")
+    h = 12.8
+    s.quad("Plane", [(h, -h, 0.5), (-h, -h, 0.5), (-h, h, 0.5), (h, h, 0.5)],
+           [(0, 2), (2, 2), (2, 0), (0, 0)], plane, (0, 0, -1))
+    mirror = s.material(name="Mirror", pbrMetallicRoughness={"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0,
+                                                             "roughnessFactor": 0.0})
+    rings, segments, centre = 24, 48, (0.0, 0.0, -4.0)
+    normals = []
+    for i in range(rings + 1):
+        theta = math.pi * i / rings
+        for j in range(segments + 1):
+            phi = 2 * math.pi * j / segments
+            normals.append((math.sin(theta) * math.cos(phi), math.cos(theta), math.sin(theta) * math.sin(phi)))
+    points = [tuple(c + n for c, n in zip(centre, v)) for v in normals]
+    indices = []
+    for i in range(rings):
+        for j in range(segments):
+            a, b = i * (segments + 1) + j, (i + 1) * (segments + 1) + j
+            if i > 0:
+                indices += [a, a + 1, b]
+            if i < rings - 1:
+                indices += [a + 1, b + 1, b]
+    prim = {"attributes": {"POSITION": s.w.add_vec3(points), "NORMAL": s.w.add_vec3(normals, with_bounds=False)},
+            "indices": s.w.add_indices(indices), "material": mirror}
+    s.roots.append(s.w.add_node("Sphere", mesh=s.w.add_mesh("Sphere", [prim])))
+    s.camera(math.radians(20), (0, 0, 0))
+    s.write(path)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "tests", "data", "textures")
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
@@ -397,6 +434,7 @@ def main():
     receding_octaves_scene(p("receding-octaves.gltf"))
     lod_plane_scene(p("lod-plane.gltf"))
     lod_mirror_scene(p("lod-mirror.gltf"))
+    lod_sphere_scene(p("lod-sphere.gltf"))
     foliage_scene(p("foliage.gltf"))
     broken_scenes(os.path.join(out, "broken"))
 

@@ -377,6 +377,38 @@ TEST_CASE("texture: LOD after a mirror bounce reads the level of the cone's whol
     CHECK(vk::validationMessageCount() == 0);
 }
 
+// lod-sphere.gltf at max depth 1: the checker plane seen in a smooth
+// mirror sphere of radius 1. The cone reaches the sphere w1 = spread x t1
+// wide and leaves it spreading by spread + 2 w1 / R (the sphere's
+// curvature, from its vertex normals); the level is that cone's width at
+// the plane (texels of 0.2), half a level sharp. Without the curvature
+// term the level reads about two lower.
+TEST_CASE("texture: LOD after a curved mirror widens the cone by the surface's curvature") {
+    RenderSettings s;
+    s.maxDepth = 1;
+    s.seed = 6;
+    const glm::dvec3 centre(0.0, 0.0, -4.0);
+    const MeasuredLevel m = measureLevel("lod-sphere.gltf", s, {}, [&](const CameraRays& rays, double spread, glm::dvec3 d) {
+        const glm::dvec3 oc = rays.origin - centre;
+        const double b = glm::dot(oc, d), disc = b * b - (glm::dot(oc, oc) - 1.0);
+        if (disc <= 0.0) return std::nan("");
+        const double t1 = -b - std::sqrt(disc);
+        const glm::dvec3 p = rays.origin + t1 * d, n = p - centre;
+        if (glm::dot(-d, n) < 0.5) return std::nan("");  // near the silhouette
+        const glm::dvec3 r = d - 2.0 * glm::dot(d, n) * n;
+        const double t2 = (0.5 - p.z) / r.z;
+        const glm::dvec3 q = p + t2 * r;
+        if (!(t2 > 0.0) || std::abs(q.x) > 12.0 || std::abs(q.y) > 12.0) return std::nan("");
+        const double w1 = spread * t1, w2 = w1 + (spread + 2.0 * w1) * t2;
+        return std::log2(w2 / 0.2) - 0.5;
+    });
+    MESSAGE("after the sphere: level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
+                                       << " pixels)");
+    REQUIRE(m.pixels >= 100);
+    CHECK(std::abs(m.measured - m.analytic) <= 0.25);
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 // foliage.gltf at max depth 0: leaves (MASK, 35% of the texels, emitting
 // green) over holes (red texels, alpha 0) in front of a blue emitter,
 // minified about 24 texels a pixel. Blue is the share of camera rays that

@@ -80,14 +80,26 @@ const float kLodBias = -0.5;
 vec2 gTexLod = vec2(kNoLod);
 uint gTexLodHash = 0u;
 
+// The curvature of a triangle (vertices tv, vertex normals sh) seen from
+// the side of `n`: the mean over its edges of the normals' change along the
+// edge over its length (exactly 1/R for a sphere's vertices and normals);
+// positive where convex. A cone reflected there spreads by 2 x this x its
+// width (Akenine-Moller et al. 2021).
+float triCurvature(TriVerts tv, TriShading sh, vec3 n) {
+    vec3 d01 = tv.v1.xyz - tv.v0.xyz, d02 = tv.v2.xyz - tv.v0.xyz, d12 = tv.v2.xyz - tv.v1.xyz;
+    float k = dot(sh.n1 - sh.n0, d01) / dot(d01, d01) + dot(sh.n2 - sh.n0, d02) / dot(d02, d02) +
+              dot(sh.n2 - sh.n1, d12) / dot(d12, d12);
+    return (dot(sh.n0 + sh.n1 + sh.n2, n) < 0.0 ? -k : k) / 3.0;
+}
+
 // The hit at `t`, barycentrics `bary`, on `triangle` (world edges e1, e2),
-// reached by a cone `width` wide.
+// reached by a cone `width` wide (negative past a focus: its size is |width|).
 void texLodAt(uint triangle, vec3 e1, vec3 e2, float width, float t, vec2 bary) {
     float area2 = length(cross(e1, e2));
     TriTexcoords tc = sceneTexcoords(triangle);
     vec4 d1 = tc.uv1 - tc.uv0, d2 = tc.uv2 - tc.uv0;
     vec2 uvArea2 = abs(vec2(d1.x * d2.y - d1.y * d2.x, d1.z * d2.w - d1.w * d2.z));
-    gTexLod = vec2(log2(width) + kLodBias) + 0.5 * log2(uvArea2 / area2);
+    gTexLod = vec2(log2(abs(width)) + kLodBias) + 0.5 * log2(uvArea2 / area2);
     gTexLodHash = hash4(floatBitsToUint(t), triangle, floatBitsToUint(bary.x), floatBitsToUint(bary.y));
 }
 

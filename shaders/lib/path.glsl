@@ -263,9 +263,11 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             v.prevBsdfPdf = bs.pdf;
             v.prevDelta = bs.delta;
 #ifdef STRATA_TEXTURE_LOD
-            // A rough lobe widens the cone by twice its GGX alpha (a smooth
-            // one, by nothing: the surface's curvature is not modelled).
+            // A rough lobe widens the cone by twice its GGX alpha; a
+            // reflection off a curved surface turns it by twice the normal's
+            // turn across its width (convex widens, concave narrows).
             if (!bs.delta) gConeSpread += 2.0 * sp.roughness * sp.roughness;
+            if (bs.wi.z > 0.0) gConeSpread += 2.0 * triCurvature(tv, sh, n) * gConeWidth;
 #endif
 #ifdef STRATA_LIGHT_TREE
             v.prevP = p;
