@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "util/error.h"
+
 namespace strata {
 namespace {
 
@@ -28,8 +30,11 @@ SceneRequest sceneRequest(const RenderSettings& settings, const RenderTuning& tu
 }
 
 Scene loadScene(const SceneRequest& request) {
-    if (request.bytes) return loadSceneWithEnvironment(request.file, *request.bytes, request.env, request.load);
-    return loadSceneWithEnvironment(request.file, request.env, request.load);
+    HeldWarnings held;  // printed once the scene has loaded, dropped on an error
+    Scene scene = request.bytes ? loadSceneWithEnvironment(request.file, *request.bytes, request.env, request.load)
+                                : loadSceneWithEnvironment(request.file, request.env, request.load);
+    held.release();
+    return scene;
 }
 
 Camera requestedCamera(const SceneRequest& request, const Scene& scene) {
@@ -38,11 +43,13 @@ Camera requestedCamera(const SceneRequest& request, const Scene& scene) {
 }
 
 HostScene prepareScene(const SceneRequest& request) {
+    HeldWarnings held;  // the loader's and the packer's, until both are done
     const auto t0 = std::chrono::steady_clock::now();
     Scene scene = loadScene(request);
     const double loadMs = msSince(t0);
     HostScene h = prepareScene(request, std::move(scene));
     h.loadMs = loadMs;
+    held.release();
     return h;
 }
 

@@ -81,6 +81,13 @@ def main():
     w.doc["accessors"][w.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]["count"] = 100
     write("accessor-out-of-range.gltf", w, roots)
 
+    # An unsupported extension (a warning) in a file that then fails: the
+    # error line alone.
+    w, roots = scene()
+    w.use_extensions(["EXT_unknown_vendor_thing"])
+    w.doc["accessors"][w.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]["count"] = 100
+    write("warned-then-broken.gltf", w, roots)
+
     # Index 7 into a 4-vertex primitive.
     w, roots = scene(light_indices=[0, 1, 2, 0, 2, 7])
     write("index-out-of-range.gltf", w, roots)
