@@ -80,8 +80,8 @@ TEST_CASE("EXT_texture_webp: the WebP source through libwebp, else the fallback 
     REQUIRE(required.textures.at(0).image == 0);
     CHECK(required.images[0].data == checker());
     const std::string corrupt = webpPath("webp-corrupt.gltf");
-    CHECK(loadError(corrupt) == corrupt + ": error: image 1 (\"corrupt.webp\"): cannot decode 40 bytes: a corrupt "
-                                          "WebP image (libwebp)");
+    CHECK(loadError(corrupt) == corrupt + ": error: material 0 (\"Checker\") emissiveTexture: texture 0: image 1 "
+                                          "(\"corrupt.webp\"): cannot decode 40 bytes: a corrupt WebP image (libwebp)");
     checkRenderRefuses(corrupt);
 #else
     CHECK(capture.text() == path + ": warning: extension EXT_texture_webp is used but strata was built without the "

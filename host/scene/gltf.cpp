@@ -150,15 +150,13 @@ public:
     // their meshes were first reached: `N primitive(s) that are not
     // triangles: mesh 1 ("Wire") primitive 0 (LINES), ...`, the first three
     // named; empty when none.
-    std::string skippedPrimitives() const {
-        if (skipped_.empty()) return {};
-        constexpr std::size_t kNamed = 3;
-        std::string out = std::to_string(skipped_.size()) + " primitive(s) that are not triangles: ";
-        for (std::size_t i = 0; i < std::min(skipped_.size(), kNamed); ++i) {
-            out += (i == 0 ? "" : ", ") + skipped_[i];
-        }
-        if (skipped_.size() > kNamed) out += " and " + std::to_string(skipped_.size() - kNamed) + " more";
-        return out;
+    std::string skippedPrimitives() const { return listed(skipped_, " primitive(s) that are not triangles: "); }
+
+    // The primitives glTF 2.0 says not to render (no POSITION; a
+    // non-indexed triangle list whose count is not a multiple of 3), listed
+    // the same way.
+    std::string invalidPrimitives() const {
+        return listed(invalid_, " primitive(s) that glTF 2.0 says not to render: ");
     }
 
     // One warning each, after the walk: zero-power lights dropped, ranges ignored.
@@ -242,6 +240,7 @@ private:
         if (!decoded) {
             decoded = gltf::decodeMesh(path_, model_, mesh);
             skipped_.insert(skipped_.end(), decoded->skipped.begin(), decoded->skipped.end());
+            invalid_.insert(invalid_.end(), decoded->invalid.begin(), decoded->invalid.end());
         }
         return *decoded;
     }
@@ -484,6 +483,17 @@ private:
     std::map<SharedKey, std::uint32_t> shared_;      // -> index into scene_.sharedMeshes
     std::vector<std::optional<LocalMesh>> meshes_;  // decoded on first use
     std::vector<std::string> skipped_;              // LocalMesh::skipped of each decoded mesh
+    std::vector<std::string> invalid_;              // LocalMesh::invalid of each decoded mesh
+
+    // "N<what>first, second, third and M more".
+    static std::string listed(const std::vector<std::string>& items, const std::string& what) {
+        if (items.empty()) return {};
+        constexpr std::size_t kNamed = 3;
+        std::string out = std::to_string(items.size()) + what;
+        for (std::size_t i = 0; i < std::min(items.size(), kNamed); ++i) out += (i == 0 ? "" : ", ") + items[i];
+        if (items.size() > kNamed) out += " and " + std::to_string(items.size() - kNamed) + " more";
+        return out;
+    }
     bool usesDefault_ = false;
     std::size_t zeroLights_ = 0;
     std::size_t rangeIgnored_ = 0;
@@ -535,8 +545,9 @@ Scene loadGltf(const std::string& path, const std::vector<unsigned char>& bytes,
     builder.walk(sceneIndex);
     if (options.motion.frames && animation && builder.poseTargets().complete)
         scene.poser = gltf::makePoser(path, model, std::move(*animation), std::move(builder.poseTargets()));
-    const std::string skipped = builder.skippedPrimitives();
+    const std::string skipped = builder.skippedPrimitives(), invalid = builder.invalidPrimitives();
     if (scene.triangles.empty() && !skipped.empty()) fail(path, "no triangles to render: skipped " + skipped);
+    if (scene.triangles.empty() && !invalid.empty()) fail(path, "no triangles to render: skipped " + invalid);
     if (builder.usesDefaultMaterial() || scene.materials.empty()) {
         MaterialDesc fallback;  // glTF defaults
         fallback.name = "default";
@@ -572,6 +583,7 @@ Scene loadGltf(const std::string& path, const std::vector<unsigned char>& bytes,
     }
     builder.warnLights();
     if (!skipped.empty()) warn(path, "skipped " + skipped);
+    if (!invalid.empty()) warn(path, "skipped " + invalid);
     if (scene.droppedEmitters > 0) {
         warn(path, dropped + "; they are kept as geometry but emit no light");
     }

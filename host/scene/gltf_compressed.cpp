@@ -1,7 +1,12 @@
-// What the KHR_draco_mesh_compression and EXT_meshopt_compression decoders
-// share: the JSON that tinygltf 2.7 refuses, rewritten before it parses and
-// restored after; the range check of compressed bytes; the extension
-// objects' integer fields; which decoders this build has.
+// The JSON that tinygltf 2.7 refuses where glTF 2.0 allows it (the
+// compressed extensions' indices and fallback buffers, skins without
+// inverseBindMatrices, KHR_animation_pointer channels, image data: URIs of
+// newer media types), rewritten before it
+// parses and restored after; and what the KHR_draco_mesh_compression and
+// EXT_meshopt_compression decoders share: the range check of compressed
+// bytes, the extension objects' integer fields, which decoders this build
+// has.
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -109,6 +114,92 @@ void replaceFallbackBuffers(Json& root, bool binary, TinygltfFixups& fixups) {
     }
 }
 
+// Skins without inverseBindMatrices (optional: identity matrices, glTF 2.0
+// 3.7.3.1): tinygltf 2.7 requires the property, so it is given -1 (none),
+// which the skinning reads as identity.
+void markSkinsWithoutInverseBind(Json& root, TinygltfFixups& fixups) {
+    Json* skins = root.is_object() && root.contains("skins") ? &root["skins"] : nullptr;
+    if (!skins || !skins->is_array()) return;
+    for (Json& skin : *skins)
+        if (skin.is_object() && !skin.contains("inverseBindMatrices")) {
+            skin["inverseBindMatrices"] = -1;
+            fixups.changed = true;
+        }
+}
+
+// KHR_animation_pointer channels (their target has a JSON pointer instead
+// of a node, which tinygltf 2.7 requires): a pointer to a node's
+// translation, rotation, scale or weights becomes that node's channel;
+// every other target is dropped, counted in one warning.
+void rewritePointerChannels(Json& root, TinygltfFixups& fixups) {
+    Json* animations = root.is_object() && root.contains("animations") ? &root["animations"] : nullptr;
+    if (!animations || !animations->is_array()) return;
+    std::size_t dropped = 0;
+    std::string firstDropped;
+    for (Json& animation : *animations) {
+        Json* channels = animation.is_object() && animation.contains("channels") ? &animation["channels"] : nullptr;
+        if (!channels || !channels->is_array()) continue;
+        Json kept = Json::array();
+        for (Json& channel : *channels) {
+            Json* target = channel.is_object() && channel.contains("target") ? &channel["target"] : nullptr;
+            const Json* extensions = target ? member(*target, "extensions") : nullptr;
+            const Json* ext = extensions ? member(*extensions, "KHR_animation_pointer") : nullptr;
+            const Json* pointer = ext ? member(*ext, "pointer") : nullptr;
+            if (!pointer || member(*target, "node")) {
+                kept.push_back(std::move(channel));
+                continue;
+            }
+            fixups.changed = true;
+            const std::string p = pointer->is_string() ? pointer->get<std::string>() : std::string();
+            unsigned node = 0;
+            char property[16] = {};
+            int used = 0;
+            if (std::sscanf(p.c_str(), "/nodes/%u/%15[a-z]%n", &node, property, &used) == 2 &&
+                std::size_t(used) == p.size() && node <= unsigned(std::numeric_limits<int>::max()) &&
+                (std::strcmp(property, "translation") == 0 || std::strcmp(property, "rotation") == 0 ||
+                 std::strcmp(property, "scale") == 0 || std::strcmp(property, "weights") == 0)) {
+                (*target)["node"] = node;
+                (*target)["path"] = property;
+                kept.push_back(std::move(channel));
+                continue;
+            }
+            if (dropped++ == 0) firstDropped = p;
+        }
+        *channels = std::move(kept);
+    }
+    if (dropped > 0)
+        fixups.warnings.push_back("KHR_animation_pointer: " + std::to_string(dropped) +
+                                  " channel(s) animating other than a node's transform or weights ignored (first: " +
+                                  firstDropped + ")");
+}
+
+// Images embedded as data: URIs of a media type tinygltf 2.7 does not list
+// (image/webp, image/ktx2, image/avif...: it then takes the uri for a file
+// name): given as application/octet-stream, which it decodes; the image
+// decoder tells the formats apart by their bytes.
+void retypeImageDataUris(Json& root, TinygltfFixups& fixups) {
+    Json* images = root.is_object() && root.contains("images") ? &root["images"] : nullptr;
+    if (!images || !images->is_array()) return;
+    for (Json& image : *images) {
+        Json* uri = image.is_object() && image.contains("uri") ? &image["uri"] : nullptr;
+        if (!uri || !uri->is_string()) continue;
+        const std::string& text = uri->get_ref<const std::string&>();
+        const std::size_t base64 = text.find(";base64,");
+        if (text.rfind("data:image/", 0) != 0 || base64 == std::string::npos) continue;
+        const std::string type = text.substr(11, base64 - 11);
+        if (type == "png" || type == "jpeg" || type == "bmp" || type == "gif") continue;
+        *uri = "data:application/octet-stream" + text.substr(base64);
+        fixups.changed = true;
+    }
+}
+
+// How often `what` occurs in `json`.
+std::size_t occurrences(std::string_view json, std::string_view what) {
+    std::size_t n = 0;
+    for (std::size_t at = json.find(what); at != std::string_view::npos; at = json.find(what, at + what.size())) ++n;
+    return n;
+}
+
 // A GLB with its JSON chunk replaced (padded with spaces to a 4-byte
 // boundary, as glTF 2.0's "Binary glTF Layout" asks) and every later chunk
 // kept; `jsonEnd` is where the old JSON chunk ends, `length` the header's
@@ -149,15 +240,23 @@ TinygltfFixups prepareForTinygltf(const std::vector<unsigned char>& bytes, bool 
                           jsonEnd - jsonBegin);
     // Some writers pad the JSON chunk with NULs instead of spaces.
     while (!text.empty() && text.back() == '\0') text.remove_suffix(1);
-    // Only files that can hold an indices accessor without bufferView (a Draco
-    // primitive, or zeros with a sparse substitution) or a meshopt fallback
-    // buffer are parsed twice.
-    if (!mentions(text, kDraco) && !mentions(text, kMeshopt) && !mentions(text, "\"sparse\"")) return fixups;
+    // Only files that may hold what tinygltf refuses are parsed twice: an
+    // accessor without bufferView (fewer "bufferView" than accessors' one
+    // "componentType" each, or Draco, sparse), a meshopt fallback buffer,
+    // a skin, a pointer animation.
+    const bool viewless = occurrences(text, "\"componentType\"") > occurrences(text, "\"bufferView\"");
+    if (!viewless && !mentions(text, kDraco) && !mentions(text, kMeshopt) && !mentions(text, "\"sparse\"") &&
+        !mentions(text, "\"skins\"") && !mentions(text, "KHR_animation_pointer") && !mentions(text, "data:image/webp") &&
+        !mentions(text, "data:image/ktx2") && !mentions(text, "data:image/avif"))
+        return fixups;
     Json root = Json::parse(text, nullptr, false);
     if (root.is_discarded()) return fixups;  // tinygltf reports the JSON error
     hideIndicesWithoutView(root, fixups);
     if (mentions(text, kMeshopt)) replaceFallbackBuffers(root, binary, fixups);
-    if (fixups.indices.empty() && fixups.placeholders.empty()) return fixups;
+    markSkinsWithoutInverseBind(root, fixups);
+    rewritePointerChannels(root, fixups);
+    retypeImageDataUris(root, fixups);
+    if (fixups.indices.empty() && fixups.placeholders.empty() && !fixups.changed) return fixups;
 
     const std::string json = root.dump();
     if (binary) {

@@ -17,6 +17,11 @@
 
 namespace strata::gltf {
 
+// The key under which parseModel leaves, in an image's extras, why it could
+// not be decoded (the image is left without pixels: an error only where a
+// material reads it).
+inline constexpr const char* kUndecodable = "strata-undecodable";
+
 // The file parsed by tinygltf (JSON or binary glTF, told apart by the GLB
 // magic), buffers and images resolved next to the file only: relative
 // paths, inside the canonical folder `restrictPaths` unless it is empty.
@@ -183,6 +188,9 @@ struct LocalMesh {
     // One entry per POINTS/LINES/LINE_LOOP/LINE_STRIP primitive, in file
     // order: `mesh 1 ("Wire") primitive 0 (LINES)`.
     std::vector<std::string> skipped;
+    // One entry per primitive glTF 2.0 says not to render (no POSITION, a
+    // non-indexed triangle count not a multiple of 3): `... primitive 1 (no POSITION)`.
+    std::vector<std::string> invalid;
 };
 
 // Decodes every primitive of `mesh` (gltf_mesh.cpp). TRIANGLES as they are;
@@ -205,8 +213,13 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
 // without bufferView (every Draco-compressed primitive's), so such `indices`
 // are removed; it refuses a buffer without uri in a .gltf (an
 // EXT_meshopt_compression fallback buffer), so fallback buffers load as a
-// one-byte placeholder whose data is then emptied. Only files that name
-// either extension are parsed for this.
+// one-byte placeholder whose data is then emptied; it requires a skin's
+// inverseBindMatrices (given -1: identity) and a channel's node
+// (KHR_animation_pointer channels: a node's transform or weights become
+// that node's channel, others are dropped with a warning); it reads image
+// data: URIs of four media types only (others, WebP and KTX2 among them,
+// are given as application/octet-stream). Only files that may hold one of
+// these are parsed for this (gltf_compressed.cpp).
 struct TinygltfFixups {
     struct HiddenIndices {
         std::size_t mesh, primitive;
@@ -215,6 +228,8 @@ struct TinygltfFixups {
     std::vector<unsigned char> bytes;  // the file with its JSON rewritten; empty: unchanged
     std::vector<HiddenIndices> indices;
     std::vector<std::size_t> placeholders;  // buffer indices, emptied after the parse
+    bool changed = false;                   // other rewrites (skins, pointer channels)
+    std::vector<std::string> warnings;      // to print once the file has parsed
 };
 TinygltfFixups prepareForTinygltf(const std::vector<unsigned char>& bytes, bool binary);
 void restoreAfterTinygltf(const TinygltfFixups& fixups, tinygltf::Model& model);

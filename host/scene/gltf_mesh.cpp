@@ -204,7 +204,11 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
 
         if (!draco) {
             const auto position = prim.attributes.find("POSITION");
-            if (position == prim.attributes.end()) fail(path, label + ": has no POSITION attribute");
+            // glTF 2.0 3.7.2.1: a primitive without positions is not rendered.
+            if (position == prim.attributes.end()) {
+                out.invalid.push_back(label + " (no POSITION)");
+                continue;
+            }
             local.positions =
                 readPositions(path, model, position->second, label + " POSITION", quantization);
         }
@@ -264,8 +268,9 @@ LocalMesh decodeMesh(const std::string& path, const tinygltf::Model& model, int 
             }
         } else {
             if (triangles && vertexCount % 3 != 0) {
-                fail(path, label + ": vertex count " + std::to_string(vertexCount) +
-                               " of a non-indexed primitive is not a multiple of 3");
+                out.invalid.push_back(label + " (" + std::to_string(vertexCount) +
+                                      " vertices without indices, not a multiple of 3)");
+                continue;
             }
             sequence.resize(vertexCount);
             for (std::size_t i = 0; i < vertexCount; ++i) {

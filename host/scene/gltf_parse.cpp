@@ -16,6 +16,7 @@
 #include <webp/decode.h>
 #endif
 
+#include "scene/gltf_deform.h"
 #include "scene/gltf_internal.h"
 #include "util/error.h"
 #include "util/files.h"
@@ -35,7 +36,7 @@ constexpr std::string_view kSupportedExtensions[] = {
     "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_variants",
     "KHR_materials_volume", "KHR_mesh_quantization",
-    "KHR_texture_transform", "EXT_texture_webp", "KHR_texture_basisu"};
+    "KHR_texture_transform", "EXT_texture_webp", "KHR_texture_basisu", "KHR_animation_pointer"};
 
 std::string supportedList() {
     std::string out;
@@ -79,6 +80,9 @@ std::string uriProblem(const std::string& uri) {
         ++i;
     if (i > 0 && i < uri.size() && uri[i] == ':' && std::isalpha(static_cast<unsigned char>(uri[0]))) {
         if (i == 1) return "is an absolute (drive letter) path; a glTF uri is a path relative to the scene's folder or a data: URI";
+        if (uri.compare(0, 5, "data:") == 0)
+            return "is a data: URI strata cannot read (base64 data of the media types of glTF buffers and images "
+                   "only)";
         return "has the scheme " + gltf::quoted(uri.substr(0, i + 1)) +
                "; strata reads paths relative to the scene's folder and data: URIs only";
     }
@@ -154,6 +158,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
 // as one message naming the image instead of tinygltf's multi-line text.
 struct ImageContext {
     std::string failure;
+    std::vector<std::string> undecodable;  // images left without pixels: a warning, an error where read
     std::uint64_t budget = 0;   // host memory the decoded images may take (0: no limit)
     std::uint64_t decoded = 0;  // bytes the images decoded so far claimed
 };
@@ -248,9 +253,15 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
         decoded = tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr);
     }
     if (decoded) return true;
-    context->failure = label + ": cannot decode " + std::to_string(size) + " bytes: " + what;
-    if (err) *err += context->failure + "\n";
-    return false;
+    // glTF 2.0 lets a texture fall back from an image strata cannot read
+    // (EXT_texture_avif's, say) and lets an image go unused: left without
+    // pixels, an error only where a material reads it (textureImage).
+    context->undecodable.push_back(label + ": cannot decode " + std::to_string(size) + " bytes: " + what);
+    image->image.clear();
+    tinygltf::Value::Object why;
+    why[kUndecodable] = tinygltf::Value(context->undecodable.back());
+    image->extras = tinygltf::Value(why);  // the message for textureImage
+    return true;
 }
 
 // Little-endian u32 at `offset`.
@@ -302,6 +313,22 @@ void checkJsonDepth(const std::string& path, const unsigned char* begin, const u
 bool isSupported(const std::string& extension) {
     return std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), extension) !=
            std::end(kSupportedExtensions);
+}
+
+// glTF 2.0 (5.25, node.matrix) asks for an affine matrix; one whose last row
+// is not (0, 0, 0, 1) is applied without that row, with one warning for
+// the file.
+void warnProjectiveMatrices(const std::string& path, const tinygltf::Model& model) {
+    std::size_t count = 0;
+    std::string first;
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+        const std::vector<double>& m = model.nodes[n].matrix;
+        if (m.size() != 16 || (m[3] == 0.0 && m[7] == 0.0 && m[11] == 0.0 && m[15] == 1.0)) continue;
+        if (count++ == 0) first = nodeName(model, static_cast<int>(n));
+    }
+    if (count > 0)
+        warn(path, std::to_string(count) + " node matrix(es) with a last row other than (0, 0, 0, 1), applied as "
+                   "affine (the row ignored; first: " + first + ")");
 }
 
 }  // namespace
@@ -386,7 +413,12 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<unsigned c
     if (!ok || !why.empty()) fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
     const std::string notes = gltf::oneLine(warnings);
     if (!notes.empty()) warn(path, notes);
+    if (!imageContext.undecodable.empty())
+        warn(path, std::to_string(imageContext.undecodable.size()) + " image(s) not decoded, left unused (first: " +
+                       imageContext.undecodable.front() + ")");
     restoreAfterTinygltf(fixups, model);
+    for (const std::string& w : fixups.warnings) warn(path, w);
+    warnProjectiveMatrices(path, model);
     return model;
 }
 

@@ -79,6 +79,13 @@ int extensionSource(const tinygltf::Texture& texture, const char* name) {
     return it->second.Get("source").GetNumberAsInt();
 }
 
+// A texture with neither a source nor an extension's (glTF 2.0 leaves it
+// to other means): its slots read as absent.
+bool sourceless(const tinygltf::Texture& texture) {
+    return texture.source < 0 && extensionSource(texture, "EXT_texture_webp") < 0 &&
+           extensionSource(texture, "KHR_texture_basisu") < 0;
+}
+
 }  // namespace
 
 int textureImage(const tinygltf::Model& model, int index, std::string& why) {
@@ -102,8 +109,11 @@ int textureImage(const tinygltf::Model& model, int index, std::string& why) {
         return -1;
     }
     if (model.images[static_cast<std::size_t>(image)].image.empty()) {
-        why = "image " + std::to_string(image) + " has no decoded pixels (a WebP image needs libwebp; KTX2 is "
-              "not decoded)";
+        const tinygltf::Value& extras = model.images[static_cast<std::size_t>(image)].extras;
+        why = extras.IsObject() && extras.Has(kUndecodable) && extras.Get(kUndecodable).IsString()
+                  ? extras.Get(kUndecodable).Get<std::string>()
+                  : "image " + std::to_string(image) + " has no decoded pixels (a WebP image needs libwebp; KTX2 is "
+                    "not decoded)";
         return -1;
     }
     return image;
@@ -147,6 +157,10 @@ void convertTextures(const std::string& path, const tinygltf::Model& model, Scen
         image.data = src.image;
         scene.images.push_back(std::move(image));
     }
+    std::size_t sourceless = 0;
+    for (std::size_t i = 0; i < model.textures.size(); ++i) sourceless += gltf::sourceless(model.textures[i]);
+    if (sourceless > 0)
+        warn(path, std::to_string(sourceless) + " texture(s) without a source image: the materials read them as absent");
     for (std::size_t i = 0; i < model.textures.size(); ++i) {
         const tinygltf::Texture& src = model.textures[i];
         const std::string label = "texture " + std::to_string(i);
@@ -181,6 +195,7 @@ TextureSlot convertTextureSlot(const std::string& path, const tinygltf::Model& m
         fail(path, label + ": texture " + std::to_string(index) + " does not exist (" +
                        std::to_string(model.textures.size()) + " textures)");
     }
+    if (sourceless(model.textures[static_cast<std::size_t>(index)])) return slot;  // warned in convertTextures
     std::string why;
     if (textureImage(model, index, why) < 0) fail(path, label + ": texture " + std::to_string(index) + ": " + why);
     slot.texture = index;
