@@ -1,7 +1,8 @@
 // Files glTF 2.0 calls valid that strata once refused (issue 45: running
 // strata on Khronos' glTF-Validator test corpus), written by
 // tests/data/make_validator.py: each loads, read as the spec says (a part
-// skipped with one warning, a default used, a fallback taken).
+// skipped with one warning, a default used, a fallback taken); and
+// KHR_node_visibility.
 #include <doctest/doctest.h>
 
 #include <string>
@@ -81,6 +82,13 @@ TEST_CASE("validator corpus: KHR_animation_pointer moves a node through its poin
     at1.motion.enabled = true;
     at1.motion.open = at1.motion.close = 1.0;  // the pose at t = 1: translated by (2, 0, 0)
     checkTriangle(loadChecked("animation-pointer.gltf", ignored, at1), glm::vec3(2, 0, 0));
+}
+
+TEST_CASE("KHR_node_visibility: a hidden node hides its subtree's meshes, not its camera") {
+    const Scene scene = loadChecked("node-visibility.gltf", "");
+    CHECK(scene.triangles.size() == 1);
+    checkTriangle(scene, glm::vec3(0));
+    REQUIRE(scene.cameras.size() == 1);  // under the hidden node
 }
 
 #if STRATA_WEBP

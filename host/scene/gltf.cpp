@@ -72,6 +72,7 @@ public:
         for (std::size_t k = 0; k < visits.size(); ++k) {
             const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
             const int mesh = node.mesh;
+            if (!visits[k].visible) continue;  // KHR_node_visibility: not rendered
             if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshCount) continue;  // visit reports it
             decodedMesh(mesh);  // in the order the meshes are reached (skippedPrimitives)
             placements[std::size_t(mesh)] += std::max<std::size_t>(1, gltf::gpuInstanceCount(model_, visits[k].node));
@@ -111,12 +112,12 @@ public:
         }
         checkHostMemory(triangles, instances, visits.size());
         for (std::size_t k = 0; k < visits.size(); ++k)  // their count checked above
-            gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
+            if (visits[k].visible) gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
         if (stillMoving > 0 && timeline_->blurs())
             warn(path_, std::to_string(stillMoving) + " moving mesh(es) are skinned or have morph targets: "
                         "rendered at the pose at the shutter's open, without motion blur");
         reserveHuge(scene_.triangles, triangles);
-        for (std::size_t k = 0; k < visits.size(); ++k) visit(visits[k].node, visits[k].world, gpu[k]);
+        for (std::size_t k = 0; k < visits.size(); ++k) visit(visits[k].node, visits[k].world, gpu[k], visits[k].visible);
         // The instanced meshes' own triangles after the world's, once per
         // winding their placements need.
         std::vector<std::pair<SharedKey, std::uint32_t>> order(shared_.begin(), shared_.end());
@@ -245,9 +246,11 @@ private:
         return *decoded;
     }
 
-    void visit(int nodeIndex, const glm::dmat4& world, const gltf::GpuInstances& gpu) {
+    // A node's camera, mesh and light; a hidden one's camera alone (KHR_node_visibility).
+    void visit(int nodeIndex, const glm::dmat4& world, const gltf::GpuInstances& gpu, bool visible) {
         const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
         if (node.camera >= 0 || node.camera < -1) addCamera(nodeIndex, world);
+        if (!visible) return;
         if (node.mesh >= 0 || node.mesh < -1) {
             if (gpu.count == 0) {
                 place(nodeIndex, world, glm::dmat4(1.0), nodeName(model_, nodeIndex));

@@ -132,6 +132,9 @@ glm::dmat4 nodeTransform(const std::string& path, const tinygltf::Model& model, 
 struct NodeVisit {
     int node;
     glm::dmat4 world;
+    // KHR_node_visibility: false where the node or an ancestor has
+    // visible: false (its meshes and lights are not rendered; its camera is).
+    bool visible = true;
 };
 std::vector<NodeVisit> walkNodes(const std::string& path, const tinygltf::Model& model, int sceneIndex,
                                  const std::function<glm::dmat4(int node, int parent)>& local);

@@ -51,6 +51,16 @@ glm::dmat4 nodeTransform(const std::string& path, const tinygltf::Model& model, 
     return m;
 }
 
+// KHR_node_visibility's `visible` of a node (true without the extension).
+bool nodeVisible(const std::string& path, const tinygltf::Model& model, int index) {
+    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
+    const auto it = node.extensions.find("KHR_node_visibility");
+    if (it == node.extensions.end() || !it->second.IsObject() || !it->second.Has("visible")) return true;
+    const tinygltf::Value& v = it->second.Get("visible");
+    if (!v.IsBool()) fail(path, nodeName(model, index) + ": KHR_node_visibility.visible is not a boolean");
+    return v.Get<bool>();
+}
+
 std::vector<NodeVisit> walkNodes(const std::string& path, const tinygltf::Model& model, int sceneIndex,
                                  const std::function<glm::dmat4(int node, int parent)>& local) {
     const tinygltf::Scene& s = model.scenes[static_cast<std::size_t>(sceneIndex)];
@@ -61,10 +71,11 @@ std::vector<NodeVisit> walkNodes(const std::string& path, const tinygltf::Model&
         int node;
         glm::dmat4 world;
         std::size_t nextChild;
+        bool visible;
     };
     std::vector<Frame> stack;
     std::vector<NodeVisit> visits;
-    auto enter = [&](int node, const glm::dmat4& parent, int parentNode) {
+    auto enter = [&](int node, const glm::dmat4& parent, int parentNode, bool parentVisible) {
         if (onPath[static_cast<std::size_t>(node)]) {
             fail(path, nodeName(model, node) + " is its own ancestor (cycle in the node hierarchy)");
         }
@@ -77,16 +88,17 @@ std::vector<NodeVisit> walkNodes(const std::string& path, const tinygltf::Model&
         }
         entered[static_cast<std::size_t>(node)] = 1;
         const glm::dmat4 world = parent * local(node, parentNode);
-        visits.push_back({node, world});
+        const bool visible = parentVisible && nodeVisible(path, model, node);
+        visits.push_back({node, world, visible});
         onPath[static_cast<std::size_t>(node)] = 1;
-        stack.push_back({node, world, 0});
+        stack.push_back({node, world, 0, visible});
     };
     for (const int root : s.nodes) {
         if (!valid(root)) {
             fail(path, "scene " + std::to_string(sceneIndex) + ": node " + std::to_string(root) + " does not exist (" +
                            std::to_string(count) + " nodes)");
         }
-        enter(root, glm::dmat4(1.0), -1);
+        enter(root, glm::dmat4(1.0), -1, true);
         while (!stack.empty()) {
             Frame& top = stack.back();
             const auto& children = model.nodes[static_cast<std::size_t>(top.node)].children;
@@ -101,7 +113,7 @@ std::vector<NodeVisit> walkNodes(const std::string& path, const tinygltf::Model&
                                std::to_string(count) + " nodes)");
             }
             const glm::dmat4 parent = top.world;
-            enter(child, parent, top.node);
+            enter(child, parent, top.node, top.visible);
         }
     }
     return visits;

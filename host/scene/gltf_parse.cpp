@@ -36,7 +36,8 @@ constexpr std::string_view kSupportedExtensions[] = {
     "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_variants",
     "KHR_materials_volume", "KHR_mesh_quantization",
-    "KHR_texture_transform", "EXT_texture_webp", "KHR_texture_basisu", "KHR_animation_pointer"};
+    "KHR_texture_transform", "EXT_texture_webp", "KHR_texture_basisu", "KHR_animation_pointer",
+    "KHR_node_visibility"};
 
 std::string supportedList() {
     std::string out;

@@ -124,6 +124,18 @@ def main():
     f.doc["textures"] = [{"source": 0}]
     f.doc["materials"][0]["emissiveTexture"] = {"index": 0}
     f.write("webp-data-uri.gltf")
+    # KHR_node_visibility: a hidden node (visible: false) with a visible
+    # child, both with a triangle, beside the visible one; the camera sits
+    # under the hidden node.
+    f = File()
+    f.doc["nodes"][1]["name"] = "Camera"
+    f.doc["nodes"] += [{"name": "Hidden", "mesh": 0, "translation": [5, 0, 0], "children": [1, 3],
+                        "extensions": {"KHR_node_visibility": {"visible": False}}},
+                       {"name": "Child", "mesh": 0, "translation": [0, 5, 0],
+                        "extensions": {"KHR_node_visibility": {"visible": True}}}]
+    f.doc["scenes"][0]["nodes"] = [0, 2]
+    f.doc["extensionsUsed"] = ["KHR_node_visibility"]
+    f.write("node-visibility.gltf")
     print("wrote", OUT)
 
 
