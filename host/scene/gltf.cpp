@@ -111,8 +111,14 @@ public:
             if (instance) instances += placements[m];  // a node adds at most max(2^20, its buffers' bytes): no overflow
         }
         checkHostMemory(triangles, instances, visits.size());
-        for (std::size_t k = 0; k < visits.size(); ++k)  // their count checked above
-            if (visits[k].visible) gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
+        // Their count checked above; a mesh without triangles (every
+        // primitive skipped) places nothing, so its instances go unread.
+        for (std::size_t k = 0; k < visits.size(); ++k) {
+            const int mesh = model_.nodes[static_cast<std::size_t>(visits[k].node)].mesh;
+            const bool empty = mesh >= 0 && std::size_t(mesh) < meshCount && meshTriangles[std::size_t(mesh)] == 0;
+            if (visits[k].visible && !empty)
+                gpu[k] = gltf::readGpuInstances(path_, model_, visits[k].node, nodeName(model_, visits[k].node));
+        }
         if (stillMoving > 0 && timeline_->blurs())
             warn(path_, std::to_string(stillMoving) + " moving mesh(es) are skinned or have morph targets: "
                         "rendered at the pose at the shutter's open, without motion blur");
