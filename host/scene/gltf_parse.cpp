@@ -367,8 +367,10 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<unsigned c
     std::string baseDir = std::filesystem::path(path).parent_path().string();
     if (baseDir.empty()) baseDir = ".";
 
-    // KHR_draco_mesh_compression and EXT_meshopt_compression files: JSON that
-    // tinygltf refuses, rewritten (gltf_compressed.cpp).
+    // JSON that tinygltf 2.7 refuses where glTF allows it (the compressed
+    // extensions' indices and buffers, skins without inverseBindMatrices,
+    // pointer animations, newer image data: URIs), rewritten
+    // (gltf_compressed.cpp, prepareForTinygltf).
     const TinygltfFixups fixups = prepareForTinygltf(bytes, binary);
     const std::vector<unsigned char>& input = fixups.bytes.empty() ? bytes : fixups.bytes;
 
