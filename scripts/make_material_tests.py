@@ -25,8 +25,23 @@ specular-*.gltf (KHR_materials_specular's colour) are such plates of a
 smooth black dielectric with a specular colour, head-on (the spec's F0:
 specular * min(F0 * specularColor, 1)) and at 60 degrees.
 
+translucent-*.gltf (KHR_materials_diffuse_transmission, ior 1 so that no
+Fresnel takes a share): such plates in a white furnace reflect (1 - factor)
+baseColor and transmit factor diffuseTransmissionColor, so the image is
+their sum; translucent-backlit.gltf is a sheet of ior 1.5 lit on its front
+by a directional light and seen from behind at 60 degrees
+(tests/test_diffuse_transmission.cpp has the closed form).
+
+anisotropy-*.gltf (KHR_materials_anisotropy) are such plates of a white
+GGX metal (roughness 0.3) of anisotropy strength 1, with texture
+coordinates (u along +Y: the tangent) and anisotropyRotation 0 or pi/2,
+seen at 60 degrees along the tangent through a 1-degree view: the image
+is the lobe's directional albedo with the view along or across the
+stretched axis.
+
 layers.gltf holds the layer extensions' values and textures for the loader
-tests; broken/ one bad value each.
+tests, diffuse-transmission.gltf and anisotropy.gltf those extensions';
+broken/ one bad value each.
 """
 import math
 import os
@@ -217,6 +232,89 @@ SPECULAR_TEXEL = (255, 128, 64, 128)  # sRGB colour; specular A = 128/255
 SPECULAR_TEXTURED_COLOR = 20.0
 
 
+def diffuse_transmission(factor, color=None, **textures):
+    fields = {"diffuseTransmissionFactor": factor}
+    if color is not None:
+        fields["diffuseTransmissionColorFactor"] = list(color)
+    return {"KHR_materials_diffuse_transmission": dict(fields, **textures)}
+
+
+TRANSLUCENT_BASE = (0.2, 0.6, 1.0)
+TRANSLUCENT_COLOR = (1.0, 0.5, 0.25)
+
+
+def translucent_plate(base, factor, color):
+    """A Lambertian plate (metallic 0, ior 1) of baseColor `base` that
+    diffusely transmits `factor` of its light in `color`, seen head-on."""
+    def material(w):
+        return w.add_material("Translucent", base_color=tuple(base) + (1,), metallic=0.0, roughness=1.0, ior=1.0,
+                              extensions=diffuse_transmission(factor, color))
+    return plate_scene(material, 0.0, 20.0, ["KHR_materials_diffuse_transmission", "KHR_materials_ior"])
+
+
+BACKLIT_FACTOR, BACKLIT_COLOR, BACKLIT_IRRADIANCE, BACKLIT_VIEW = 0.7, (0.9, 0.6, 0.3), 2.0, 60.0
+
+
+def translucent_backlit():
+    """A 40 x 40 sheet z = 0 facing +Z (black base, ior 1.5, diffuse
+    transmission BACKLIT_FACTOR of colour BACKLIT_COLOR) under a directional
+    light travelling -Z (irradiance BACKLIT_IRRADIANCE on its front), seen from
+    below at BACKLIT_VIEW degrees from -Z through a 1-degree field of view."""
+    w = writer()
+    sheet = w.add_material("Leaf", base_color=(0, 0, 0, 1), metallic=0.0, roughness=1.0,
+                           extensions=diffuse_transmission(BACKLIT_FACTOR, BACKLIT_COLOR))
+    quad = Quads().add((-20, -20, 0), (40, 0, 0), (0, 40, 0), (0, 0, 1))
+    t = math.radians(BACKLIT_VIEW)
+    sun = w.add_light("Sun", "directional", intensity=BACKLIT_IRRADIANCE)
+    roots = [w.add_node("Sheet", mesh=mesh(w, "Sheet", quad, sheet)),
+             w.add_node("Sun", light=sun, translation=[0.0, 0.0, 5.0]),
+             w.add_node("Camera", camera=camera(w, "Camera", 1.0),
+                        translation=[0.0, -5.0 * math.sin(t), -5.0 * math.cos(t)],
+                        rotation=rotation_x(math.pi - t))]
+    w.set_scene(roots, name="Scene")
+    w.use_extensions(["KHR_materials_diffuse_transmission", "KHR_lights_punctual"])
+    return w.gltf_text()
+
+
+ANISOTROPY_ROUGHNESS = 0.3
+
+
+def anisotropy_plate(path, rotation):
+    """plate_scene's plate and camera (60 degrees, 1-degree view) with u
+    along +Y (the generated tangent: not the frame strata would choose
+    about +Z without one) and a brushed white metal."""
+    s = TexturedScene()
+    s.w.doc["asset"]["generator"] = GENERATOR
+    material = s.material(name="Brushed", pbrMetallicRoughness={
+        "baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0, "roughnessFactor": ANISOTROPY_ROUGHNESS},
+        extensions={"KHR_materials_anisotropy": {"anisotropyStrength": 1.0, "anisotropyRotation": rotation}})
+    corners = [(-20, -20, 0), (20, -20, 0), (20, 20, 0), (-20, 20, 0)]
+    s.quad("Plate", corners, [(0, 1), (0, 0), (1, 0), (1, 1)], material, (0, 0, 1))
+    t = math.radians(60.0)
+    s.camera(math.radians(1.0), (0.0, -5.0 * math.sin(t), 5.0 * math.cos(t)), rotation_x(t))
+    s.write(path, ["KHR_materials_anisotropy"])
+
+
+def anisotropy_materials(s, tex):
+    """anisotropy.gltf's materials (tests/test_anisotropy.cpp)."""
+    return [
+        {"name": "Brushed", "pbrMetallicRoughness": {"metallicFactor": 1.0, "roughnessFactor": 0.4},
+         "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8, "anisotropyRotation": 0.5,
+                                                     "anisotropyTexture": {"index": tex[0], "texCoord": 1}}}},
+        {"name": "Defaults", "extensions": {"KHR_materials_anisotropy": {}}},
+    ]
+
+
+def diffuse_transmission_materials(s, tex):
+    """diffuse-transmission.gltf's materials (tests/test_diffuse_transmission.cpp)."""
+    return [
+        {"name": "Translucent", "pbrMetallicRoughness": {"metallicFactor": 0.0}, "extensions": diffuse_transmission(
+            0.6, (0.9, 0.5, 0.2), diffuseTransmissionTexture={"index": tex[1]},
+            diffuseTransmissionColorTexture={"index": tex[0], "texCoord": 1})},
+        {"name": "Defaults", "extensions": {"KHR_materials_diffuse_transmission": {}}},
+    ]
+
+
 def specular_plate(view_degrees, fov_degrees):
     """A smooth black dielectric of specularFactor SPECULAR_FACTOR and
     specularColorFactor SPECULAR_COLOR."""
@@ -343,7 +441,11 @@ def layer_spheres():
     return w.gltf_text()
 
 
-def layers_scene(path, materials):
+LAYER_EXTENSIONS = ["KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular",
+                    "KHR_texture_transform"]
+
+
+def layers_scene(path, materials, extensions=LAYER_EXTENSIONS):
     """Loader checks: one quad per material of raw JSON `materials(s, tex)`
     (tex: two constant textures), with TEXCOORD_0 and TEXCOORD_1."""
     s = TexturedScene()
@@ -354,7 +456,7 @@ def layers_scene(path, materials):
         uvs = [(0, 1), (1, 1), (1, 0), (0, 0)]
         s.quad(fields["name"], corners, uvs, s.material(**fields), (0, 0, 1), uv_sets=[uvs, uvs])
     s.camera(0.7, (0, 0, 3))
-    s.write(path, ["KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_specular", "KHR_texture_transform"])
+    s.write(path, extensions)
 
 
 def layer_materials(s, tex):
@@ -398,6 +500,18 @@ BROKEN = {
     "iridescence-thickness-negative.gltf":
         lambda tex: {"name": "Bad", "extensions": {"KHR_materials_iridescence": {
             "iridescenceFactor": 1.0, "iridescenceThicknessMaximum": -10.0}}},
+    "diffuse-transmission-above-1.gltf": lambda tex: {"name": "Bad", "extensions": diffuse_transmission(1.5)},
+    "diffuse-transmission-string.gltf": lambda tex: {"name": "Bad", "extensions": diffuse_transmission("0.5")},
+    "diffuse-transmission-color-negative.gltf":
+        lambda tex: {"name": "Bad", "extensions": diffuse_transmission(1.0, (1.0, -0.5, 1.0))},
+    "diffuse-transmission-texture-missing.gltf": lambda tex: {"name": "Bad", "extensions": diffuse_transmission(
+        1.0, diffuseTransmissionColorTexture={"index": 7})},
+    "anisotropy-strength-above-1.gltf":
+        lambda tex: {"name": "Bad", "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 1.5}}},
+    "anisotropy-rotation-string.gltf": lambda tex: {"name": "Bad", "extensions": {"KHR_materials_anisotropy": {
+        "anisotropyStrength": 0.5, "anisotropyRotation": "1"}}},
+    "anisotropy-texture-missing.gltf": lambda tex: {"name": "Bad", "extensions": {"KHR_materials_anisotropy": {
+        "anisotropyStrength": 0.5, "anisotropyTexture": {"index": 3}}}},
 }
 
 
@@ -490,6 +604,9 @@ def main():
         "iridescence-metal.gltf": film_plate(True, 45.0, 30.0),
         "layer-spheres.gltf": layer_spheres(),
         "coat-lamp.gltf": coat_lamp(),
+        "translucent-white.gltf": translucent_plate((0, 0, 0), 1.0, (1, 1, 1)),
+        "translucent-mix.gltf": translucent_plate(TRANSLUCENT_BASE, 0.5, TRANSLUCENT_COLOR),
+        "translucent-backlit.gltf": translucent_backlit(),
     }
     for name, text in scenes.items():
         path = os.path.normpath(os.path.join(out, name))
@@ -501,6 +618,11 @@ def main():
     sheen_textured(os.path.join(out, "sheen-textured.gltf"))
     specular_textured(os.path.join(out, "specular-textured.gltf"))
     layers_scene(os.path.join(out, "layers.gltf"), layer_materials)
+    layers_scene(os.path.join(out, "diffuse-transmission.gltf"), diffuse_transmission_materials,
+                 ["KHR_materials_diffuse_transmission"])
+    layers_scene(os.path.join(out, "anisotropy.gltf"), anisotropy_materials, ["KHR_materials_anisotropy"])
+    anisotropy_plate(os.path.join(out, "anisotropy-0.gltf"), 0.0)
+    anisotropy_plate(os.path.join(out, "anisotropy-90.gltf"), math.pi / 2)
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
     for name, material in BROKEN.items():
         layers_scene(os.path.join(out, "broken", name), lambda s, tex, m=material: [m(tex)])

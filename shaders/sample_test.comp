@@ -20,7 +20,8 @@ layout(push_constant) uniform Push { SampleTestParams params; };
 
 Bsdf testBsdf(out vec3 wo) {
     float c = params.bsdf0.x;
-    wo = vec3(sqrt(max(0.0, 1.0 - c * c)), 0.0, c);
+    float s = sqrt(max(0.0, 1.0 - c * c));
+    wo = params.bsdf4.y == 0.0 ? vec3(s, 0.0, c) : vec3(s * cos(params.bsdf4.y), s * sin(params.bsdf4.y), c);
     BsdfLayers layers = noLayers();
     layers.coat = params.bsdf2.x;
     layers.coatRoughness = params.bsdf2.y;
@@ -29,6 +30,13 @@ Bsdf testBsdf(out vec3 wo) {
     layers.sheenColor = vec3(params.bsdf2.z);
     layers.sheenRoughness = params.bsdf2.w;
     layers.specularColor = params.bsdf3.xyz;
+#ifdef STRATA_ANISOTROPY
+    layers.anisotropy = params.bsdf4.x;
+#endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    layers.diffuseTransmission = params.diffTrans;
+    layers.diffuseTransmissionColor = vec3(params.diffTransColor);
+#endif
     return makeBsdf(vec3(params.bsdf1.z), params.bsdf0.z, params.bsdf0.y, params.bsdf0.w,
                     params.bsdf1.x, params.bsdf1.y, layers, params.bsdf1.w != 0.0, wo);
 }

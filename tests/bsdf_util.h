@@ -38,12 +38,18 @@ struct TestMaterial {
     float sheen = 0.0f;       // grey sheen colour
     float sheenRoughness = 0.0f;
     glm::vec3 specularColor{1.0f};  // KHR_materials_specular
+    float diffuseTransmission = 0.0f;       // KHR_materials_diffuse_transmission
+    float diffuseTransmissionColor = 1.0f;  // grey
+    float anisotropy = 0.0f;                // KHR_materials_anisotropy strength, along x
+    float azimuthDeg = 0.0f;                // wo's azimuth from x
     std::uint32_t extraFeatures = 0;  // compiled in although the material does not need them
 
     // The feature bits the layers need compiled in.
     std::uint32_t features() const {
         return (clearcoat > 0.0f ? gpu::kFeatureClearcoat : 0u) | (sheen > 0.0f ? gpu::kFeatureSheen : 0u) |
-               (specularColor != glm::vec3(1.0f) ? gpu::kFeatureSpecularColor : 0u) | extraFeatures;
+               (specularColor != glm::vec3(1.0f) ? gpu::kFeatureSpecularColor : 0u) |
+               (diffuseTransmission > 0.0f ? gpu::kFeatureDiffuseTransmission : 0u) |
+               (anisotropy > 0.0f ? gpu::kFeatureAnisotropy : 0u) | extraFeatures;
     }
 };
 
@@ -58,6 +64,9 @@ inline gpu::SampleTestParams bsdfParams(const TestMaterial& m, std::uint32_t rou
     p.bsdf1 = glm::vec4(m.ior, m.specular, m.base, m.entering ? 1.0f : 0.0f);
     p.bsdf2 = glm::vec4(m.clearcoat, m.clearcoatRoughness, m.sheen, m.sheenRoughness);
     p.bsdf3 = glm::vec4(m.specularColor, m.coatTilt);
+    p.diffTrans = m.diffuseTransmission;
+    p.diffTransColor = m.diffuseTransmissionColor;
+    p.bsdf4 = glm::vec4(m.anisotropy, float(m.azimuthDeg * std::numbers::pi / 180.0), 0.0f, 0.0f);
     return p;
 }
 
@@ -144,6 +153,27 @@ inline void checkBsdfWeights(const std::vector<TestMaterial>& materials) {
         CHECK(mismatched == 0);
     }
     CHECK(vk::validationMessageCount() == 0);
+}
+
+// How many of n samples of `m` differ (any of weight, eval / pdf, pdf,
+// evaluated pdf beyond 1e-5 relative) with `feature` compiled in and
+// without it.
+inline std::size_t samplesDiffering(TestMaterial m, std::uint32_t feature, std::uint32_t n, std::uint32_t seed) {
+    m.extraFeatures = feature;
+    const auto with = runBsdf(m, gpu::kSampleBsdfWeight, n, seed);
+    m.extraFeatures = 0;
+    const auto without = runBsdf(m, gpu::kSampleBsdfWeight, n, seed);
+    std::size_t differ = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        for (int k = 0; k < 4; ++k) {
+            const double a = with[i][k], b = without[i][k];
+            if (std::abs(a - b) > 1e-5 * std::max({1.0, std::abs(a), std::abs(b)})) {
+                ++differ;
+                break;
+            }
+        }
+    }
+    return differ;
 }
 
 // Mean sample weight (the directional albedo) and its standard error.

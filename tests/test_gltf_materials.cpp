@@ -187,6 +187,21 @@ TEST_CASE("gltf materials: every broken layer value is one error line naming fil
         {"iridescence-ior-below-1.gltf", "material 0 (\"Bad\"): KHR_materials_iridescence.iridescenceIor 0.5 is below 1"},
         {"iridescence-thickness-negative.gltf",
          "material 0 (\"Bad\"): KHR_materials_iridescence.iridescenceThicknessMaximum -10 is not a finite number >= 0"},
+        {"diffuse-transmission-above-1.gltf",
+         "material 0 (\"Bad\"): KHR_materials_diffuse_transmission.diffuseTransmissionFactor 1.5 is not in [0, 1]"},
+        {"diffuse-transmission-string.gltf",
+         "material 0 (\"Bad\"): KHR_materials_diffuse_transmission.diffuseTransmissionFactor is not a number"},
+        {"diffuse-transmission-color-negative.gltf",
+         "material 0 (\"Bad\"): KHR_materials_diffuse_transmission.diffuseTransmissionColorFactor is not three numbers "
+         "in [0, 1]"},
+        {"diffuse-transmission-texture-missing.gltf",
+         "material 0 (\"Bad\") diffuseTransmissionColorTexture: texture 7 does not exist (2 textures)"},
+        {"anisotropy-strength-above-1.gltf",
+         "material 0 (\"Bad\"): KHR_materials_anisotropy.anisotropyStrength 1.5 is not in [0, 1]"},
+        {"anisotropy-rotation-string.gltf",
+         "material 0 (\"Bad\"): KHR_materials_anisotropy.anisotropyRotation is not a number"},
+        {"anisotropy-texture-missing.gltf",
+         "material 0 (\"Bad\") anisotropyTexture: texture 3 does not exist (2 textures)"},
     };
     std::size_t files = 0;
     for (const auto& entry : std::filesystem::directory_iterator(dataPath("materials/broken")))

@@ -224,24 +224,10 @@ const glm::dvec3 kSheenColor(0.9, 0.6, 0.3);
 // radiance 1 and checks each channel's image mean against expected[c]
 // within 4 standard errors plus `tolerance` x expected[c].
 void checkFurnaceMean(const std::string& file, const glm::dvec3& expected, double tolerance) {
-    const Scene scene = loadWithWhiteEnvironment(sourcePath(file));
-    const GpuScene gpu = buildAndPack(scene);
-    CHECK((gpu.features.bits & gpu::kFeatureSheen) != 0u);
-    RenderSettings s;
-    s.width = s.height = 16;
-    s.spp = 256;
-    s.maxDepth = 1;
-    const RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
-    CHECK(r.nonFinite == 0);
-    const auto m = r.film.mean();
-    const auto v = r.film.varianceOfMean();
-    const std::size_t n = m.size() / 3;
+    const FurnaceMean f = whiteFurnaceMean(file, gpu::kFeatureSheen);
     for (int c = 0; c < 3; ++c) {
-        double sum = 0.0, var = 0.0;
-        for (std::size_t i = 0; i < n; ++i) sum += m[i * 3 + c], var += v[i * 3 + c];
-        const double mean = sum / double(n), se = std::sqrt(var) / double(n);
-        MESSAGE(file << " channel " << c << ": " << mean << " +- " << se << " (expected " << expected[c] << ")");
-        CHECK(std::abs(mean - expected[c]) < tolerance * expected[c] + 4.0 * se);
+        MESSAGE(file << " channel " << c << ": " << f.mean[c] << " +- " << f.se[c] << " (expected " << expected[c] << ")");
+        CHECK(std::abs(f.mean[c] - expected[c]) < tolerance * expected[c] + 4.0 * f.se[c]);
     }
     CHECK(vk::validationMessageCount() == 0);
 }

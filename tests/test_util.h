@@ -116,6 +116,36 @@ inline Scene loadWithWhiteEnvironment(const std::string& path) {
     return loadSceneWithEnvironment(path, env);
 }
 
+// Each channel's image mean of scene file `file` (16 x 16, 256 spp,
+// maxDepth 1) in a uniform environment of radiance 1, and its standard
+// error; the packed scene must have the feature bits `features`.
+struct FurnaceMean {
+    glm::dvec3 mean{0.0};
+    glm::dvec3 se{0.0};
+};
+inline FurnaceMean whiteFurnaceMean(const std::string& file, std::uint32_t features) {
+    const Scene scene = loadWithWhiteEnvironment(sourcePath(file));
+    const GpuScene gpu = buildAndPack(scene);
+    CHECK((gpu.features.bits & features) == features);
+    RenderSettings s;
+    s.width = s.height = 16;
+    s.spp = 256;
+    s.maxDepth = 1;
+    const RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
+    CHECK(r.nonFinite == 0);
+    const auto m = r.film.mean();
+    const auto v = r.film.varianceOfMean();
+    const std::size_t n = m.size() / 3;
+    FurnaceMean out;
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0.0, var = 0.0;
+        for (std::size_t i = 0; i < n; ++i) sum += m[i * 3 + c], var += v[i * 3 + c];
+        out.mean[c] = sum / double(n);
+        out.se[c] = std::sqrt(var) / double(n);
+    }
+    return out;
+}
+
 // The materials board under scenes/env/sky.hdr with a directional light
 // added: every kind of light the environment code has.
 inline Scene envBoardWithSun() {

@@ -32,7 +32,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureSheen, "sheen"},             {gpu::kFeatureSpecularColor, "specular-color"},
         {gpu::kFeatureInstancing, "instancing"},   {gpu::kFeatureIridescence, "iridescence"},
         {gpu::kFeatureLightTree, "light-tree"},
-        {gpu::kFeatureInstancedEmitters, "moving-lights"}, {gpu::kFeatureTextureLod, "texture-lod"}};
+        {gpu::kFeatureInstancedEmitters, "moving-lights"}, {gpu::kFeatureTextureLod, "texture-lod"},
+        {gpu::kFeatureDiffuseTransmission, "diffuse-transmission"}, {gpu::kFeatureAnisotropy, "anisotropy"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -161,7 +162,7 @@ glm::dvec3 emissiveMean(const Scene& scene, const MaterialDesc& m) {
     return meanColor(scene.images[static_cast<std::size_t>(t.image)], true);
 }
 
-// kFeatureTextures / kFeatureNormalMap / kFeatureAlphaTest for the used
+// kFeatureTextures / kFeatureNormalMap / kFeatureAlphaTest / kFeatureAnisotropy for the used
 // materials. Alpha testing is needed for MASK or BLEND unless the alpha is a
 // constant that never makes a hole (no baseColor texture and factor >=
 // alphaCutoff for MASK, factor >= 1 for BLEND).
@@ -177,12 +178,17 @@ std::uint32_t textureFeatures(const Scene& scene, const std::vector<bool>& used)
         const bool specularTextures = m.tinted() && (m.specularTexture.used() || m.specularColorTexture.used());
         const bool filmTextures =
             m.iridescent() && (m.iridescenceTexture.used() || m.iridescenceThicknessTexture.used());
+        const bool diffuseTextures = m.diffuselyTransmitting() && (m.diffuseTransmissionTexture.used() ||
+                                                                   m.diffuseTransmissionColorTexture.used());
+        const bool anisotropyTexture = m.anisotropic() && m.anisotropyTexture.used();
         if (m.baseColorTexture.used() || m.metallicRoughnessTexture.used() || m.normalTexture.used() ||
             m.emissiveTexture.used() || m.transmissionTexture.used() || coatTextures || sheenTextures ||
-            specularTextures || filmTextures)
+            specularTextures || filmTextures || diffuseTextures || anisotropyTexture)
             bits |= gpu::kFeatureTextures;
         if (m.normalTexture.used() || (m.coated() && m.clearcoatNormalTexture.used()))
             bits |= gpu::kFeatureNormalMap;
+        // Anisotropy reads the tangents as normal maps do; it stretches the specular lobes.
+        if (m.anisotropic() && (m.metallic > 0.0f || m.specular > 0.0f)) bits |= gpu::kFeatureAnisotropy;
         const float alpha = m.baseColor.a;
         const bool textured = m.baseColorTexture.used() || colors;
         if ((m.alphaMode == MaterialDesc::AlphaMode::Mask && (textured || alpha < m.alphaCutoff)) ||
@@ -330,10 +336,22 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
             gm.sheenColor = m.sheenColor;
             gm.sheenRoughness = m.sheenRoughness;
         }
+        if (m.diffuselyTransmitting()) {
+            gm.flags |= gpu::kMaterialDiffuseTransmission;
+            if (m.thickness == 0.0f) gm.flags |= gpu::kMaterialThinWalled;
+            gm.diffuseTransmission = m.diffuseTransmission;
+            gm.diffuseTransmissionColor = m.diffuseTransmissionColor;
+        }
+        if (m.anisotropic()) {
+            gm.flags |= gpu::kMaterialAnisotropy;
+            gm.anisotropyStrength = m.anisotropyStrength;
+            gm.anisotropyRotation = m.anisotropyRotation;
+        }
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex = gm.transmissionTex =
             gm.clearcoatTex = gm.clearcoatRoughnessTex = gm.clearcoatNormalTex = gm.sheenColorTex =
                 gm.sheenRoughnessTex = gm.specularColorTex = gm.specularTex = gm.iridescenceTex =
-                    gm.iridescenceThicknessTex = gpu::kNoTexture;
+                    gm.iridescenceThicknessTex = gm.diffuseTransmissionTex = gm.diffuseTransmissionColorTex =
+                        gm.anisotropyTex = gpu::kNoTexture;
         g.materials.push_back(gm);
     }
     std::vector<bool> used(g.materials.size(), false);
@@ -357,7 +375,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         if (p.levels > 1) g.features.bits |= gpu::kFeatureTextureLod;
     g.features.bits |= textureFeatures(scene, used);
     const bool uvs = (g.features.bits & gpu::kFeatureTextures) != 0;
-    const bool tangents = (g.features.bits & gpu::kFeatureNormalMap) != 0;
+    const bool tangents = (g.features.bits & (gpu::kFeatureNormalMap | gpu::kFeatureAnisotropy)) != 0;
     const bool colors = !scene.colors.empty();
     if (colors) g.features.bits |= gpu::kFeatureVertexColor;
 
@@ -498,6 +516,8 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
         if ((m.flags & gpu::kMaterialSpecularColor) != 0u) g.features.bits |= gpu::kFeatureSpecularColor;
         if ((m.flags & gpu::kMaterialIridescence) != 0u) g.features.bits |= gpu::kFeatureIridescence;
+        if ((m.flags & gpu::kMaterialDiffuseTransmission) != 0u && m.metallic < 1.0f)
+            g.features.bits |= gpu::kFeatureDiffuseTransmission;
     }
     if constexpr (consume) releaseGeometry(scene);
     return g;

@@ -38,7 +38,8 @@ struct GpuScene {
     std::vector<gpu::TriShading> shading;   // BVH order
     std::vector<gpu::Material> materials;
     // Filled only when features.bits has kFeatureTextures (texcoords,
-    // textureRefs, texels) or kFeatureNormalMap (tangents); empty otherwise.
+    // textureRefs, texels) or kFeatureNormalMap or kFeatureAnisotropy
+    // (tangents); empty otherwise.
     std::vector<gpu::TriTexcoords> texcoords;  // BVH order
     std::vector<gpu::TriTangents> tangents;    // BVH order
     std::vector<gpu::TriColors> colors;        // BVH order; only with kFeatureVertexColor

@@ -554,6 +554,12 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
             g.iridescenceTex = addRef(m, m.iridescenceTexture, TexelCoding::Linear);
             g.iridescenceThicknessTex = addRef(m, m.iridescenceThicknessTexture, TexelCoding::Linear);
         }
+        g.diffuseTransmissionTex = g.diffuseTransmissionColorTex = gpu::kNoTexture;
+        if (m.diffuselyTransmitting()) {
+            g.diffuseTransmissionTex = addRef(m, m.diffuseTransmissionTexture, TexelCoding::Linear);
+            g.diffuseTransmissionColorTex = addRef(m, m.diffuseTransmissionColorTexture, TexelCoding::Srgb);
+        }
+        g.anisotropyTex = m.anisotropic() ? addRef(m, m.anisotropyTexture, TexelCoding::Linear) : gpu::kNoTexture;
     }
     // How the used materials' alpha reads each image as base colour: one
     // MASK cutoff (with its factor) or BLEND; OPAQUE reads no alpha, and an

@@ -185,8 +185,8 @@ private:
 
     // Checks that the primitive has every TEXCOORD set its material's
     // textures read; drops TANGENT when the material has no normal map
-    // (normalTexture, clearcoatNormalTexture) and generates tangents
-    // (tangents.h) when it has one and no TANGENT. Runs
+    // (normalTexture, clearcoatNormalTexture) and no anisotropy, and
+    // generates tangents (tangents.h) when it has one and no TANGENT. Runs
     // on the cached local primitive, so once per mesh in practice.
     void prepareTextureInputs(int mesh, LocalPrimitive& prim) {
         const MaterialDesc& m = scene_.materials[static_cast<std::size_t>(prim.material)];
@@ -198,13 +198,18 @@ private:
                                 ", which the primitive does not have");
             }
         }
-        // One tangent frame serves both normal maps (generated from the
-        // normalTexture's set, else the clearcoatNormalTexture's).
+        // One tangent frame serves both normal maps and the anisotropy
+        // (generated from the normalTexture's set, else the
+        // clearcoatNormalTexture's, else the anisotropyTexture's or
+        // TEXCOORD_0; without texture coordinates any frame about the normal).
         const TextureSlot& mapped = m.normalTexture.used() ? m.normalTexture : m.clearcoatNormalTexture;
-        if (!mapped.used()) {
+        if (!mapped.used() && !m.anisotropic()) {
             prim.tangents.clear();
         } else if (prim.tangents.empty()) {
-            prim.tangents = generateTangents(prim.positions, prim.normals, prim.texcoord(mapped.texCoord),
+            const int set = mapped.used() ? mapped.texCoord : m.anisotropyTexture.used() ? m.anisotropyTexture.texCoord : 0;
+            const std::vector<glm::vec2>& uvs = prim.texcoord(set);
+            prim.tangents = generateTangents(prim.positions, prim.normals,
+                                             uvs.empty() ? std::vector<glm::vec2>(prim.positions.size()) : uvs,
                                              prim.indices);
         }
     }

@@ -1,6 +1,7 @@
 // glTF material -> MaterialDesc: core pbrMetallicRoughness factors plus
 // KHR_materials_emissive_strength, _ior, _transmission, _specular (factor,
-// colour, textures), _unlit, _volume, _clearcoat and _sheen, and the texture
+// colour, textures), _unlit, _volume, _clearcoat, _sheen, _iridescence,
+// _diffuse_transmission and _anisotropy, and the texture
 // slots (occlusionTexture is not read: a path tracer computes occlusion).
 // Factors outside their range are errors.
 #include <array>
@@ -243,6 +244,20 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     m.iridescenceThicknessMax = nonNegative("iridescenceThicknessMaximum", 400.0);
     m.iridescenceTexture = extensionSlot(path, model, label, src, film, "iridescenceTexture");
     m.iridescenceThicknessTexture = extensionSlot(path, model, label, src, film, "iridescenceThicknessTexture");
+    const char* diffuse = "KHR_materials_diffuse_transmission";
+    m.diffuseTransmission = unitFactor(diffuse, "diffuseTransmissionFactor", 0.0);
+    m.diffuseTransmissionColor =
+        extensionColor(path, label, src, diffuse, "diffuseTransmissionColorFactor", glm::vec3(1.0f));
+    m.diffuseTransmissionTexture = extensionSlot(path, model, label, src, diffuse, "diffuseTransmissionTexture");
+    m.diffuseTransmissionColorTexture =
+        extensionSlot(path, model, label, src, diffuse, "diffuseTransmissionColorTexture");
+    const char* anisotropy = "KHR_materials_anisotropy";
+    m.anisotropyStrength = unitFactor(anisotropy, "anisotropyStrength", 0.0);
+    const double rotation = extensionNumber(path, label, src, anisotropy, "anisotropyRotation", 0.0);
+    if (!std::isfinite(rotation))
+        fail(path, label + ": " + anisotropy + ".anisotropyRotation " + formatNumber(rotation) + " is not finite");
+    m.anisotropyRotation = static_cast<float>(rotation);
+    m.anisotropyTexture = extensionSlot(path, model, label, src, anisotropy, "anisotropyTexture");
     m.uvSets = uvSets(path, label, m);
     return m;
 }

@@ -112,6 +112,19 @@ struct MaterialDesc {
     TextureSlot iridescenceTexture;        // linear R: scales iridescence
     TextureSlot iridescenceThicknessTexture;  // linear G
     bool iridescent() const { return iridescence > 0.0f && !unlit; }
+    // KHR_materials_diffuse_transmission: a Lambertian lobe through the
+    // surface taking that share of the dielectric's diffuse light (0: none).
+    float diffuseTransmission = 0.0f;                 // diffuseTransmissionFactor
+    glm::vec3 diffuseTransmissionColor{1.0f};         // diffuseTransmissionColorFactor, linear
+    TextureSlot diffuseTransmissionTexture;           // linear A: scales the factor
+    TextureSlot diffuseTransmissionColorTexture;      // sRGB RGB: scales the colour
+    bool diffuselyTransmitting() const { return diffuseTransmission > 0.0f && !unlit; }
+    // KHR_materials_anisotropy: the base's GGX lobes stretched along a
+    // direction of the tangent frame (strength 0: none).
+    float anisotropyStrength = 0.0f;
+    float anisotropyRotation = 0.0f;       // radians, counter-clockwise from the tangent
+    TextureSlot anisotropyTexture;         // linear: RG direction in [-1, 1], B scales the strength
+    bool anisotropic() const { return anisotropyStrength > 0.0f && !unlit; }
     // KHR_materials_specular's colour or textures change the dielectric's Fresnel.
     bool tinted() const {
         return (specularColor != glm::vec3(1.0f) || specularTexture.used() || specularColorTexture.used()) &&
@@ -131,7 +144,7 @@ struct MaterialDesc {
         const TextureSlot* slot;
         const char* name;
     };
-    std::array<NamedSlot, 14> textureSlots() const {
+    std::array<NamedSlot, 17> textureSlots() const {
         return {{{&baseColorTexture, "baseColorTexture"},
                  {&metallicRoughnessTexture, "metallicRoughnessTexture"},
                  {&normalTexture, "normalTexture"},
@@ -145,7 +158,10 @@ struct MaterialDesc {
                  {&specularTexture, "specularTexture"},
                  {&specularColorTexture, "specularColorTexture"},
                  {&iridescenceTexture, "iridescenceTexture"},
-                 {&iridescenceThicknessTexture, "iridescenceThicknessTexture"}}};
+                 {&iridescenceThicknessTexture, "iridescenceThicknessTexture"},
+                 {&diffuseTransmissionTexture, "diffuseTransmissionTexture"},
+                 {&diffuseTransmissionColorTexture, "diffuseTransmissionColorTexture"},
+                 {&anisotropyTexture, "anisotropyTexture"}}};
     }
 };
 

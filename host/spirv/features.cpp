@@ -67,6 +67,14 @@ const Axis kAxes[] = {
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureInstancedEmitters) != 0u; },
      "emitting meshes that move during the shutter (`kFeatureInstancedEmitters`)",
      "placing a light by its instance at the path's time (lib/lights.glsl `placeEmitter`)"},
+    {"difftrans", "STRATA_DIFFUSE_TRANSMISSION", kShading | bit(KernelId::SampleTest), 0, 0,
+     [](const VariantInputs& in) { return (in.features & gpu::kFeatureDiffuseTransmission) != 0u; },
+     "a KHR_materials_diffuse_transmission material (`kFeatureDiffuseTransmission`)",
+     "the Lambertian transmission lobe (lib/bsdf.glsl)"},
+    {"aniso", "STRATA_ANISOTROPY", kShading | bit(KernelId::SampleTest), 0, 0,
+     [](const VariantInputs& in) { return (in.features & gpu::kFeatureAnisotropy) != 0u; },
+     "a KHR_materials_anisotropy material (`kFeatureAnisotropy`)",
+     "the anisotropic GGX and its tangent frame (lib/ggx.glsl, lib/material.glsl)"},
 };
 
 std::uint32_t kernelAxes(KernelId k) {

@@ -44,6 +44,26 @@
 // the film's Fresnel (thinFilmFresnel) into the dielectric's and the metal's
 // by its factor.
 //
+// KHR_materials_anisotropy (kFeatureAnisotropy, compiled only with
+// STRATA_ANISOTROPY, the aniso axis) stretches the base's GGX reflection and
+// transmission along the shading frame's x, which lib/path.glsl turns to
+// the anisotropy's direction: alpha_x = mix(alpha, 1, strength^2), alpha_y =
+// alpha (the extension's), with the anisotropic D, Smith Lambda and visible
+// normals of lib/ggx.glsl. The coat stays isotropic.
+//
+// KHR_materials_diffuse_transmission (kFeatureDiffuseTransmission, compiled
+// only with STRATA_DIFFUSE_TRANSMISSION, the difftrans axis) sends a share of
+// the dielectric's diffuse light through the surface, as the extension's
+// mix does:
+//
+//   diffuse = (1 - Fd) mix(baseColor / pi (wi.z > 0), diffuseTransmissionColor / pi (wi.z < 0), factor)
+//
+// Fd at the half vector of wo and wi mirrored to wo's side (symmetric in wo
+// and wi). The transmitted lobe is one more sampling strategy (cosine below
+// the surface, `pDiffuseT`). The path tracer makes such a surface
+// thin-walled unless it bounds a volume (lib/path.glsl): both faces see the
+// outside's ior.
+//
 // All directions are in the local shading frame: z is the shading normal on
 // the side the ray came from, so wo.z > 0; reflection has wi.z > 0 and
 // transmission wi.z < 0. `etap` is the ratio of the indices of refraction
@@ -55,16 +75,28 @@
 #include "shared/bindings.h"
 #include "lib/features.glsl"
 #include "lib/sampling.glsl"
+#include "lib/ggx.glsl"
 #ifdef STRATA_LAYERS
 #include "lib/sheen.glsl"
 #endif
 
 const float kDeltaAlpha = 1.0e-3;
 
+// The base's GGX alpha: a vec2 with KHR_materials_anisotropy (lib/ggx.glsl's
+// anisotropic overloads), else the float.
+#ifdef STRATA_ANISOTROPY
+#define BASE_ALPHA(b) ((b).alphaXY)
+#else
+#define BASE_ALPHA(b) ((b).alpha)
+#endif
+
 struct Bsdf {
     vec3 baseColor;
     float metallic;
     float alpha;         // GGX alpha = roughness^2
+#ifdef STRATA_ANISOTROPY
+    vec2 alphaXY;        // KHR_materials_anisotropy: alpha along the direction (x) and across it (y)
+#endif
     float transmission;
     float etap;          // far-side ior / near-side ior
     float specular;      // KHR_materials_specular factor on the dielectric Fresnel
@@ -73,6 +105,12 @@ struct Bsdf {
     // microfacet lobes (then reflection or transmission by specularSplit)
     // and the diffuse lobe.
     float pSpecular, pDiffuse;
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    // KHR_materials_diffuse_transmission (factor 0 without it).
+    float diffTrans;     // the share of the diffuse light sent through
+    vec3 diffTransColor;
+    float pDiffuseT;     // probability of its strategy (cosine below the surface)
+#endif
 #ifdef STRATA_LAYERS
     // KHR_materials_specular's colour (kFeatureSpecularColor).
     vec3 f0Tint;         // min(F0 * specularColor, 1)
@@ -112,14 +150,27 @@ struct BsdfLayers {
     float iridescenceIor;
     float iridescenceThickness;  // nanometres
 #endif
+#ifdef STRATA_ANISOTROPY
+    float anisotropy;                // KHR_materials_anisotropy: strength along the frame's x (0: none)
+#endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    float diffuseTransmission;       // KHR_materials_diffuse_transmission: factor x texture (0: none)
+    vec3 diffuseTransmissionColor;   // linear, factor x texture
+#endif
 };
 
 BsdfLayers noLayers() {
+    return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0
 #ifdef STRATA_IRIDESCENCE
-    return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0, 0.0, 1.3, 0.0);
-#else
-    return BsdfLayers(vec3(1.0), 0.0, 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0), 0.0);
+                      , 0.0, 1.3, 0.0
 #endif
+#ifdef STRATA_ANISOTROPY
+                      , 0.0
+#endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+                      , 0.0, vec3(1.0)
+#endif
+    );
 }
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
@@ -268,7 +319,14 @@ void addLayers(inout Bsdf b, BsdfLayers layers, vec3 wo, float ws, float wd) {
     }
     ws *= b.baseScale;
     wd *= b.baseScale;
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    // makeBsdf left the transmitted lobe's weight in pDiffuseT.
+    float wdt = b.pDiffuseT * b.baseScale;
+    float total = ws + wd + wdt + wSheen + wCoat;
+    b.pDiffuseT = total > 0.0 ? wdt / total : 0.0;
+#else
     float total = ws + wd + wSheen + wCoat;
+#endif
     b.pSpecular = total > 0.0 ? ws / total : 0.0;
     b.pDiffuse = total > 0.0 ? wd / total : 0.0;
     b.pSheen = total > 0.0 ? wSheen / total : 0.0;
@@ -291,6 +349,15 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     float r = clamp(roughness, 0.0, 1.0);
     b.alpha = r * r;
     b.delta = b.alpha < kDeltaAlpha;
+#ifdef STRATA_ANISOTROPY
+    // KHR_materials_anisotropy: mix(alpha, 1, strength^2) along the
+    // direction, alpha across it; a delta only when both are below
+    // kDeltaAlpha (else the smaller is kept above 1e-4).
+    float strength = hasFeature(kFeatureAnisotropy) ? clamp(layers.anisotropy, 0.0, 1.0) : 0.0;
+    b.alphaXY = vec2(mix(b.alpha, 1.0, strength * strength), b.alpha);
+    b.delta = b.alphaXY.x < kDeltaAlpha;
+    if (!b.delta) b.alphaXY.y = max(b.alphaXY.y, 1.0e-4);
+#endif
     b.transmission = clamp(transmission, 0.0, 1.0);
     float eta = ior >= 1.0 ? ior : 1.5;
     b.etap = entering ? eta : 1.0 / eta;
@@ -323,13 +390,33 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     float ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
                (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
     float wd = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05) * lumBase;
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    // The diffuse light split between the two sides by the factor, each
+    // weighed by its colour.
+    float wdt = 0.0;
+    b.diffTrans = 0.0;
+    b.diffTransColor = vec3(0.0);
+    if (hasFeature(kFeatureDiffuseTransmission) && layers.diffuseTransmission > 0.0) {
+        b.diffTrans = clamp(layers.diffuseTransmission, 0.0, 1.0);
+        b.diffTransColor = clamp(layers.diffuseTransmissionColor, 0.0, 1.0);
+        float wdAll = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05);
+        wd = wdAll * (1.0 - b.diffTrans) * lumBase;
+        wdt = wdAll * b.diffTrans * luminance(b.diffTransColor);
+    }
+    b.pDiffuseT = wdt;
+#endif
 #ifdef STRATA_LAYERS
     if (hasFeature(kFeatureClearcoat | kFeatureSheen)) {
         addLayers(b, layers, wo, ws, wd);
         return b;
     }
 #endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    float total = ws + wd + wdt;
+    b.pDiffuseT = total > 0.0 ? wdt / total : 0.0;
+#else
     float total = ws + wd;
+#endif
     b.pSpecular = total > 0.0 ? ws / total : 0.0;
     b.pDiffuse = total > 0.0 ? wd / total : 0.0;
     return b;
@@ -342,70 +429,24 @@ Bsdf makeLambert(vec3 baseColor) {
     b.baseColor = clamp(baseColor, 0.0, 1.0);
     b.metallic = 0.0;
     b.alpha = 1.0;
+#ifdef STRATA_ANISOTROPY
+    b.alphaXY = vec2(1.0);
+#endif
     b.transmission = 0.0;
     b.etap = 1.5;
     b.specular = 0.0;
     b.delta = false;
     b.pSpecular = 0.0;
     b.pDiffuse = 1.0;
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    b.diffTrans = 0.0;
+    b.diffTransColor = vec3(0.0);
+    b.pDiffuseT = 0.0;
+#endif
 #ifdef STRATA_LAYERS
     clearLayers(b);
 #endif
     return b;
-}
-
-// GGX normal distribution, isotropic, written so alpha near 1e-3 keeps its
-// precision: D = a^2 / (pi (h.x^2 + h.y^2 + a^2 h.z^2)^2) for unit h.
-float ggxD(vec3 h, float a) {
-    float a2 = a * a;
-    float d = dot(h.xy, h.xy) + a2 * h.z * h.z;
-    return d > 0.0 ? a2 / (kPi * d * d) : 0.0;
-}
-
-// Smith Lambda for GGX: (sqrt(1 + a^2 tan^2) - 1) / 2.
-float ggxLambda(vec3 w, float a) {
-    float z2 = w.z * w.z;
-    if (z2 <= 0.0) return 1.0e30;
-    float t2 = dot(w.xy, w.xy) / z2;
-    return 0.5 * (sqrt(1.0 + a * a * t2) - 1.0);
-}
-
-float ggxG1(vec3 w, float a) { return 1.0 / (1.0 + ggxLambda(w, a)); }
-
-// Height-correlated masking-shadowing (Heitz 2014).
-float ggxG2(vec3 wo, vec3 wi, float a) { return 1.0 / (1.0 + ggxLambda(wo, a) + ggxLambda(wi, a)); }
-
-// Density of the visible normal h seen from wo (wo.z > 0): G1(wo) max(0, wo.h) D(h) / wo.z.
-float ggxVisiblePdf(vec3 wo, vec3 h, float a) {
-    return ggxG1(wo, a) * max(0.0, dot(wo, h)) * ggxD(h, a) / wo.z;
-}
-
-// Visible-normal sample by spherical caps (Dupuy & Benyoub 2023): in the
-// configuration stretched to alpha = 1, a uniform point on the cap of the
-// unit sphere below wo, offset by wo, is distributed as the visible normals.
-vec3 ggxSampleVisible(vec3 wo, float a, vec2 u) {
-    vec3 ws = normalize(vec3(a * wo.xy, wo.z));
-    float phi = 2.0 * kPi * u.x;
-    float z = (1.0 - u.y) * (1.0 + ws.z) - ws.z;
-    float sinTheta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
-    vec3 hs = vec3(sinTheta * cos(phi), sinTheta * sin(phi), z) + ws;
-    vec3 h = vec3(a * hs.xy, max(hs.z, 0.0));
-    float len2 = dot(h, h);
-    return len2 > 1.0e-30 ? h * inversesqrt(len2) : vec3(0.0, 0.0, 1.0);
-}
-
-// Refraction of wo through a surface with normal h (wo.h > 0) into relative
-// index etap; false under total internal reflection.
-bool refractDir(vec3 wo, vec3 h, float etap, out vec3 wi) {
-    float cosI = dot(wo, h);
-    float sin2T = max(0.0, 1.0 - cosI * cosI) / (etap * etap);
-    if (sin2T >= 1.0) {
-        wi = vec3(0.0);
-        return false;
-    }
-    float cosT = sqrt(1.0 - sin2T);
-    wi = -wo / etap + (cosI / etap - cosT) * h;
-    return true;
 }
 
 // The base's non-delta part times |wi.z| (before the layers' scaling), and
@@ -419,14 +460,30 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         float c = dot(wo, h);
         if (b.pDiffuse > 0.0) {
             float fd = b.specular > 0.0 ? dielectricMax(b, c) : 0.0;
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+            f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * (1.0 - b.diffTrans) * b.baseColor *
+                 (kInvPi * wi.z);
+#else
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.baseColor * (kInvPi * wi.z);
+#endif
             pdf += b.pDiffuse * wi.z * kInvPi;
         }
         if (!b.delta && b.pSpecular > 0.0) {
-            f += reflectance(b, c) * (ggxD(h, b.alpha) * ggxG2(wo, wi, b.alpha) / (4.0 * wo.z));
-            pdf += b.pSpecular * specularSplit(b, c) * ggxVisiblePdf(wo, h, b.alpha) / (4.0 * c);
+            f += reflectance(b, c) * (ggxD(h, BASE_ALPHA(b)) * ggxG2(wo, wi, BASE_ALPHA(b)) / (4.0 * wo.z));
+            pdf += b.pSpecular * specularSplit(b, c) * ggxVisiblePdf(wo, h, BASE_ALPHA(b)) / (4.0 * c);
         }
-    } else if (!b.delta && b.pSpecular > 0.0 && b.transmission > 0.0) {
+    } else {
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+        if (b.pDiffuseT > 0.0) {
+            // Fd at the half vector of wo and wi mirrored to wo's side.
+            vec3 m = vec3(wi.xy, -wi.z);
+            float fd = b.specular > 0.0 ? dielectricMax(b, dot(wo, normalize(wo + m))) : 0.0;
+            f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.diffTrans * b.diffTransColor *
+                 (kInvPi * m.z);
+            pdf += b.pDiffuseT * m.z * kInvPi;
+        }
+#endif
+        if (!(!b.delta && b.pSpecular > 0.0 && b.transmission > 0.0)) return f;
         // Generalised half vector (Walter et al. 2007), on wo's side.
         vec3 h = wi * b.etap + wo;
         if (dot(h, h) == 0.0) return f;
@@ -437,11 +494,11 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         float fd = dielectricMax(b, co);
         float denom = ci + co / b.etap;
         denom *= denom;
-        float d = ggxD(h, b.alpha);
-        float ft = d * ggxG2(wo, wi, b.alpha) * (1.0 - fd) * (-ci) * co / (denom * wo.z);
+        float d = ggxD(h, BASE_ALPHA(b));
+        float ft = d * ggxG2(wo, wi, BASE_ALPHA(b)) * (1.0 - fd) * (-ci) * co / (denom * wo.z);
         f += (1.0 - b.metallic) * b.transmission * b.baseColor * (ft / (b.etap * b.etap));
         float dhdwi = -ci / denom;
-        pdf += b.pSpecular * (1.0 - specularSplit(b, co)) * ggxVisiblePdf(wo, h, b.alpha) * dhdwi;
+        pdf += b.pSpecular * (1.0 - specularSplit(b, co)) * ggxVisiblePdf(wo, h, BASE_ALPHA(b)) * dhdwi;
     }
     return f;
 }
@@ -528,7 +585,7 @@ bool sampleSheenDirection(float alpha, vec3 wo, vec2 u, out vec3 wi) {
 #endif
 
 // One direction: uLobe picks the coat, sheen, microfacet or diffuse
-// strategy by the probabilities of makeBsdf and then, rescaled, reflection
+// (reflected, then transmitted) strategy by the probabilities of makeBsdf and then, rescaled, reflection
 // or transmission at the sampled microfacet; u is the direction within the
 // lobe. A non-delta direction gets the whole BSDF's weight and pdf from one
 // evalBsdf (one copy of it in the compiled shader).
@@ -558,7 +615,7 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
 #endif
     if (uLobe < b.pSpecular) {
         float uSplit = uLobe / b.pSpecular;
-        vec3 h = b.delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(wo, b.alpha, u);
+        vec3 h = b.delta ? vec3(0.0, 0.0, 1.0) : ggxSampleVisible(wo, BASE_ALPHA(b), u);
         float c = dot(wo, h);
         if (c <= 0.0) return s;
         float pr = specularSplit(b, c);
@@ -588,7 +645,13 @@ BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
         }
     } else {
         s.wi = sampleCosineHemisphere(u);
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+        // Past the reflected lobe's share: the transmitted one, below.
+        if (uLobe >= b.pSpecular + b.pDiffuse) s.wi.z = -s.wi.z;
+        if (s.wi.z == 0.0) return s;
+#else
         if (s.wi.z <= 0.0) return s;
+#endif
     }
     return finishSample(b, wo, s);
 }

@@ -2,7 +2,8 @@
 // (and baseColor times the COLOR_0 vertex colour)
 // (baseColor and emissive sRGB; metallicRoughness G = roughness, B =
 // metallic; transmission R; clearcoat R, clearcoatRoughness G; sheenColor
-// sRGB RGB, sheenRoughness A; specularColor sRGB RGB, specular A), the
+// sRGB RGB, sheenRoughness A; specularColor sRGB RGB, specular A;
+// diffuseTransmission A, diffuseTransmissionColor sRGB RGB), the
 // tangent-space normal maps (the base's and the coat's), and the alpha
 // test the BVH traversal uses to skip holes. Code for textures, normal maps
 // and alpha is compiled out by the kFeature* bits of SPEC_FEATURES when the
@@ -41,6 +42,11 @@ struct SurfacePoint {
     float iridescenceIor;
     float iridescenceThickness;  // nanometres
 #endif
+#endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    // KHR_materials_diffuse_transmission (kFeatureDiffuseTransmission; 0 otherwise)
+    float diffuseTransmission;
+    vec3 diffuseTransmissionColor;  // linear
 #endif
 };
 
@@ -136,6 +142,25 @@ vec4 materialTexture(uint ref, vec4 uvs) {
     return sampleTextureRef(r, second ? uvs.zw : uvs.xy);
 }
 
+// The tangent frame at a hit (`n`, `nsInterpolated` as normalMapped takes
+// them): the interpolated tangent T made orthogonal to the front face's
+// interpolated normal N, B = w cross(N, T); `side` -1 where n is the back.
+float tangentFrame(uint triangle, vec2 bary, vec3 n, vec3 nsInterpolated, out vec3 T, out vec3 B, out vec3 N) {
+    TriVerts tv = shadeTri(triangle);
+    float side = dot(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz), n) >= 0.0 ? 1.0 : -1.0;
+    N = side * nsInterpolated;
+    TriTangents tg = shadeTangents(triangle);
+    vec4 t4 = (1.0 - bary.x - bary.y) * tg.t0 + bary.x * tg.t1 + bary.y * tg.t2;
+    T = t4.xyz - N * dot(N, t4.xyz);
+    if (dot(T, T) > 1.0e-12) {
+        T = normalize(T);
+    } else {
+        basis(N, T, B);
+    }
+    B = (t4.w < 0.0 ? -1.0 : 1.0) * cross(N, T);
+    return side;
+}
+
 // The shading normal mapped by texture slot `tex` with scale `scale`
 // (normalTexture, clearcoatNormalTexture). The tangent frame is built on the front
 // face (the triangle's counter-clockwise side): the interpolated tangent,
@@ -146,25 +171,36 @@ vec4 materialTexture(uint ref, vec4 uvs) {
 vec3 normalMapped(uint tex, float scale, uint triangle, vec2 bary, vec4 uvs, vec3 n, vec3 nsInterpolated) {
     vec3 m = materialTexture(tex, uvs).xyz * 2.0 - 1.0;
     m.xy *= scale;
-    TriVerts tv = shadeTri(triangle);
-    float side = dot(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz), n) >= 0.0 ? 1.0 : -1.0;
-    vec3 N = side * nsInterpolated;
-    TriTangents tg = shadeTangents(triangle);
-    vec4 t4 = (1.0 - bary.x - bary.y) * tg.t0 + bary.x * tg.t1 + bary.y * tg.t2;
-    vec3 T = t4.xyz - N * dot(N, t4.xyz);
-    vec3 B;
-    if (dot(T, T) > 1.0e-12) {
-        T = normalize(T);
-    } else {
-        basis(N, T, B);
-    }
-    B = (t4.w < 0.0 ? -1.0 : 1.0) * cross(N, T);
+    vec3 T, B, N;
+    float side = tangentFrame(triangle, bary, n, nsInterpolated, T, B, N);
     vec3 ns = side * normalize(m.x * T + m.y * B + m.z * N);
     const float kMinCos = 1.0e-3;
     float c = dot(ns, n);
     if (c < kMinCos) ns = normalize(ns + (kMinCos - c) * n);
     return ns;
 }
+
+#ifdef STRATA_ANISOTROPY
+// KHR_materials_anisotropy at a hit (`n`, `nsInterpolated` as normalMapped
+// takes them): the strength (anisotropyStrength x the texture's B) and, in
+// `dir`, the direction in world space: the texture's RG (else the tangent)
+// in the tangent frame, turned by anisotropyRotation towards the bitangent.
+float anisotropyAt(Material mat, uint triangle, vec2 bary, vec3 n, vec3 nsInterpolated, out vec3 dir) {
+    float strength = mat.anisotropyStrength;
+    vec2 d = vec2(1.0, 0.0);
+    if ((kFeatures & kFeatureTextures) != 0u && mat.anisotropyTex != kNoTexture) {
+        vec3 a = materialTexture(mat.anisotropyTex, texcoordsAt(triangle, bary)).rgb;
+        d = a.rg * 2.0 - 1.0;
+        strength *= a.b;
+    }
+    float c = cos(mat.anisotropyRotation), s = sin(mat.anisotropyRotation);
+    d = vec2(c * d.x - s * d.y, s * d.x + c * d.y);
+    vec3 T, B, N;
+    tangentFrame(triangle, bary, n, nsInterpolated, T, B, N);
+    dir = d.x * T + d.y * B;
+    return strength;
+}
+#endif
 
 #ifdef STRATA_LAYERS
 // KHR_materials_clearcoat at a point of a coated material: clearcoat x its
@@ -234,6 +270,15 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
     }
 #endif
 #endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    sp.diffuseTransmission = 0.0;
+    sp.diffuseTransmissionColor = vec3(1.0);
+    bool translucent = hasFeature(kFeatureDiffuseTransmission) && (mat.flags & kMaterialDiffuseTransmission) != 0u;
+    if (translucent) {
+        sp.diffuseTransmission = mat.diffuseTransmission;
+        sp.diffuseTransmissionColor = mat.diffuseTransmissionColor;
+    }
+#endif
     if ((kFeatures & kFeatureTextures) == 0u) return sp;
     vec4 uvs = texcoordsAt(triangle, bary);
     if (mat.baseColorTex != kNoTexture) {
@@ -269,6 +314,14 @@ SurfacePoint surfacePoint(Material mat, uint triangle, vec2 bary, vec3 n, vec3 n
                                           materialTexture(mat.iridescenceThicknessTex, uvs).g);
     }
 #endif
+#endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+    if (translucent) {
+        if (mat.diffuseTransmissionTex != kNoTexture)
+            sp.diffuseTransmission *= materialTexture(mat.diffuseTransmissionTex, uvs).a;
+        if (mat.diffuseTransmissionColorTex != kNoTexture)
+            sp.diffuseTransmissionColor *= materialTexture(mat.diffuseTransmissionColorTex, uvs).rgb;
+    }
 #endif
     return sp;
 }

@@ -24,9 +24,10 @@ const float kRayMax = 3.0e38;
 // length is not seen (pbrt-v4's ShadowEpsilon is 1e-4).
 const float kShadowEnd = 1.0 - 1.52587890625e-5;
 
-// Lambert only: no material of the scene has a specular, transmission, coat or sheen lobe.
-const bool kLambertOnly =
-    (kFeatures & (kFeatureSpecular | kFeatureTransmission | kFeatureClearcoat | kFeatureSheen)) == 0u;
+// Lambert only: no material of the scene has a specular, transmission, coat,
+// sheen or diffuse transmission lobe.
+const bool kLambertOnly = (kFeatures & (kFeatureSpecular | kFeatureTransmission | kFeatureClearcoat |
+                                        kFeatureSheen | kFeatureDiffuseTransmission)) == 0u;
 
 // MIS weight of a light found by BSDF sampling with density bsdfPdf, which
 // light sampling finds with density lightPdf.
@@ -163,6 +164,12 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         vec3 ns = normalize((1.0 - hit.u - hit.v) * sh.n0 + hit.u * sh.n1 + hit.v * sh.n2);
         if (dot(ns, n) < 0.0) ns = -ns;
         SurfacePoint sp = surfacePoint(mat, hit.triangle, vec2(hit.u, hit.v), n, ns);
+#ifdef STRATA_ANISOTROPY
+        float anisotropy = 0.0;
+        vec3 anisotropyDir = vec3(0.0);
+        if (hasFeature(kFeatureAnisotropy) && (mat.flags & kMaterialAnisotropy) != 0u)
+            anisotropy = anisotropyAt(mat, hit.triangle, vec2(hit.u, hit.v), n, ns, anisotropyDir);
+#endif
 #ifdef STRATA_TEXTURE_LOD
         gTexLod = vec2(kNoLod);  // lights' emission at their first level
 #endif
@@ -170,6 +177,14 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         if (dot(ns, wo) <= 0.0) ns = n;  // the viewer is behind the shading normal
         vec3 t, b;
         basis(ns, t, b);
+#ifdef STRATA_ANISOTROPY
+        // The shading frame's x along the anisotropy's direction.
+        vec3 along = anisotropyDir - ns * dot(anisotropyDir, ns);
+        if (anisotropy > 0.0 && dot(along, along) > 1.0e-12) {
+            t = normalize(along);
+            b = cross(ns, t);
+        }
+#endif
         vec3 woL = vec3(dot(wo, t), dot(wo, b), dot(wo, ns));
         Bsdf bsdf;
         if (kLambertOnly) {
@@ -195,8 +210,20 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             }
 #endif
 #endif
+            bool entering = front;
+#ifdef STRATA_ANISOTROPY
+            layers.anisotropy = anisotropy;
+#endif
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+            if (hasFeature(kFeatureDiffuseTransmission)) {
+                layers.diffuseTransmission = sp.diffuseTransmission;
+                layers.diffuseTransmissionColor = sp.diffuseTransmissionColor;
+                // A thin-walled surface: its back face sees the outside too.
+                if ((mat.flags & kMaterialThinWalled) != 0u) entering = true;
+            }
+#endif
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
-                            sp.specular, layers, front, woL);
+                            sp.specular, layers, entering, woL);
         }
         // The AOVs' vertex: the first whose lobes are not all deltas (a
         // smooth metal or a smooth fully transmitting dielectric is followed).

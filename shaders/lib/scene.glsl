@@ -140,7 +140,8 @@ Material sceneMaterial(uint i) {
     // The texels of an extension only when a material of the scene has it
     // (volume: the sixth; clearcoat: the seventh and eighth; sheen: the
     // eighth and ninth; specular colour: the tenth and eleventh; iridescence:
-    // the eleventh and twelfth).
+    // the eleventh and twelfth; diffuse transmission: the thirteenth and
+    // fourteenth; anisotropy: the fifteenth).
     int base = int(kMaterialTexels * i);
     uvec4 t[kMaterialTexels] = uvec4[kMaterialTexels](
         texelFetch(materialsTexel, base), texelFetch(materialsTexel, base + 1), texelFetch(materialsTexel, base + 2),
@@ -151,7 +152,10 @@ Material sceneMaterial(uint i) {
         hasFeature(kFeatureSheen) ? texelFetch(materialsTexel, base + 8) : uvec4(0u),
         hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 9) : uvec4(0u),
         hasFeature(kFeatureSpecularColor | kFeatureIridescence) ? texelFetch(materialsTexel, base + 10) : uvec4(0u),
-        hasFeature(kFeatureIridescence) ? texelFetch(materialsTexel, base + 11) : uvec4(0u));
+        hasFeature(kFeatureIridescence) ? texelFetch(materialsTexel, base + 11) : uvec4(0u),
+        hasFeature(kFeatureDiffuseTransmission) ? texelFetch(materialsTexel, base + 12) : uvec4(0u),
+        hasFeature(kFeatureDiffuseTransmission) ? texelFetch(materialsTexel, base + 13) : uvec4(0u),
+        hasFeature(kFeatureAnisotropy) ? texelFetch(materialsTexel, base + 14) : uvec4(0u));
     return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
                     TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
                     TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
@@ -170,7 +174,14 @@ Material sceneMaterial(uint i) {
                     TEXEL_FLOAT(t, kMaterialWordIridescence), TEXEL_FLOAT(t, kMaterialWordIridescenceIor),
                     TEXEL_UINT(t, kMaterialWordIridescenceTex), TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMin),
                     TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMax),
-                    TEXEL_UINT(t, kMaterialWordIridescenceThicknessTex), TEXEL_UINT(t, kMaterialWordPad0));
+                    TEXEL_UINT(t, kMaterialWordIridescenceThicknessTex), TEXEL_UINT(t, kMaterialWordPad0),
+                    TEXEL_VEC3(t, kMaterialWordDiffuseTransmissionColor),
+                    TEXEL_FLOAT(t, kMaterialWordDiffuseTransmission),
+                    TEXEL_UINT(t, kMaterialWordDiffuseTransmissionTex),
+                    TEXEL_UINT(t, kMaterialWordDiffuseTransmissionColorTex), TEXEL_UINT(t, kMaterialWordPad1),
+                    TEXEL_UINT(t, kMaterialWordPad2), TEXEL_FLOAT(t, kMaterialWordAnisotropyStrength),
+                    TEXEL_FLOAT(t, kMaterialWordAnisotropyRotation), TEXEL_UINT(t, kMaterialWordAnisotropyTex),
+                    TEXEL_UINT(t, kMaterialWordPad3));
 }
 
 #include "lib/sampling.glsl"

@@ -51,7 +51,7 @@ STRATA_CONST(uint, kTriShadingWordLight, 7u);
 STRATA_CONST(uint, kTriShadingWordN2, 8u);
 STRATA_CONST(uint, kTriShadingWordPad0, 11u);
 
-STRATA_CONST(uint, kMaterialTexels, 12u);
+STRATA_CONST(uint, kMaterialTexels, 15u);
 STRATA_CONST(uint, kMaterialWordBaseColor, 0u);
 STRATA_CONST(uint, kMaterialWordEmission, 4u);
 STRATA_CONST(uint, kMaterialWordMetallic, 7u);
@@ -89,6 +89,16 @@ STRATA_CONST(uint, kMaterialWordIridescenceThicknessMin, 44u);
 STRATA_CONST(uint, kMaterialWordIridescenceThicknessMax, 45u);
 STRATA_CONST(uint, kMaterialWordIridescenceThicknessTex, 46u);
 STRATA_CONST(uint, kMaterialWordPad0, 47u);
+STRATA_CONST(uint, kMaterialWordDiffuseTransmissionColor, 48u);
+STRATA_CONST(uint, kMaterialWordDiffuseTransmission, 51u);
+STRATA_CONST(uint, kMaterialWordDiffuseTransmissionTex, 52u);
+STRATA_CONST(uint, kMaterialWordDiffuseTransmissionColorTex, 53u);
+STRATA_CONST(uint, kMaterialWordPad1, 54u);
+STRATA_CONST(uint, kMaterialWordPad2, 55u);
+STRATA_CONST(uint, kMaterialWordAnisotropyStrength, 56u);
+STRATA_CONST(uint, kMaterialWordAnisotropyRotation, 57u);
+STRATA_CONST(uint, kMaterialWordAnisotropyTex, 58u);
+STRATA_CONST(uint, kMaterialWordPad3, 59u);
 
 STRATA_CONST(uint, kTriTexcoordsTexels, 3u);
 STRATA_CONST(uint, kTriTexcoordsWordUv0, 0u);
@@ -221,6 +231,16 @@ STRATA_WORD(Material, iridescenceThicknessMin, kMaterialWordIridescenceThickness
 STRATA_WORD(Material, iridescenceThicknessMax, kMaterialWordIridescenceThicknessMax);
 STRATA_WORD(Material, iridescenceThicknessTex, kMaterialWordIridescenceThicknessTex);
 STRATA_WORD(Material, pad0, kMaterialWordPad0);
+STRATA_TEXEL_WORD(Material, diffuseTransmissionColor, kMaterialWordDiffuseTransmissionColor);
+STRATA_WORD(Material, diffuseTransmission, kMaterialWordDiffuseTransmission);
+STRATA_WORD(Material, diffuseTransmissionTex, kMaterialWordDiffuseTransmissionTex);
+STRATA_WORD(Material, diffuseTransmissionColorTex, kMaterialWordDiffuseTransmissionColorTex);
+STRATA_WORD(Material, pad1, kMaterialWordPad1);
+STRATA_WORD(Material, pad2, kMaterialWordPad2);
+STRATA_WORD(Material, anisotropyStrength, kMaterialWordAnisotropyStrength);
+STRATA_WORD(Material, anisotropyRotation, kMaterialWordAnisotropyRotation);
+STRATA_WORD(Material, anisotropyTex, kMaterialWordAnisotropyTex);
+STRATA_WORD(Material, pad3, kMaterialWordPad3);
 
 STRATA_TEXELS(TriTexcoords, kTriTexcoordsTexels);
 STRATA_TEXEL_WORD(TriTexcoords, uv0, kTriTexcoordsWordUv0);

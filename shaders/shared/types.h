@@ -147,6 +147,10 @@ STRATA_CONST(uint, kFeatureInstancedEmitters, 131072u);  // emitters of an insta
                                                          // moves during the shutter): kEmitterInstanced
 STRATA_CONST(uint, kFeatureTextureLod, 262144u);  // textures with mip levels, read at the level a
                                                   // ray cone's footprint asks for (--texture-lod)
+STRATA_CONST(uint, kFeatureDiffuseTransmission, 524288u);  // KHR_materials_diffuse_transmission: a
+                                                           // Lambertian lobe through the surface
+STRATA_CONST(uint, kFeatureAnisotropy, 1048576u);  // KHR_materials_anisotropy: anisotropic GGX along
+                                                   // a direction in the tangent frame
 // The material layers: compiled only into the modules with the layers axis
 // (STRATA_LAYERS, lib/features.glsl).
 STRATA_CONST(uint, kFeaturesLayers,
@@ -169,6 +173,10 @@ STRATA_CONST(uint, kMaterialClearcoat, 32u);   // KHR_materials_clearcoat: clear
 STRATA_CONST(uint, kMaterialSheen, 64u);       // KHR_materials_sheen: sheenColorFactor > 0
 STRATA_CONST(uint, kMaterialSpecularColor, 128u);  // KHR_materials_specular: a colour or texture
 STRATA_CONST(uint, kMaterialIridescence, 256u);    // KHR_materials_iridescence: iridescenceFactor > 0
+STRATA_CONST(uint, kMaterialDiffuseTransmission, 512u);  // KHR_materials_diffuse_transmission: factor > 0
+STRATA_CONST(uint, kMaterialThinWalled, 1024u);  // ... and no volume (KHR_materials_volume thickness 0):
+                                                 // its back face sees the outside's ior too
+STRATA_CONST(uint, kMaterialAnisotropy, 2048u);  // KHR_materials_anisotropy: anisotropyStrength > 0
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -224,6 +232,20 @@ struct Material {
     float iridescenceThicknessMax;
     uint iridescenceThicknessTex;   // iridescenceThicknessTexture: G mixes min to max
     uint pad0;
+    // KHR_materials_diffuse_transmission (kMaterialDiffuseTransmission; the
+    // thirteenth and fourteenth texels, read under kFeatureDiffuseTransmission).
+    vec3 diffuseTransmissionColor;  // diffuseTransmissionColorFactor, linear
+    float diffuseTransmission;      // diffuseTransmissionFactor
+    uint diffuseTransmissionTex;    // diffuseTransmissionTexture: A scales the factor
+    uint diffuseTransmissionColorTex;  // diffuseTransmissionColorTexture: sRGB RGB scales the colour
+    uint pad1;
+    uint pad2;
+    // KHR_materials_anisotropy (kMaterialAnisotropy; the fifteenth texel,
+    // read under kFeatureAnisotropy).
+    float anisotropyStrength;
+    float anisotropyRotation;       // radians, counter-clockwise from the tangent
+    uint anisotropyTex;             // anisotropyTexture: RG direction, B scales the strength
+    uint pad3;
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_a.xy,
@@ -524,14 +546,15 @@ struct SampleTestParams {
     uint width;
     uint spp;
     uint blockWidth;
+    float diffTrans;       // BSDF routines: diffuse transmission factor
+    float diffTransColor;  // and its colour (grey)
     uint pad0;
-    uint pad1;
-    uint pad2;
     vec4 bsdf0;         // BSDF routines: cos(incidence), roughness, metallic, transmission
     vec4 bsdf1;         // ior, specular, base colour (grey), 1 = entering (wo outside)
     vec4 bsdf2;         // clearcoat, clearcoat roughness, sheen colour (grey), sheen roughness
     vec4 bsdf3;         // specular colour rgb; w: the coat normal's tilt t from the shading
                         // normal, towards (0.6, 0.8, 0): (0.6 sin t, 0.8 sin t, cos t)
+    vec4 bsdf4;         // anisotropy strength (along x), wo's azimuth from x (radians), unused, unused
 };
 
 // Statistics written by the shader with atomics. Ray counts are 64-bit
@@ -553,7 +576,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 192);
+static_assert(sizeof(Material) == 240);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(LightNode) == 48);
 static_assert(sizeof(TriTexcoords) == 48);
@@ -570,7 +593,7 @@ static_assert(sizeof(MotionKey) == 16 * kMotionKeyTexels);
 static_assert(sizeof(TraceParams) == 16);
 static_assert(sizeof(PathState) == 48);
 static_assert(sizeof(WaveParams) == 32);
-static_assert(sizeof(SampleTestParams) == 112);
+static_assert(sizeof(SampleTestParams) == 128);  // lavapipe's maxPushConstantsSize
 }  // namespace strata::gpu
 #endif
 
