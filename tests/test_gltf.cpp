@@ -24,7 +24,7 @@ using strata::MaterialDesc;
 using strata::Scene;
 using namespace strata::test;
 
-constexpr LoadOptions kNoRequirements{false, false};
+const LoadOptions kNoRequirements{false, false};
 
 Scene loadFeature(const std::string& name, const LoadOptions& options = kNoRequirements) {
     return strata::loadGltf(dataPath("features/" + name), options);

@@ -27,7 +27,7 @@ using namespace strata;
 
 namespace {
 
-constexpr LoadOptions kNoRequirements{false, false};
+const LoadOptions kNoRequirements{false, false};
 
 std::string compressedPath(const std::string& name) { return std::string(STRATA_COMPRESSED_DIR) + "/" + name; }
 

@@ -19,7 +19,7 @@ namespace {
 using namespace strata;
 using namespace strata::test;
 
-constexpr LoadOptions kNoRequirements{false, false};
+const LoadOptions kNoRequirements{false, false};
 
 Scene loadDeform(const std::string& name) { return loadGltf(dataPath("deform/" + name), kNoRequirements); }
 

@@ -27,7 +27,7 @@ using strata::Scene;
 using strata::Triangle;
 using namespace strata::test;
 
-constexpr LoadOptions kNoRequirements{false, false};
+const LoadOptions kNoRequirements{false, false};
 
 Scene loadGeometry(const std::string& name) {
     return strata::loadGltf(dataPath("geometry/" + name), kNoRequirements);

@@ -180,6 +180,24 @@ TEST_CASE("hostile: flattened triangles beyond the host memory are refused befor
                        "host memory to load and build; 8.0 GiB are available", options);
 }
 
+TEST_CASE("hostile: flattened emitters beyond the device's memory are refused before they are made") {
+    // The same file with the host memory to hold it, on a device of 2 GiB
+    // (lavapipe's heap; the render command reads the device's before it
+    // loads): its arrays alone need 96 bytes a triangle and 80 an emitter.
+    const std::string path = dataPath("fuzz/gltf/hostile-flatten-bomb.gltf");
+    LoadOptions options;
+    options.hostMemory = std::uint64_t(1) << 40;
+    std::uint64_t asked = 0;
+    options.deviceMemory = [&](std::uint64_t needed) {
+        asked = needed;
+        return DeviceBudget{std::uint64_t(2) << 30, "llvmpipe (its largest device-local heap)"};
+    };
+    checkRefused(path, "the scene's 20001 placed nodes flatten into 2000000000 triangles (2000000000 of them emitters, "
+                       "which are always flattened), whose arrays need at least 327.83 GiB of device memory, more than "
+                       "the 2.00 GiB of llvmpipe (its largest device-local heap)", options);
+    CHECK(asked == std::uint64_t(2000000000) * (kDeviceBytesPerTriangle + kDeviceBytesPerEmitter));
+}
+
 TEST_CASE("hostile: instances past the index limit or the host memory are refused before their transforms are read") {
     // Nodes sharing an accessor of 2^20 zero translations (make_hostile.py).
     checkRefused(dataPath("fuzz/gltf/hostile-instance-count.gltf"),

@@ -19,7 +19,7 @@ namespace {
 using namespace strata;
 using namespace strata::test;
 
-constexpr LoadOptions kNoRequirements{false, false};
+const LoadOptions kNoRequirements{false, false};
 
 }  // namespace
 

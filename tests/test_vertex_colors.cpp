@@ -18,7 +18,7 @@ using namespace strata::test;
 
 namespace {
 
-constexpr LoadOptions kNoLights{false, false};
+const LoadOptions kNoLights{false, false};
 
 Scene loadGeometry(const std::string& name) { return loadGltf(dataPath("geometry/" + name), kNoLights); }
 

@@ -19,6 +19,10 @@
 
 namespace strata {
 
+// The loader's lower bound of a flattened triangle's device memory (scene.h).
+static_assert(kDeviceBytesPerTriangle == sizeof(gpu::TriVerts) + sizeof(gpu::TriShading));
+static_assert(kDeviceBytesPerEmitter == sizeof(gpu::Emitter));
+
 std::vector<std::string> SceneFeatures::names() const {
     std::vector<std::string> out;
     if (emitters) out.push_back("lights");

@@ -57,12 +57,40 @@ SceneRequest sceneRequest(const RenderCommand& cmd) {
     return r;
 }
 
+// Below this the loader's lower bound of the flattened triangles' device
+// memory is not worth a Vulkan instance to read the device's (any device
+// has more; the upload checks the whole render).
+constexpr std::uint64_t kDeviceProbeBytes = std::uint64_t(256) << 20;
+
+// The device's memory for the loader's early check (LoadOptions::
+// deviceMemory): the open device's, else read without opening it where the
+// scene needs more than kDeviceProbeBytes; a lowered limit (tests) wins.
+// Nothing known when no device is found (opening it says why).
+void setDeviceBudget(const RenderCommand& cmd, const vk::Context* ctx, SceneRequest& r) {
+    const std::uint64_t lowered = r.limits.memory;
+    const int index = cmd.device;
+    r.load.deviceMemory = [ctx, lowered, index](std::uint64_t needed) {
+        vk::DeviceMemory m;
+        std::string name = "the device";
+        if (ctx) {
+            m = vk::deviceMemory(ctx->memory, ctx->info.vkType);
+            name = ctx->info.name;
+        } else if (needed > kDeviceProbeBytes || (lowered > 0 && needed > lowered)) {
+            if (const auto probe = vk::probeDeviceMemory(index)) m = probe->memory, name = probe->name;
+        }
+        if (lowered > 0 && (m.bytes == 0 || lowered < m.bytes)) m = {lowered, "the limit set"};
+        return m.bytes == 0 ? DeviceBudget{} : DeviceBudget{m.bytes, name + " (" + m.what + ")"};
+    };
+}
+
 // Load, build, pack and upload `cmd.scene`; `shared` is the device, created
-// on first use (after the scene loaded). A --resume state (`resumed`) is
+// on first use (after the scene loaded; its memory read before, so that a
+// scene too large for it is refused before it is built). A --resume state (`resumed`) is
 // checked against the scene and settings before the device is opened.
 Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared, const RenderState* resumed = nullptr) {
     Loaded l;
     l.request = sceneRequest(cmd);
+    setDeviceBudget(cmd, shared.get(), l.request);
     l.host = prepareScene(l.request);
     if (usesStates(cmd)) l.sceneHash = sceneContentHash(l.host.gpu, l.host.camera);
     if (resumed) {

@@ -67,7 +67,7 @@ public:
         // instances) decide whether it is flattened or instanced.
         std::vector<gltf::GpuInstances> gpu(visits.size());
         const std::size_t meshCount = model_.meshes.size();
-        std::vector<std::size_t> placements(meshCount, 0), meshTriangles(meshCount, 0);
+        std::vector<std::size_t> placements(meshCount, 0), meshTriangles(meshCount, 0), meshEmitters(meshCount, 0);
         std::vector<char> eligible(meshCount, 1), moving(meshCount, 0), emits(meshCount, 0);
         for (std::size_t k = 0; k < visits.size(); ++k) {
             const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(visits[k].node)];
@@ -80,14 +80,15 @@ public:
             if ((timeline_->blurs() || frames_) && timeline_->animated(visits[k].node)) moving[std::size_t(mesh)] = 1;
         }
         std::size_t stillMoving = 0;  // moving meshes that cannot be instanced
-        std::size_t triangles = 0, instances = 0;
+        gltf::SceneSize size;
         instanced_.assign(meshCount, 0);
         emits_.assign(meshCount, 0);
         for (std::size_t m = 0; m < meshCount; ++m) {
             if (placements[m] == 0) continue;
             for (const LocalPrimitive& prim : decodedMesh(int(m)).primitives) {
                 meshTriangles[m] += prim.indices.size() / 3;
-                if (prim.material >= 0 && isEmissive(scene_.materials[std::size_t(prim.material)])) emits[m] = 1;
+                if (prim.material >= 0 && isEmissive(scene_.materials[std::size_t(prim.material)]))
+                    emits[m] = 1, meshEmitters[m] += prim.indices.size() / 3;
             }
             for (const tinygltf::Primitive& prim : model_.meshes[m].primitives)
                 if (!prim.targets.empty()) eligible[m] = 0;  // each node may pose it differently
@@ -107,10 +108,16 @@ public:
             instanced_[m] = instance;
             emits_[m] = emits[m];
             // A flattened mesh's triangles, and the copies of an emitting one, are each stored.
-            if ((!instance || emits[m]) && __builtin_add_overflow(triangles, placed, &triangles)) triangles = SIZE_MAX;
-            if (instance) instances += placements[m];  // a node adds at most max(2^20, its buffers' bytes): no overflow
+            if ((!instance || emits[m]) && __builtin_add_overflow(size.triangles, placed, &size.triangles))
+                size.triangles = SIZE_MAX;
+            std::size_t lights = 0;
+            if (__builtin_mul_overflow(placements[m], meshEmitters[m], &lights) ||
+                __builtin_add_overflow(size.emitters, lights, &size.emitters))
+                size.emitters = SIZE_MAX;
+            if (instance) size.instances += placements[m];  // a node adds at most max(2^20, its buffers' bytes): no overflow
         }
-        checkHostMemory(triangles, instances, visits.size());
+        size.placements = visits.size();
+        gltf::checkSceneSize(path_, size, budget_);
         // Their count checked above; a mesh without triangles (every
         // primitive skipped) places nothing, so its instances go unread.
         for (std::size_t k = 0; k < visits.size(); ++k) {
@@ -122,7 +129,7 @@ public:
         if (stillMoving > 0 && timeline_->blurs())
             warn(path_, std::to_string(stillMoving) + " moving mesh(es) are skinned or have morph targets: "
                         "rendered at the pose at the shutter's open, without motion blur");
-        reserveHuge(scene_.triangles, triangles);
+        reserveHuge(scene_.triangles, size.triangles);
         for (std::size_t k = 0; k < visits.size(); ++k) visit(visits[k].node, visits[k].world, gpu[k], visits[k].visible);
         // The instanced meshes' own triangles after the world's, once per
         // winding their placements need.
@@ -142,7 +149,10 @@ public:
     }
 
     void setInstancing(Instancing mode) { instancing_ = mode; }
-    void setHostMemory(std::uint64_t bytes) { hostMemory_ = bytes; }
+    void setBudget(const LoadOptions& options) {
+        budget_.hostMemory = options.hostMemory;
+        budget_.deviceMemory = options.deviceMemory;
+    }
     // `frames`: every animated mesh is instanced and the poser's targets recorded.
     void setTimeline(gltf::NodeTimeline& timeline, bool frames) {
         timeline_ = &timeline;
@@ -462,32 +472,8 @@ private:
     const std::string& path_;
     const tinygltf::Model& model_;
     Scene& scene_;
-    // The world-space triangles of the flattened meshes and the instanced
-    // placements, before any is made: refused when they would not fit in
-    // the host's memory (a small file can place a mesh many times), or past
-    // the instances the instances array can index.
-    void checkHostMemory(std::size_t triangles, std::size_t instances, std::size_t placements) const {
-        if (instances > kMaxInstances)
-            fail(path_, "the scene places its instanced meshes " + std::to_string(instances) + " times, more than the " +
-                            std::to_string(kMaxInstances) + " instances strata can index");
-        const std::uint64_t budget = hostMemory_ != 0 ? hostMemory_ : hostMemoryBudget();
-        std::uint64_t needed = 0;
-        if (__builtin_mul_overflow(std::uint64_t(triangles), kHostBytesPerTriangle, &needed)) needed = UINT64_MAX;
-        const std::uint64_t forInstances = std::uint64_t(instances) * kHostBytesPerInstance;
-        if (budget == 0 || (needed <= budget && forInstances <= budget - needed)) return;
-        if (forInstances == 0 || needed > budget)
-            fail(path_, "the scene's " + std::to_string(placements) + " placed nodes flatten into " +
-                            (triangles == SIZE_MAX ? std::string("more than 2^64") : std::to_string(triangles)) +
-                            " triangles, which need about " + bytesText(needed) + " of host memory to load and build; " +
-                            bytesText(budget) + " are available (--instancing on stores a mesh placed many times once)");
-        fail(path_, "the scene's " + std::to_string(instances) + " instances" +
-                        (triangles > 0 ? " and " + std::to_string(triangles) + " flattened triangles" : std::string()) +
-                        " need about " + bytesText(needed + forInstances) + " of host memory to load and build; " +
-                        bytesText(budget) + " are available");
-    }
-
     Instancing instancing_ = Instancing::Auto;
-    std::uint64_t hostMemory_ = 0;
+    gltf::SizeBudget budget_;
     gltf::NodeTimeline* timeline_ = nullptr;
     bool frames_ = false;
     gltf::PoseTargets targets_;
@@ -554,7 +540,7 @@ Scene loadGltf(const std::string& path, const std::vector<unsigned char>& bytes,
     gltf::NodeTimeline timeline(path, model, animation ? &*animation : nullptr, options.motion);
     SceneBuilder builder(path, model, scene);
     builder.setInstancing(options.instancing);
-    builder.setHostMemory(options.hostMemory);
+    builder.setBudget(options);
     builder.setTimeline(timeline, options.motion.frames && animation);
     builder.walk(sceneIndex);
     if (options.motion.frames && animation && builder.poseTargets().complete)

@@ -324,4 +324,30 @@ int nodeLight(const std::string& path, const tinygltf::Model& model, int node,
 PunctualLight convertLight(const std::string& path, const tinygltf::Model& model, int index,
                            const glm::dmat4& world, const std::string& nodeLabel);
 
+// The scene's size once its placements are decided, before any triangle is
+// placed: the triangles stored (the flattened meshes' world-space copies and
+// the instanced meshes' copies per emitting placement), the emitting ones
+// among them, the instanced placements and the placed nodes.
+struct SceneSize {
+    std::size_t triangles = 0;
+    std::size_t emitters = 0;
+    std::size_t instances = 0;
+    std::size_t placements = 0;
+};
+
+// LoadOptions' memory limits (hostMemory 0: the machine's budget;
+// deviceMemory unset: not known).
+struct SizeBudget {
+    std::uint64_t hostMemory = 0;
+    std::function<DeviceBudget(std::uint64_t needed)> deviceMemory;
+};
+
+// Refuses a scene past the instances strata can index, the host memory its
+// flattened triangles and instances take to load and build
+// (kHostBytesPerTriangle, kHostBytesPerInstance), or the device memory its
+// flattened triangles' packed arrays take at least (kDeviceBytesPerTriangle,
+// kDeviceBytesPerEmitter): a small file can place a mesh many times, and is
+// refused before those are made (gltf_budget.cpp).
+void checkSceneSize(const std::string& path, const SceneSize& size, const SizeBudget& budget);
+
 }  // namespace strata::gltf

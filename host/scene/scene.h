@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -370,6 +371,13 @@ struct MotionOptions {
     bool frames = false;
 };
 
+// A device's memory and the words naming it ("llvmpipe (its largest
+// device-local heap)"), for LoadOptions::deviceMemory; 0 bytes: not known.
+struct DeviceBudget {
+    std::uint64_t bytes = 0;
+    std::string device;
+};
+
 struct LoadOptions {
     // A scene where nothing emits or was meant to (no emissive material on a
     // triangle, no punctual light) and no externalLight gets a uniform white
@@ -394,6 +402,13 @@ struct LoadOptions {
     // instances need more (kHostBytesPerTriangle, kHostBytesPerInstance each)
     // is an error before they are made.
     std::uint64_t hostMemory = 0;
+    // The memory of the device that will render the scene, asked for with
+    // the bytes the flattened triangles' packed arrays need at least
+    // (kDeviceBytesPerTriangle each, kDeviceBytesPerEmitter more for an
+    // emitter) once the placements are known: a scene that needs more is an
+    // error before its triangles are made (the upload checks the whole
+    // render again). Unset, or 0 bytes returned: not known.
+    std::function<DeviceBudget(std::uint64_t needed)> deviceMemory;
 };
 
 // The host memory a world-space triangle takes from loading to upload
@@ -403,6 +418,12 @@ inline constexpr std::uint64_t kHostBytesPerTriangle = 128;
 // The same for an instanced placement (its transforms, the top level's
 // build, the packed record and nodes).
 inline constexpr std::uint64_t kHostBytesPerInstance = 256;
+// Device memory a flattened triangle takes at least: its TriVerts and
+// TriShading (shaders/shared/types.h; pack/gpu_scene.cpp asserts the sum),
+// and an emitting one's Emitter. The tree over them and the other arrays
+// come on top.
+inline constexpr std::uint64_t kDeviceBytesPerTriangle = 96;
+inline constexpr std::uint64_t kDeviceBytesPerEmitter = 80;
 // Instanced placements at most: the instances array's texel indices
 // (top-level nodes, kInstanceTexels per record, motion keys) stay in 32 bits.
 inline constexpr std::uint64_t kMaxInstances = std::uint64_t(1) << 28;

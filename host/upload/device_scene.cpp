@@ -56,19 +56,10 @@ std::string texelLimit(const SceneLimits& l, const ArrayUse& a) {
 
 VkDeviceSize paddedSize(std::size_t bytes) { return std::max<VkDeviceSize>(16, (bytes + 15) & ~VkDeviceSize(15)); }
 
-// The device's largest device-local heap; on a CPU device (lavapipe) its
-// memory is the host's, so at most the host memory budget too.
-struct MemoryLimit {
-    std::uint64_t bytes;
-    const char* what;
-};
+// The device's memory (vk::deviceMemory), or the lowered limit.
+using MemoryLimit = vk::DeviceMemory;
 MemoryLimit deviceMemory(const vk::Context& ctx, std::uint64_t override) {
-    MemoryLimit m{0, "its largest device-local heap"};
-    for (std::uint32_t i = 0; i < ctx.memory.memoryHeapCount; ++i)
-        if (ctx.memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            m.bytes = std::max<std::uint64_t>(m.bytes, ctx.memory.memoryHeaps[i].size);
-    const std::uint64_t host = ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU ? hostMemoryBudget() : 0;
-    if (host > 0 && (m.bytes == 0 || host < m.bytes)) m = {host, "the host memory available: a CPU device's memory is the host's"};
+    MemoryLimit m = vk::deviceMemory(ctx.memory, ctx.info.vkType);
     if (override > 0 && (m.bytes == 0 || override < m.bytes)) m = {override, "the limit set"};
     return m;
 }
@@ -193,15 +184,6 @@ void fitTextures(const vk::Context& ctx, GpuScene& scene, const UploadOptions& o
     if (halved.size() > kNamed) list += " and " + std::to_string(halved.size() - kNamed) + " more";
     warn(scene.source, std::to_string(halved.size()) + " texture(s) downsampled to fit " + what + " (" +
                            sizeText(scene.texels.size() * sizeof(std::uint32_t)) + " of texels): " + list);
-}
-
-std::string sizeText(std::uint64_t bytes) {
-    if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
-    const bool gib = bytes >= (std::uint64_t(1) << 30);
-    char buf[32];
-    std::snprintf(buf, sizeof buf, gib ? "%.2f GiB" : "%.1f MiB",
-                  static_cast<double>(bytes) / static_cast<double>(gib ? 1u << 30 : 1u << 20));
-    return buf;
 }
 
 SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides) {

@@ -16,6 +16,7 @@
 #include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/kernel.h"  // TexelView
+#include "util/memory.h"  // sizeText
 
 namespace strata {
 
@@ -42,8 +43,6 @@ struct SceneLimits {
 
 SceneLimits sceneLimits(const vk::Context& ctx, const SceneLimits& overrides = {});
 
-// "812 bytes", "3.5 MiB" or "2.00 GiB".
-std::string sizeText(std::uint64_t bytes);
 
 // SPEC_TEXEL_FETCH for `scene` (kReads*). Auto: every array through texel
 // views on CPU devices (lavapipe; the BVH alone where another array does not

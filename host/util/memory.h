@@ -84,4 +84,14 @@ inline std::string bytesText(std::uint64_t bytes) {
     return text;
 }
 
+// Bytes exactly below a MiB, else as "3.5 MiB" or "2.00 GiB".
+inline std::string sizeText(std::uint64_t bytes) {
+    if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
+    const bool gib = bytes >= (std::uint64_t(1) << 30);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, gib ? "%.2f GiB" : "%.1f MiB",
+                  static_cast<double>(bytes) / static_cast<double>(gib ? 1u << 30 : 1u << 20));
+    return buf;
+}
+
 }  // namespace strata

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "util/error.h"
+#include "util/memory.h"
 #include "vk/check.h"
 
 namespace strata::vk {
@@ -114,7 +115,54 @@ int preferenceRank(VkPhysicalDeviceType type) {
     }
 }
 
+// The device ContextOptions::deviceIndex picks among `devices`: the index
+// asked for, else the first of the most preferred type; -1 for an index
+// past the list.
+int chooseDevice(const std::vector<VkPhysicalDevice>& devices, int deviceIndex) {
+    if (deviceIndex >= 0) return static_cast<std::size_t>(deviceIndex) < devices.size() ? deviceIndex : -1;
+    int chosen = 0, best = 1 << 30;
+    for (std::uint32_t i = 0; i < devices.size(); ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[i], &p);
+        const int rank = preferenceRank(p.deviceType);
+        if (rank < best) best = rank, chosen = static_cast<int>(i);
+    }
+    return chosen;
+}
+
 }  // namespace
+
+DeviceMemory deviceMemory(const VkPhysicalDeviceMemoryProperties& memory, VkPhysicalDeviceType type) {
+    DeviceMemory m{0, "its largest device-local heap"};
+    for (std::uint32_t i = 0; i < memory.memoryHeapCount; ++i)
+        if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            m.bytes = std::max<std::uint64_t>(m.bytes, memory.memoryHeaps[i].size);
+    const std::uint64_t host = type == VK_PHYSICAL_DEVICE_TYPE_CPU ? hostMemoryBudget() : 0;
+    if (host > 0 && (m.bytes == 0 || host < m.bytes)) m = {host, "the host memory available: a CPU device's memory is the host's"};
+    return m;
+}
+
+std::optional<DeviceMemoryProbe> probeDeviceMemory(int deviceIndex) {
+    VkInstance instance = VK_NULL_HANDLE;
+    try {
+        instance = createInstance(false);
+        const auto devices = physicalDevices(instance);
+        const int chosen = devices.empty() ? -1 : chooseDevice(devices, deviceIndex);
+        std::optional<DeviceMemoryProbe> out;
+        if (chosen >= 0) {
+            VkPhysicalDeviceProperties p;
+            VkPhysicalDeviceMemoryProperties memory;
+            vkGetPhysicalDeviceProperties(devices[std::size_t(chosen)], &p);
+            vkGetPhysicalDeviceMemoryProperties(devices[std::size_t(chosen)], &memory);
+            out = DeviceMemoryProbe{p.deviceName, deviceMemory(memory, p.deviceType)};
+        }
+        vkDestroyInstance(instance, nullptr);
+        return out;
+    } catch (...) {
+        if (instance != VK_NULL_HANDLE) vkDestroyInstance(instance, nullptr);
+        return std::nullopt;  // the device's own errors come when it is opened
+    }
+}
 
 std::uint64_t validationMessageCount() { return gValidationMessages.load(); }
 
@@ -160,22 +208,11 @@ Context::Context(const ContextOptions& options) {
 
         auto devices = physicalDevices(instance);
         if (devices.empty()) throw DeviceError("no Vulkan device found");
-        std::uint32_t chosen = 0;
-        if (options.deviceIndex >= 0) {
-            if (static_cast<std::size_t>(options.deviceIndex) >= devices.size())
-                throw Error("strata: error: --device " + std::to_string(options.deviceIndex) +
-                            " does not exist (" + std::to_string(devices.size()) +
-                            " device(s); see 'strata devices')");
-            chosen = static_cast<std::uint32_t>(options.deviceIndex);
-        } else {
-            int best = 1 << 30;
-            for (std::uint32_t i = 0; i < devices.size(); ++i) {
-                VkPhysicalDeviceProperties p;
-                vkGetPhysicalDeviceProperties(devices[i], &p);
-                int rank = preferenceRank(p.deviceType);
-                if (rank < best) best = rank, chosen = i;
-            }
-        }
+        const int pick = chooseDevice(devices, options.deviceIndex);
+        if (pick < 0)
+            throw Error("strata: error: --device " + std::to_string(options.deviceIndex) + " does not exist (" +
+                        std::to_string(devices.size()) + " device(s); see 'strata devices')");
+        const auto chosen = static_cast<std::uint32_t>(pick);
         physical = devices[chosen];
         info = describe(physical, chosen);
         vkGetPhysicalDeviceProperties(physical, &properties);

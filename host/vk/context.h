@@ -6,6 +6,7 @@
 #include <list>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,6 +59,25 @@ struct Context {
 private:
     void release();
 };
+
+// The memory a render may use on a device: its largest device-local heap;
+// on a CPU device (lavapipe) at most the host memory budget, since its
+// memory is the host's. `what` says which.
+struct DeviceMemory {
+    std::uint64_t bytes = 0;
+    const char* what = "";
+};
+DeviceMemory deviceMemory(const VkPhysicalDeviceMemoryProperties& memory, VkPhysicalDeviceType type);
+
+// The device ContextOptions{deviceIndex} would open, its name and memory,
+// read without opening it (an instance made and destroyed), so that a
+// scene can be refused for its size before it is built; nothing when no
+// device can be found (opening it then says why).
+struct DeviceMemoryProbe {
+    std::string name;
+    DeviceMemory memory;
+};
+std::optional<DeviceMemoryProbe> probeDeviceMemory(int deviceIndex);
 
 // Messages from the validation layers (warnings and errors) since start-up.
 // Tests assert this stays zero.
