@@ -1,7 +1,8 @@
-// Image formats beyond PNG and JPEG: EXT_texture_webp through libwebp on
-// files tests/data/make_webp.cpp encodes at build time (a lossless WebP
-// decodes to its source pixels exactly; without libwebp the fallback image
-// and the required-extension error), and KHR_texture_basisu, which strata
+// Image formats beyond PNG and JPEG: EXT_texture_webp through libwebp and
+// EXT_texture_avif through libavif on files tests/data/make_webp.cpp and
+// make_avif.cpp encode at build time (a lossless image decodes to its
+// source pixels exactly; without the decoder the fallback image and the
+// required-extension error), and KHR_texture_basisu, which strata
 // cannot decode: the texture's fallback source, or an error only where a
 // material uses the texture.
 #include <doctest/doctest.h>
@@ -41,13 +42,9 @@ TEST_CASE("KHR_texture_basisu: the texture shows its fallback source, one withou
     CHECK(unused.textures.at(0).image == -1);
 }
 
-#ifdef STRATA_WEBP_DIR
-
 namespace {
 
-std::string webpPath(const std::string& name) { return std::string(STRATA_WEBP_DIR) + "/" + name; }
-
-// make_webp.cpp's checker: 4 x 4 RGBA rows top to bottom.
+// format_files.h's checker: 4 x 4 RGBA rows top to bottom.
 std::vector<std::uint8_t> checker() {
     std::vector<std::uint8_t> out;
     for (int y = 0; y < 4; ++y) {
@@ -60,40 +57,56 @@ std::vector<std::uint8_t> checker() {
     return out;
 }
 
-}  // namespace
-
-TEST_CASE("EXT_texture_webp: the WebP source through libwebp, else the fallback image") {
-    const std::string path = webpPath("webp.gltf");
+// The files format_files.h's writeSet made in `dir` for `extension`
+// (`name`.gltf and its -required and -corrupt copies), read by a strata
+// built with the decoder (`built`) or without it (`decoder` names it).
+void checkFormatFiles(const std::string& dir, const std::string& name, const std::string& extension, bool built,
+                      const std::string& decoder, const std::string& corruptWhat) {
+    const std::string path = dir + "/" + name + ".gltf";
     CerrCapture capture;
     const Scene scene = loadGltf(path, kNoRequirements);
     REQUIRE(scene.textures.size() == 1);
-#if STRATA_WEBP
-    CHECK(capture.text().empty());
-    REQUIRE(scene.textures[0].image == 1);
-    const TextureImage& image = scene.images[1];
-    CHECK(image.width == 4);
-    CHECK(image.height == 4);
-    CHECK(image.bits == 8);
-    CHECK(image.data == checker());  // lossless: the source pixels exactly
-    // Required and without a fallback: the WebP image.
-    const Scene required = loadGltf(webpPath("webp-required.gltf"), kNoRequirements);
-    REQUIRE(required.textures.at(0).image == 0);
-    CHECK(required.images[0].data == checker());
-    const std::string corrupt = webpPath("webp-corrupt.gltf");
-    CHECK(loadError(corrupt) == corrupt + ": error: material 0 (\"Checker\") emissiveTexture: texture 0: image 1 "
-                                          "(\"corrupt.webp\"): cannot decode 40 bytes: a corrupt WebP image (libwebp)");
-    checkRenderRefuses(corrupt);
-#else
-    CHECK(capture.text() == path + ": warning: extension EXT_texture_webp is used but strata was built without the "
-                                   "WebP decoder (libwebp); reading the textures' fallback images\n");
-    CHECK(scene.textures[0].image == 0);  // the 1 x 1 black PNG
-    const std::string required = webpPath("webp-required.gltf");
-    CHECK(loadError(required) == required + ": error: required extension EXT_texture_webp cannot be read: strata "
-                                             "was built without the WebP decoder (libwebp)");
-    checkRenderRefuses(required);
-#endif
+    const std::string required = dir + "/" + name + "-required.gltf";
+    if (built) {
+        CHECK(capture.text().empty());
+        REQUIRE(scene.textures[0].image == 1);
+        const TextureImage& image = scene.images[1];
+        CHECK(image.width == 4);
+        CHECK(image.height == 4);
+        CHECK(image.bits == 8);
+        CHECK(image.data == checker());  // lossless: the source pixels exactly
+        // Required and without a fallback: the image through the extension.
+        const Scene only = loadGltf(required, kNoRequirements);
+        REQUIRE(only.textures.at(0).image == 0);
+        CHECK(only.images[0].data == checker());
+        const std::string corrupt = dir + "/" + name + "-corrupt.gltf";
+        CHECK(loadError(corrupt) == corrupt + ": error: material 0 (\"Checker\") emissiveTexture: texture 0: image 1 "
+                                              "(\"corrupt." + name + "\"): cannot decode 40 bytes: " + corruptWhat);
+        checkRenderRefuses(corrupt);
+    } else {
+        CHECK(capture.text() == path + ": warning: extension " + extension + " is used but strata was built without " +
+                                    decoder + "; reading the textures' fallback images\n");
+        CHECK(scene.textures[0].image == 0);  // the 1 x 1 black PNG
+        CHECK(loadError(required) == required + ": error: required extension " + extension +
+                                         " cannot be read: strata was built without " + decoder);
+        checkRenderRefuses(required);
+    }
 }
 
-#endif  // STRATA_WEBP_DIR
+}  // namespace
+
+#ifdef STRATA_WEBP_DIR
+TEST_CASE("EXT_texture_webp: the WebP source through libwebp, else the fallback image") {
+    checkFormatFiles(STRATA_WEBP_DIR, "webp", "EXT_texture_webp", STRATA_WEBP, "the WebP decoder (libwebp)",
+                     "a corrupt WebP image (libwebp)");
+}
+#endif
+
+#ifdef STRATA_AVIF_DIR
+TEST_CASE("EXT_texture_avif: the AVIF source through libavif, else the fallback image") {
+    checkFormatFiles(STRATA_AVIF_DIR, "avif", "EXT_texture_avif", STRATA_AVIF, "the AVIF decoder (libavif)",
+                     "a corrupt AVIF image (libavif)");
+}
+#endif
 
 TEST_SUITE_END();

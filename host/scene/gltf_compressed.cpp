@@ -314,6 +314,7 @@ const char* missingDecoder(std::string_view extension) {
     if (extension == kDraco && !STRATA_DRACO) return "the Draco decoder (libdraco)";
     if (extension == kMeshopt && !STRATA_MESHOPT) return "the meshopt decoder (libmeshoptimizer)";
     if (extension == "EXT_texture_webp" && !STRATA_WEBP) return "the WebP decoder (libwebp)";
+    if (extension == "EXT_texture_avif" && !STRATA_AVIF) return "the AVIF decoder (libavif)";
     if (extension == "KHR_texture_basisu") return "a Basis Universal decoder (Debian has none)";
     return nullptr;
 }

@@ -15,6 +15,9 @@
 #if STRATA_WEBP
 #include <webp/decode.h>
 #endif
+#if STRATA_AVIF
+#include <avif/avif.h>
+#endif
 
 #include "scene/gltf_deform.h"
 #include "scene/gltf_internal.h"
@@ -36,7 +39,7 @@ constexpr std::string_view kSupportedExtensions[] = {
     "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_variants",
     "KHR_materials_volume", "KHR_mesh_quantization",
-    "KHR_texture_transform", "EXT_texture_webp", "KHR_texture_basisu", "KHR_animation_pointer",
+    "KHR_texture_transform", "EXT_texture_webp", "EXT_texture_avif", "KHR_texture_basisu", "KHR_animation_pointer",
     "KHR_node_visibility"};
 
 std::string supportedList() {
@@ -174,6 +177,54 @@ bool isKtx2(const unsigned char* bytes, int size) {
     return size >= 12 && std::memcmp(bytes, kId, sizeof kId) == 0;
 }
 
+#if STRATA_AVIF
+// An AVIF file: an ISO BMFF 'ftyp' box of major brand avif (or avis).
+bool isAvif(const unsigned char* bytes, int size) {
+    return size >= 12 && std::memcmp(bytes + 4, "ftyp", 4) == 0 &&
+           (std::memcmp(bytes + 8, "avif", 4) == 0 || std::memcmp(bytes + 8, "avis", 4) == 0);
+}
+
+// EXT_texture_avif through libavif (one thread): `parse` reads the header
+// (the size, checked before anything is decoded), `decode` the first frame
+// as RGBA of 8 bits, or 16 for a deeper image.
+struct AvifDecoder {
+    avifDecoder* d = nullptr;
+    AvifDecoder() = default;
+    AvifDecoder(const AvifDecoder&) = delete;
+    AvifDecoder& operator=(const AvifDecoder&) = delete;
+    ~AvifDecoder() {
+        if (d) avifDecoderDestroy(d);
+    }
+    bool parse(const unsigned char* bytes, int size) {
+        d = avifDecoderCreate();
+        return d && avifDecoderSetIOMemory(d, bytes, static_cast<std::size_t>(size)) == AVIF_RESULT_OK &&
+               avifDecoderParse(d) == AVIF_RESULT_OK && d->image->width > 0 && d->image->height > 0;
+    }
+    bool decode(tinygltf::Image* image) {
+        if (avifDecoderNextImage(d) != AVIF_RESULT_OK) return false;
+        avifRGBImage rgb;
+        avifRGBImageSetDefaults(&rgb, d->image);
+        rgb.format = AVIF_RGB_FORMAT_RGBA;
+        rgb.depth = d->image->depth > 8 ? 16 : 8;
+        avifRGBImageAllocatePixels(&rgb);
+        const bool ok = rgb.pixels && avifImageYUVToRGB(d->image, &rgb) == AVIF_RESULT_OK;
+        if (ok) {
+            const std::size_t row = std::size_t(rgb.width) * 4 * (rgb.depth / 8);
+            image->image.resize(row * rgb.height);
+            for (std::uint32_t y = 0; y < rgb.height; ++y)
+                std::memcpy(image->image.data() + y * row, rgb.pixels + std::size_t(y) * rgb.rowBytes, row);
+            image->width = static_cast<int>(rgb.width);
+            image->height = static_cast<int>(rgb.height);
+            image->component = 4;
+            image->bits = static_cast<int>(rgb.depth);
+            image->pixel_type = rgb.depth == 16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        }
+        avifRGBImageFreePixels(&rgb);
+        return ok;
+    }
+};
+#endif
+
 #if STRATA_WEBP
 // EXT_texture_webp through libwebp: RGBA, 8 bits.
 bool decodeWebp(tinygltf::Image* image, const unsigned char* bytes, int size) {
@@ -215,6 +266,9 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
                std::uint32_t(bytes[at + 3]);
     };
     std::uint64_t w = 0, h = 0;
+#if STRATA_AVIF
+    AvifDecoder avif;
+#endif
     if (size >= 24 && std::memcmp(bytes, kPng, 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
         w = bigEndian(16);
         h = bigEndian(20);
@@ -222,6 +276,14 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     }
 #if STRATA_WEBP
     else if (isWebp(bytes, size)) known = WebPGetInfo(bytes, std::size_t(size), &claimedWidth, &claimedHeight) != 0;
+#endif
+#if STRATA_AVIF
+    else if (isAvif(bytes, size)) {
+        if ((known = avif.parse(bytes, size))) {
+            w = avif.d->image->width;
+            h = avif.d->image->height;
+        }
+    }
 #endif
     else known = stbi_info_from_memory(bytes, size, &claimedWidth, &claimedHeight, &channels) != 0;
     if (known && w == 0 && h == 0) {
@@ -247,6 +309,12 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     if (isWebp(bytes, size)) {
         decoded = decodeWebp(image, bytes, size);
         what = "a corrupt WebP image (libwebp)";
+    } else
+#endif
+#if STRATA_AVIF
+    if (isAvif(bytes, size)) {
+        decoded = known && avif.decode(image);
+        what = "a corrupt AVIF image (libavif)";
     } else
 #endif
     {
@@ -451,7 +519,8 @@ void checkExtensions(const std::string& path, const tinygltf::Model& model) {
         // KHR_texture_basisu: warnTextureFallbacks, where a material reads one.
         if (const char* decoder = missingDecoder(e); decoder && !required && e != "KHR_texture_basisu") {
             warn(path, "extension " + e + " is used but strata was built without " + decoder + "; reading " +
-                           (e == "EXT_texture_webp" ? "the textures' fallback images" : "the uncompressed fallback data"));
+                           (e == "EXT_texture_webp" || e == "EXT_texture_avif" ? "the textures' fallback images"
+                                                                                : "the uncompressed fallback data"));
         }
     }
 }

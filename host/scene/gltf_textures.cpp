@@ -2,7 +2,8 @@
 // KHR_texture_transform) -> Scene::images / Scene::textures / TextureSlot.
 // Pixels are decoded by tinygltf's stb_image loader (Debian links the shared
 // libstb): PNG 8/16-bit and JPEG (8-bit), always expanded to RGBA; WebP
-// (EXT_texture_webp) by libwebp where strata has it (gltf_parse.cpp).
+// (EXT_texture_webp) by libwebp and AVIF (EXT_texture_avif) by libavif
+// where strata has them (gltf_parse.cpp).
 // KHR_texture_basisu images are never decoded: their texture's fallback
 // `source` is used.
 #include <cmath>
@@ -83,7 +84,7 @@ int extensionSource(const tinygltf::Texture& texture, const char* name) {
 // to other means): its slots read as absent.
 bool sourceless(const tinygltf::Texture& texture) {
     return texture.source < 0 && extensionSource(texture, "EXT_texture_webp") < 0 &&
-           extensionSource(texture, "KHR_texture_basisu") < 0;
+           extensionSource(texture, "EXT_texture_avif") < 0 && extensionSource(texture, "KHR_texture_basisu") < 0;
 }
 
 }  // namespace
@@ -92,15 +93,20 @@ int textureImage(const tinygltf::Model& model, int index, std::string& why) {
     const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(index)];
     const auto valid = [&](int image) { return image >= 0 && static_cast<std::size_t>(image) < model.images.size(); };
     const bool webp = texture.extensions.count("EXT_texture_webp") != 0;
+    const bool avif = texture.extensions.count("EXT_texture_avif") != 0;
     const bool basisu = texture.extensions.count("KHR_texture_basisu") != 0;
     int image = texture.source;
     if (webp && STRATA_WEBP && valid(extensionSource(texture, "EXT_texture_webp"))) {
         image = extensionSource(texture, "EXT_texture_webp");
-    } else if (!valid(texture.source) && (webp || basisu)) {
-        why = webp ? "its image is EXT_texture_webp, strata was built without the WebP decoder (libwebp), and it "
-                     "has no fallback source"
-                   : "its image is KHR_texture_basisu, which strata cannot decode (Debian has no Basis Universal "
-                     "decoder), and it has no fallback source";
+    } else if (avif && STRATA_AVIF && valid(extensionSource(texture, "EXT_texture_avif"))) {
+        image = extensionSource(texture, "EXT_texture_avif");
+    } else if (!valid(texture.source) && (webp || avif || basisu)) {
+        why = webp   ? "its image is EXT_texture_webp, strata was built without the WebP decoder (libwebp), and it "
+                       "has no fallback source"
+              : avif ? "its image is EXT_texture_avif, strata was built without the AVIF decoder (libavif), and it "
+                       "has no fallback source"
+                     : "its image is KHR_texture_basisu, which strata cannot decode (Debian has no Basis Universal "
+                       "decoder), and it has no fallback source";
         return -1;
     }
     if (!valid(image)) {
@@ -112,8 +118,8 @@ int textureImage(const tinygltf::Model& model, int index, std::string& why) {
         const tinygltf::Value& extras = model.images[static_cast<std::size_t>(image)].extras;
         why = extras.IsObject() && extras.Has(kUndecodable) && extras.Get(kUndecodable).IsString()
                   ? extras.Get(kUndecodable).Get<std::string>()
-                  : "image " + std::to_string(image) + " has no decoded pixels (a WebP image needs libwebp; KTX2 is "
-                    "not decoded)";
+                  : "image " + std::to_string(image) + " has no decoded pixels (a WebP image needs libwebp, an AVIF "
+                    "image libavif; KTX2 is not decoded)";
         return -1;
     }
     return image;
