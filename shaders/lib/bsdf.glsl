@@ -585,9 +585,9 @@ bool sampleSheenDirection(float alpha, vec3 wo, vec2 u, out vec3 wi) {
 #endif
 
 // One direction: uLobe picks the coat, sheen, microfacet or diffuse
-// (reflected, then transmitted) strategy by the probabilities of makeBsdf and then, rescaled, reflection
-// or transmission at the sampled microfacet; u is the direction within the
-// lobe. A non-delta direction gets the whole BSDF's weight and pdf from one
+// (reflected, then transmitted) strategy by the probabilities of makeBsdf
+// and then, rescaled, reflection or transmission at the sampled
+// microfacet; u is the direction within the lobe. A non-delta direction gets the whole BSDF's weight and pdf from one
 // evalBsdf (one copy of it in the compiled shader).
 BsdfSample sampleBsdf(Bsdf b, vec3 wo, float uLobe, vec2 u) {
     BsdfSample s = noSample();

@@ -61,7 +61,6 @@ bool refractDir(vec3 wo, vec3 h, float etap, out vec3 wi) {
     return true;
 }
 
-
 #ifdef STRATA_ANISOTROPY
 // KHR_materials_anisotropy's anisotropic GGX: alpha.x along the frame's x
 // (the anisotropy direction), alpha.y along y (Heitz 2014). The isotropic
