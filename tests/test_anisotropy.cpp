@@ -148,7 +148,7 @@ TEST_SUITE_END();
 
 TEST_SUITE_BEGIN("unit");
 
-TEST_CASE("gltf materials: KHR_materials_anisotropy strength, rotation and texture (texCoord 1); tangents generated") {
+TEST_CASE("gltf materials: KHR_materials_anisotropy strength, rotation and texture (texCoord 1), and tangents generated") {
     const Scene scene = loadGltf(dataPath("materials/anisotropy.gltf"));
     const MaterialDesc& a = scene.materials.at(0);
     REQUIRE(a.name == "Brushed");

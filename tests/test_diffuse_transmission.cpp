@@ -82,7 +82,7 @@ TEST_CASE("diffuse transmission: sample weights equal eval / pdf, a smooth (delt
     checkBsdfWeights(materials);
 }
 
-TEST_CASE("diffuse transmission: white furnace: without Fresnel every sample weighs exactly 1; with it, never above 1") {
+TEST_CASE("diffuse transmission: white furnace: without Fresnel every sample weighs exactly 1, with it never above 1") {
     // ior 1 (no Fresnel, no specular lobe): white Lambert reflection and
     // white transmission split by the factor, each strategy chosen with its
     // own share, so every sample's weight is 1 (float rounding 1e-5) and
@@ -131,7 +131,7 @@ void checkTranslucentFurnace(const std::string& file, const glm::dvec3& expected
 
 }  // namespace
 
-TEST_CASE("diffuse transmission: a sheet of colour 1 and factor 1 in a white furnace is 1; factor 0.5 mixes base and colour") {
+TEST_CASE("diffuse transmission: a sheet of colour 1 and factor 1 in a white furnace is 1, and factor 0.5 mixes base and colour") {
     checkTranslucentFurnace("tests/data/materials/translucent-white.gltf", glm::dvec3(1.0));
     // (1 - 0.5) baseColor + 0.5 diffuseTransmissionColor (make_material_tests.py).
     const glm::dvec3 base(0.2, 0.6, 1.0), color(1.0, 0.5, 0.25);

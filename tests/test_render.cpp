@@ -267,6 +267,10 @@ TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit" 
         checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/layer-spheres.gltf")), s);
     }
     SUBCASE("alpha test") { checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/alpha-mask.gltf")), s); }
+    SUBCASE("diffuse transmission (a sun-lit sheet seen from behind) and anisotropy (a brushed plate)") {
+        checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/translucent-backlit.gltf")), s);
+        checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/anisotropy-90.gltf")), s);
+    }
     SUBCASE("environment map and a directional light, light sampling only") {
         const Scene scene = envBoardWithSun();
         checkWavefrontMatches(scene, s);
