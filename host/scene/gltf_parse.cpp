@@ -16,7 +16,7 @@
 #include <webp/decode.h>
 #endif
 #if STRATA_AVIF
-#include <avif/avif.h>
+#include "avif/module.h"
 #endif
 
 #include "scene/gltf_deform.h"
@@ -184,45 +184,18 @@ bool isAvif(const unsigned char* bytes, int size) {
            (std::memcmp(bytes + 8, "avif", 4) == 0 || std::memcmp(bytes + 8, "avis", 4) == 0);
 }
 
-// EXT_texture_avif through libavif (one thread): `parse` reads the header
-// (the size, checked before anything is decoded), `decode` the first frame
-// as RGBA of 8 bits, or 16 for a deeper image.
-struct AvifDecoder {
-    avifDecoder* d = nullptr;
-    AvifDecoder() = default;
-    AvifDecoder(const AvifDecoder&) = delete;
-    AvifDecoder& operator=(const AvifDecoder&) = delete;
-    ~AvifDecoder() {
-        if (d) avifDecoderDestroy(d);
-    }
-    bool parse(const unsigned char* bytes, int size) {
-        d = avifDecoderCreate();
-        return d && avifDecoderSetIOMemory(d, bytes, static_cast<std::size_t>(size)) == AVIF_RESULT_OK &&
-               avifDecoderParse(d) == AVIF_RESULT_OK && d->image->width > 0 && d->image->height > 0;
-    }
-    bool decode(tinygltf::Image* image) {
-        if (avifDecoderNextImage(d) != AVIF_RESULT_OK) return false;
-        avifRGBImage rgb;
-        avifRGBImageSetDefaults(&rgb, d->image);
-        rgb.format = AVIF_RGB_FORMAT_RGBA;
-        rgb.depth = d->image->depth > 8 ? 16 : 8;
-        avifRGBImageAllocatePixels(&rgb);
-        const bool ok = rgb.pixels && avifImageYUVToRGB(d->image, &rgb) == AVIF_RESULT_OK;
-        if (ok) {
-            const std::size_t row = std::size_t(rgb.width) * 4 * (rgb.depth / 8);
-            image->image.resize(row * rgb.height);
-            for (std::uint32_t y = 0; y < rgb.height; ++y)
-                std::memcpy(image->image.data() + y * row, rgb.pixels + std::size_t(y) * rgb.rowBytes, row);
-            image->width = static_cast<int>(rgb.width);
-            image->height = static_cast<int>(rgb.height);
-            image->component = 4;
-            image->bits = static_cast<int>(rgb.depth);
-            image->pixel_type = rgb.depth == 16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-        }
-        avifRGBImageFreePixels(&rgb);
-        return ok;
-    }
-};
+// EXT_texture_avif through the AVIF module (host/avif): its first frame.
+bool decodeAvif(tinygltf::Image* image, const avif::Api& api, const unsigned char* bytes, int size) {
+    avif::Image frame;
+    if (!api.decode(bytes, static_cast<std::size_t>(size), &frame)) return false;
+    image->width = static_cast<int>(frame.width);
+    image->height = static_cast<int>(frame.height);
+    image->component = 4;
+    image->bits = frame.bits;
+    image->pixel_type = frame.bits == 16 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(frame.rgba);
+    return true;
+}
 #endif
 
 #if STRATA_WEBP
@@ -267,7 +240,8 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     };
     std::uint64_t w = 0, h = 0;
 #if STRATA_AVIF
-    AvifDecoder avif;
+    const avif::Api* avifApi = nullptr;
+    std::string avifError;
 #endif
     if (size >= 24 && std::memcmp(bytes, kPng, 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
         w = bigEndian(16);
@@ -279,10 +253,9 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
 #endif
 #if STRATA_AVIF
     else if (isAvif(bytes, size)) {
-        if ((known = avif.parse(bytes, size))) {
-            w = avif.d->image->width;
-            h = avif.d->image->height;
-        }
+        std::uint32_t aw = 0, ah = 0;
+        avifApi = avif::module(avifError);
+        if ((known = avifApi && avifApi->size(bytes, std::size_t(size), &aw, &ah))) w = aw, h = ah;
     }
 #endif
     else known = stbi_info_from_memory(bytes, size, &claimedWidth, &claimedHeight, &channels) != 0;
@@ -313,8 +286,8 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
 #endif
 #if STRATA_AVIF
     if (isAvif(bytes, size)) {
-        decoded = known && avif.decode(image);
-        what = "a corrupt AVIF image (libavif)";
+        decoded = known && decodeAvif(image, *avifApi, bytes, size);
+        what = avifApi ? "a corrupt AVIF image (libavif)" : avifError.c_str();
     } else
 #endif
     {
