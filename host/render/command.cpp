@@ -84,9 +84,9 @@ void setDeviceBudget(const RenderCommand& cmd, const vk::Context* ctx, SceneRequ
 }
 
 // Load, build, pack and upload `cmd.scene`; `shared` is the device, created
-// on first use (after the scene loaded; its memory read before, so that a
-// scene too large for it is refused before it is built). A --resume state (`resumed`) is
-// checked against the scene and settings before the device is opened.
+// on first use (after the scene loaded; the loader may read its memory
+// before: setDeviceBudget). A --resume state (`resumed`) is checked against
+// the scene and settings before the device is opened.
 Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared, const RenderState* resumed = nullptr) {
     Loaded l;
     l.request = sceneRequest(cmd);
