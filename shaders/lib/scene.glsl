@@ -141,9 +141,15 @@ Material sceneMaterial(uint i) {
     // (volume: the sixth; clearcoat: the seventh and eighth; sheen: the
     // eighth and ninth; specular colour: the tenth and eleventh; iridescence:
     // the eleventh and twelfth; diffuse transmission: the thirteenth and
-    // fourteenth; anisotropy: the fifteenth).
+    // fourteenth; anisotropy: the fifteenth). The last three are in the
+    // module only with their axes (difftrans, aniso): without them the
+    // decoder is the twelve-texel one, their fields constants.
     int base = int(kMaterialTexels * i);
+#if defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY)
     uvec4 t[kMaterialTexels] = uvec4[kMaterialTexels](
+#else
+    uvec4 t[12] = uvec4[12](
+#endif
         texelFetch(materialsTexel, base), texelFetch(materialsTexel, base + 1), texelFetch(materialsTexel, base + 2),
         texelFetch(materialsTexel, base + 3), texelFetch(materialsTexel, base + 4),
         hasFeature(kFeatureVolume) ? texelFetch(materialsTexel, base + 5) : uvec4(0u),
@@ -152,10 +158,13 @@ Material sceneMaterial(uint i) {
         hasFeature(kFeatureSheen) ? texelFetch(materialsTexel, base + 8) : uvec4(0u),
         hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 9) : uvec4(0u),
         hasFeature(kFeatureSpecularColor | kFeatureIridescence) ? texelFetch(materialsTexel, base + 10) : uvec4(0u),
-        hasFeature(kFeatureIridescence) ? texelFetch(materialsTexel, base + 11) : uvec4(0u),
-        hasFeature(kFeatureDiffuseTransmission) ? texelFetch(materialsTexel, base + 12) : uvec4(0u),
+        hasFeature(kFeatureIridescence) ? texelFetch(materialsTexel, base + 11) : uvec4(0u)
+#if defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY)
+        , hasFeature(kFeatureDiffuseTransmission) ? texelFetch(materialsTexel, base + 12) : uvec4(0u),
         hasFeature(kFeatureDiffuseTransmission) ? texelFetch(materialsTexel, base + 13) : uvec4(0u),
-        hasFeature(kFeatureAnisotropy) ? texelFetch(materialsTexel, base + 14) : uvec4(0u));
+        hasFeature(kFeatureAnisotropy) ? texelFetch(materialsTexel, base + 14) : uvec4(0u)
+#endif
+    );
     return Material(TEXEL_VEC4(t, kMaterialWordBaseColor), TEXEL_VEC3(t, kMaterialWordEmission),
                     TEXEL_FLOAT(t, kMaterialWordMetallic), TEXEL_FLOAT(t, kMaterialWordRoughness),
                     TEXEL_FLOAT(t, kMaterialWordIor), TEXEL_UINT(t, kMaterialWordFlags),
@@ -175,13 +184,18 @@ Material sceneMaterial(uint i) {
                     TEXEL_UINT(t, kMaterialWordIridescenceTex), TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMin),
                     TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMax),
                     TEXEL_UINT(t, kMaterialWordIridescenceThicknessTex), TEXEL_UINT(t, kMaterialWordPad0),
+#if defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY)
                     TEXEL_VEC3(t, kMaterialWordDiffuseTransmissionColor),
                     TEXEL_FLOAT(t, kMaterialWordDiffuseTransmission),
                     TEXEL_UINT(t, kMaterialWordDiffuseTransmissionTex),
                     TEXEL_UINT(t, kMaterialWordDiffuseTransmissionColorTex), TEXEL_UINT(t, kMaterialWordPad1),
                     TEXEL_UINT(t, kMaterialWordPad2), TEXEL_FLOAT(t, kMaterialWordAnisotropyStrength),
                     TEXEL_FLOAT(t, kMaterialWordAnisotropyRotation), TEXEL_UINT(t, kMaterialWordAnisotropyTex),
-                    TEXEL_UINT(t, kMaterialWordPad3));
+                    TEXEL_UINT(t, kMaterialWordPad3)
+#else
+                    vec3(0.0), 0.0, kNoTexture, kNoTexture, 0u, 0u, 0.0, 0.0, kNoTexture, 0u
+#endif
+    );
 }
 
 #include "lib/sampling.glsl"
