@@ -295,6 +295,43 @@ def anisotropy_plate(path, rotation):
     s.write(path, ["KHR_materials_anisotropy"])
 
 
+ANISOTROPY_TEXEL = (128, 255, 255, 255)  # direction (1/255, 1): the bitangent; strength 1
+
+
+def anisotropy_textured(path):
+    """anisotropy_plate's plate with rotation 0 and the direction from a
+    constant anisotropyTexture (ANISOTROPY_TEXEL): along the bitangent (X),
+    as rotation pi/2 puts it."""
+    s = TexturedScene()
+    s.w.doc["asset"]["generator"] = GENERATOR
+    tex = s.texture(s.image(data_uri(png([[ANISOTROPY_TEXEL] * 2] * 2))), mag=LINEAR)
+    material = s.material(name="Brushed", pbrMetallicRoughness={
+        "baseColorFactor": [1, 1, 1, 1], "metallicFactor": 1.0, "roughnessFactor": ANISOTROPY_ROUGHNESS},
+        extensions={"KHR_materials_anisotropy": {"anisotropyStrength": 1.0, "anisotropyTexture": {"index": tex}}})
+    corners = [(-20, -20, 0), (20, -20, 0), (20, 20, 0), (-20, 20, 0)]
+    s.quad("Plate", corners, [(0, 1), (0, 0), (1, 0), (1, 1)], material, (0, 0, 1))
+    t = math.radians(60.0)
+    s.camera(math.radians(1.0), (0.0, -5.0 * math.sin(t), 5.0 * math.cos(t)), rotation_x(t))
+    s.write(path, ["KHR_materials_anisotropy"])
+
+
+TRANSLUCENT_TEXEL = (188, 128, 64, 128)  # sRGB colour; factor A = 128/255
+
+
+def translucent_textured(path):
+    """A black Lambertian plate of ior 1, its diffuse transmission from a
+    constant texture (TRANSLUCENT_TEXEL): factor 1 x A, colour 1 x the sRGB
+    RGB, seen head-on."""
+    def fields(s):
+        tex = constant_texture(s, TRANSLUCENT_TEXEL)
+        return {"name": "TexturedTranslucent", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1],
+                                                                         "metallicFactor": 0.0},
+                "extensions": dict(diffuse_transmission(1.0, (1, 1, 1), diffuseTransmissionTexture={"index": tex},
+                                                        diffuseTransmissionColorTexture={"index": tex}),
+                                   KHR_materials_ior={"ior": 1.0})}
+    textured_plate(path, fields, ["KHR_materials_diffuse_transmission", "KHR_materials_ior"], 20.0)
+
+
 def anisotropy_materials(s, tex):
     """anisotropy.gltf's materials (tests/test_anisotropy.cpp)."""
     return [
@@ -623,6 +660,8 @@ def main():
     layers_scene(os.path.join(out, "anisotropy.gltf"), anisotropy_materials, ["KHR_materials_anisotropy"])
     anisotropy_plate(os.path.join(out, "anisotropy-0.gltf"), 0.0)
     anisotropy_plate(os.path.join(out, "anisotropy-90.gltf"), math.pi / 2)
+    anisotropy_textured(os.path.join(out, "anisotropy-textured.gltf"))
+    translucent_textured(os.path.join(out, "translucent-textured.gltf"))
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
     for name, material in BROKEN.items():
         layers_scene(os.path.join(out, "broken", name), lambda s, tex, m=material: [m(tex)])

@@ -121,7 +121,7 @@ TEST_CASE("anisotropy: strength 0 compiled in gives the isotropic lobe, sample b
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("anisotropy: a brushed plate seen across and along its stretched axis shows the lobe's albedo in each") {
+TEST_CASE("anisotropy: a brushed plate seen across and along its stretched axis shows the lobe's albedo in each, the texture's direction too") {
     // anisotropy-0.gltf stretches the lobe along the tangent (+Y, the
     // direction of u) and the camera looks 60 degrees off the normal in the
     // Y-Z plane: along the stretched axis (azimuth 0 in the lobe's frame).
@@ -141,6 +141,11 @@ TEST_CASE("anisotropy: a brushed plate seen across and along its stretched axis 
     CHECK(std::abs(across - eAcross) < 4.0 * std::hypot(seAcross, seEAcross) + 2e-3);
     CHECK(std::abs(along - eAlong) < 4.0 * std::hypot(seAlong, seEAlong) + 2e-3);
     CHECK(std::abs(eAcross - eAlong) > 0.05);
+    // anisotropyTexture's RG turns the stretch as the rotation does: the
+    // texel (128, 255) points along the bitangent (make_material_tests.py).
+    const FurnaceMean fTextured = whiteFurnaceMean("tests/data/materials/anisotropy-textured.gltf", gpu::kFeatureAnisotropy);
+    MESSAGE("textured: image " << fTextured.mean.x << " +- " << fTextured.se.x);
+    CHECK(std::abs(fTextured.mean.x - eAcross) < 4.0 * std::hypot(fTextured.se.x, seEAcross) + 2e-3);
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -13,6 +13,7 @@
 #include "bsdf_util.h"
 #include "gltf_util.h"
 #include "pack/gpu_scene.h"
+#include "pack/textures.h"
 #include "stats/stats.h"
 
 using namespace strata;
@@ -136,6 +137,14 @@ TEST_CASE("diffuse transmission: a sheet of colour 1 and factor 1 in a white fur
     // (1 - 0.5) baseColor + 0.5 diffuseTransmissionColor (make_material_tests.py).
     const glm::dvec3 base(0.2, 0.6, 1.0), color(1.0, 0.5, 0.25);
     checkTranslucentFurnace("tests/data/materials/translucent-mix.gltf", 0.5 * base + 0.5 * color);
+}
+
+TEST_CASE("diffuse transmission: diffuseTransmissionTexture (A) scales the factor and diffuseTransmissionColorTexture (sRGB RGB) the colour") {
+    // A black plate of ior 1 (make_material_tests.py: TRANSLUCENT_TEXEL
+    // (188, 128, 64, 128)): in a white furnace it transmits 128/255 of the
+    // light in the texel's colour, linear.
+    const glm::dvec3 color(srgbToLinear(188.0 / 255.0), srgbToLinear(128.0 / 255.0), srgbToLinear(64.0 / 255.0));
+    checkTranslucentFurnace("tests/data/materials/translucent-textured.gltf", 128.0 / 255.0 * color);
 }
 
 TEST_CASE("diffuse transmission: a sheet lit on its front by the sun, seen from behind, shows factor colour E (1 - Fd) / pi") {
