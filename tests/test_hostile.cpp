@@ -182,8 +182,9 @@ TEST_CASE("hostile: flattened triangles beyond the host memory are refused befor
 
 TEST_CASE("hostile: flattened emitters beyond the device's memory are refused before they are made") {
     // The same file with the host memory to hold it, on a device of 2 GiB
-    // (lavapipe's heap; the render command reads the device's before it
-    // loads): its arrays alone need 96 bytes a triangle and 80 an emitter.
+    // (lavapipe's heap; the render command answers with the device's): its
+    // arrays alone need 96 bytes a triangle and 80 an emitter, and the
+    // loader asks with that.
     const std::string path = dataPath("fuzz/gltf/hostile-flatten-bomb.gltf");
     LoadOptions options;
     options.hostMemory = std::uint64_t(1) << 40;
