@@ -475,9 +475,13 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
     } else {
 #ifdef STRATA_DIFFUSE_TRANSMISSION
         if (b.pDiffuseT > 0.0) {
-            // Fd at the half vector of wo and wi mirrored to wo's side.
+            // Fd at the half vector of wo and wi mirrored to wo's side. Seen
+            // from inside a volume (etap < 1) at wo's own angle instead: the
+            // specular lobe's total internal reflection takes everything
+            // beyond the critical angle, and at the mirrored half vector the
+            // two lobes would together reflect more than 1.
             vec3 m = vec3(wi.xy, -wi.z);
-            float fd = b.specular > 0.0 ? dielectricMax(b, dot(wo, normalize(wo + m))) : 0.0;
+            float fd = b.specular > 0.0 ? dielectricMax(b, b.etap < 1.0 ? wo.z : dot(wo, normalize(wo + m))) : 0.0;
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.diffTrans * b.diffTransColor *
                  (kInvPi * m.z);
             pdf += b.pDiffuseT * m.z * kInvPi;
