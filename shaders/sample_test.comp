@@ -17,6 +17,7 @@ layout(push_constant) uniform Push { SampleTestParams params; };
 #include "lib/lights.glsl"
 #include "lib/filter.glsl"
 #include "lib/bsdf.glsl"
+#include "lib/medium.glsl"
 
 Bsdf testBsdf(out vec3 wo) {
     float c = params.bsdf0.x;
@@ -130,6 +131,15 @@ void main() {
         float z = 2.0 * c.y - 1.0, r = sqrt(max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * c.x;
         vec3 d = vec3(r * cos(phi), r * sin(phi), z);
         out4 = vec4(d, lightPdfEnvironment(d));
+    } else if (params.routine == kSamplePhase) {
+        float pdf;
+        out4.xyz = samplePhaseHG(vec3(0.0, 0.0, 1.0), params.bsdf4.z, sample2D(smp), pdf);
+        out4.w = pdf;
+    } else if (params.routine == kSampleFreeFlight) {
+        float t;
+        out4.yzw = mediumFreeFlight(params.bsdf3.xyz, params.bsdf2.xyz, params.bsdf1.xyz, params.bsdf4.w,
+                                    sample1D(smp), t);
+        out4.x = t;
     } else if (params.routine == kSampleBsdf || params.routine == kSampleBsdfWeight) {
         vec3 wo;
         Bsdf b = testBsdf(wo);

@@ -9,9 +9,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <doctest/doctest.h>
+
+#include "gltf_util.h"
 
 namespace strata::test {
 
@@ -99,5 +102,26 @@ inline void expectError(const std::string& args, const std::string& prefix) {
 }
 
 inline void checkRenderRefuses(const std::string& file) { expectError("render " + file, file + ": error: "); }
+
+// A folder of broken files under tests/data (`folder`, e.g.
+// "materials/broken"), each with the one error line it must give after
+// "FILE: error: " (`cases`: file name, message): every .gltf there has its
+// case, loading gives exactly that one line, and render refuses it.
+inline void checkBrokenFolder(const std::string& folder,
+                              const std::vector<std::pair<std::string, std::string>>& cases) {
+    std::size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dataPath(folder)))
+        files += entry.path().extension() == ".gltf";
+    CHECK(files == cases.size());  // every file in the folder has its case
+    for (const auto& [file, expected] : cases) {
+        const std::string path = dataPath(folder + "/" + file);
+        CAPTURE(path);
+        const std::string message = loadError(path);
+        REQUIRE_MESSAGE(!message.empty(), "loaded without an error");
+        CHECK(isOneLine(message));
+        CHECK(message == path + ": error: " + expected);
+        checkRenderRefuses(path);
+    }
+}
 
 }  // namespace strata::test

@@ -37,7 +37,8 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureInstancing, "instancing"},   {gpu::kFeatureIridescence, "iridescence"},
         {gpu::kFeatureLightTree, "light-tree"},
         {gpu::kFeatureInstancedEmitters, "moving-lights"}, {gpu::kFeatureTextureLod, "texture-lod"},
-        {gpu::kFeatureDiffuseTransmission, "diffuse-transmission"}, {gpu::kFeatureAnisotropy, "anisotropy"}};
+        {gpu::kFeatureDiffuseTransmission, "diffuse-transmission"}, {gpu::kFeatureAnisotropy, "anisotropy"},
+        {gpu::kFeatureVolumeScatter, "volume-scatter"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -48,10 +49,12 @@ namespace {
 
 // KHR_materials_volume's attenuation coefficient sigma = -ln(color) / distance
 // per channel, for a material whose volume attenuates: thickness > 0 (not
-// thin-walled), transmissive, finite distance, a colour below 1. Zero
-// otherwise. A channel of colour 0 absorbs everything (float max).
+// thin-walled), transmissive (KHR_materials_transmission or
+// KHR_materials_diffuse_transmission), finite distance, a colour below 1.
+// Zero otherwise. A channel of colour 0 absorbs everything (float max).
 glm::vec3 volumeAttenuation(const MaterialDesc& m) {
-    const bool volume = m.thickness > 0.0f && m.transmission > 0.0f && m.metallic < 1.0f && !m.unlit &&
+    const bool volume = m.thickness > 0.0f && (m.transmission > 0.0f || m.diffuselyTransmitting()) &&
+                        m.metallic < 1.0f && !m.unlit &&
                         std::isfinite(m.attenuationDistance) && glm::any(glm::lessThan(m.attenuationColor, glm::vec3(1.0f)));
     if (!volume) return glm::vec3(0.0f);
     glm::vec3 sigma;
@@ -61,6 +64,22 @@ glm::vec3 volumeAttenuation(const MaterialDesc& m) {
                            : std::numeric_limits<float>::max();
     }
     return sigma;
+}
+
+// KHR_materials_volume_scatter's single-scatter albedo from the
+// multi-scatter albedo rho_ms, per channel (Kulla and Conty 2017, the
+// draft's mapping): 1 - (4.09712 + 4.20863 rho_ms - sqrt(9.59217 +
+// 41.6808 rho_ms + 17.7126 rho_ms^2))^2, clamped to [0, 1]. rho_ms 0 gives
+// 0 (absorption only), rho_ms 1 gives 1 (no absorption).
+glm::vec3 singleScatterAlbedo(glm::vec3 multiscatter) {
+    glm::vec3 out;
+    for (int k = 0; k < 3; ++k) {
+        // At 0 the rounded constants leave 5.7e-6: absorption only is exact.
+        const double a = multiscatter[k];
+        const double r = 4.09712 + 4.20863 * a - std::sqrt(9.59217 + 41.6808 * a + 17.7126 * a * a);
+        out[k] = a > 0.0 ? static_cast<float>(std::clamp(1.0 - r * r, 0.0, 1.0)) : 0.0f;
+    }
+    return out;
 }
 
 double sceneRadius(const Scene& scene) {
@@ -317,6 +336,12 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         gm.attenuation = volumeAttenuation(m);
         gm.thickness = m.thickness;
         if (gm.attenuation != glm::vec3(0.0f)) gm.flags |= gpu::kMaterialVolume;
+        gm.scatterAlbedo = singleScatterAlbedo(m.multiscatterColor);
+        gm.scatterAnisotropy = m.scatterAnisotropy;
+        if ((gm.flags & gpu::kMaterialVolume) != 0u && gm.scatterAlbedo != glm::vec3(0.0f))
+            gm.flags |= gpu::kMaterialVolumeScatter;
+        else
+            gm.scatterAlbedo = glm::vec3(0.0f), gm.scatterAnisotropy = 0.0f;
         if (m.coated()) {
             gm.flags |= gpu::kMaterialClearcoat;
             gm.clearcoat = m.clearcoat;
@@ -516,6 +541,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         if (m.metallic > 0.0f || m.specular > 0.0f) g.features.bits |= gpu::kFeatureSpecular;
         if (m.transmission > 0.0f && m.metallic < 1.0f) g.features.bits |= gpu::kFeatureTransmission;
         if ((m.flags & gpu::kMaterialVolume) != 0u) g.features.bits |= gpu::kFeatureVolume;
+        if ((m.flags & gpu::kMaterialVolumeScatter) != 0u) g.features.bits |= gpu::kFeatureVolumeScatter;
         if ((m.flags & gpu::kMaterialClearcoat) != 0u) g.features.bits |= gpu::kFeatureClearcoat;
         if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
         if ((m.flags & gpu::kMaterialSpecularColor) != 0u) g.features.bits |= gpu::kFeatureSpecularColor;

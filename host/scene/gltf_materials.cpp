@@ -258,6 +258,15 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
         fail(path, label + ": " + anisotropy + ".anisotropyRotation " + formatNumber(rotation) + " is not finite");
     m.anisotropyRotation = static_cast<float>(rotation);
     m.anisotropyTexture = extensionSlot(path, model, label, src, anisotropy, "anisotropyTexture");
+    // KHR_materials_volume_scatter (a draft): multiscatterColor, which some
+    // exporters spell multiscatterColorFactor, and scatterAnisotropy in (-1, 1).
+    const char* scatter = "KHR_materials_volume_scatter";
+    m.multiscatterColor = extensionColor(path, label, src, scatter, "multiscatterColorFactor", glm::vec3(0.0f));
+    m.multiscatterColor = extensionColor(path, label, src, scatter, "multiscatterColor", m.multiscatterColor);
+    const double g = extensionNumber(path, label, src, scatter, "scatterAnisotropy", 0.0);
+    if (!(g > -1.0 && g < 1.0))
+        fail(path, label + ": " + scatter + ".scatterAnisotropy " + formatNumber(g) + " is not in (-1, 1)");
+    m.scatterAnisotropy = static_cast<float>(g);
     m.uvSets = uvSets(path, label, m);
     return m;
 }

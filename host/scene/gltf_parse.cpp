@@ -38,7 +38,7 @@ constexpr std::string_view kSupportedExtensions[] = {
     "KHR_materials_diffuse_transmission", "KHR_materials_iridescence",
     "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_variants",
-    "KHR_materials_volume", "KHR_mesh_quantization",
+    "KHR_materials_volume", "KHR_materials_volume_scatter", "KHR_mesh_quantization",
     "KHR_texture_transform", "EXT_texture_webp", "EXT_texture_avif", "KHR_texture_basisu", "KHR_animation_pointer",
     "KHR_node_visibility"};
 

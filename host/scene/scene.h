@@ -126,6 +126,11 @@ struct MaterialDesc {
     float anisotropyRotation = 0.0f;       // radians, counter-clockwise from the tangent
     TextureSlot anisotropyTexture;         // linear: RG direction in [-1, 1], B scales the strength
     bool anisotropic() const { return anisotropyStrength > 0.0f && !unlit; }
+    // KHR_materials_volume_scatter (draft): the share of the volume's
+    // attenuation that scatters, from the multi-scatter albedo (gpu_scene.cpp
+    // singleScatterAlbedo), and the Henyey-Greenstein g of its events.
+    glm::vec3 multiscatterColor{0.0f};     // multiscatterColor, linear (0: absorption only)
+    float scatterAnisotropy = 0.0f;        // in (-1, 1)
     // KHR_materials_specular's colour or textures change the dielectric's Fresnel.
     bool tinted() const {
         return (specularColor != glm::vec3(1.0f) || specularTexture.used() || specularColorTexture.used()) &&

@@ -75,6 +75,10 @@ const Axis kAxes[] = {
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureAnisotropy) != 0u; },
      "a KHR_materials_anisotropy material (`kFeatureAnisotropy`)",
      "the anisotropic GGX and its tangent frame (lib/ggx.glsl, lib/material.glsl)"},
+    {"volscatter", "STRATA_VOLUME_SCATTER", kShading, 0, 0,
+     [](const VariantInputs& in) { return (in.features & gpu::kFeatureVolumeScatter) != 0u; },
+     "a KHR_materials_volume_scatter material (`kFeatureVolumeScatter`)",
+     "free flights, medium vertices and their phase function (lib/medium.glsl)"},
 };
 
 std::uint32_t kernelAxes(KernelId k) {

@@ -8,6 +8,10 @@
 #ifndef STRATA_LIB_PATH_GLSL
 #define STRATA_LIB_PATH_GLSL
 
+#ifdef STRATA_VOLUME_SCATTER
+#include "lib/medium.glsl"
+#endif
+
 // Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
 // 2D pairs: light choice and point, BSDF lobe (1D in a pair; the light
 // tree's choice takes the pair's second), BSDF direction, roulette (1D in a
@@ -64,6 +68,16 @@ float gConeWidth = 0.0;
 float gConeSpread = 0.0;
 #endif
 
+// Russian roulette after depth 3 with number u: the path ends with
+// probability q = max(0.05, 1 - max(beta)); a survivor's beta is divided by 1 - q.
+bool pathSurvives(inout PathVertex v, float u, uint depth) {
+    if (depth < 3u) return true;
+    float q = max(0.05, 1.0 - max(v.beta.r, max(v.beta.g, v.beta.b)));
+    if (u < q) return false;
+    v.beta /= 1.0 - q;
+    return true;
+}
+
 // What shading a hit asks for next.
 struct PathNext {
     bool shadowTried;  // a light sample the BSDF passes (SPEC_COUNT_RAYS counts a shadow ray)
@@ -84,6 +98,70 @@ void pathEscaped(inout PathVertex v, vec3 dir) {
     if (!gAov.done) { AOV_RECORD(vec3(1.0), vec3(0.0), 1.0); }
 #endif
 }
+
+#ifdef STRATA_VOLUME_SCATTER
+// A scattering event at `p` inside a medium of material `mat` (lib/
+// medium.glsl), the path's vertex `depth`: below maxDepth, next-event
+// estimation weighed by the phase function (the shadow ray's whole length
+// lies in the medium when nothing occludes it, so it takes the medium's
+// transmittance; a boundary in the way occludes it, as any surface does)
+// and the next direction drawn from the phase function (weight 1). The
+// dimensions are the surface vertex's: light pair, the tree's number,
+// direction pair, roulette.
+PathNext pathShadeMedium(inout PathVertex v, inout Sampler smp, vec3 dir, vec3 p, Material mat, uint depth) {
+    const uint maxDepth = frame.image.z;
+    PathNext o;
+    o.shadowTried = false;
+    o.shadowOpen = false;
+    o.alive = false;
+#ifdef STRATA_AOV
+    if (!gAov.done) { AOV_RECORD(mat.scatterAlbedo, -dir, 0.0); }
+#endif
+    if (depth >= maxDepth) return o;
+#ifdef STRATA_TEXTURE_LOD
+    gTexLod = vec2(kNoLod);  // lights' emission at their first level
+#endif
+    vec3 wo = -dir;
+    float g = mat.scatterAnisotropy;
+    samplerSetDim(smp, 2u + depth * kDimsPerVertex);
+    if (kHasEmitters != 0u && kMis != kMisBsdf) {
+#ifdef STRATA_LIGHT_TREE
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex + 2u);
+        float uTree = sample2D(smp).y;
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex);
+        LightSample ls = sampleLight(p, vec3(0.0), sample2D(smp), uTree);
+#else
+        LightSample ls = sampleLight(p, sample2D(smp));
+#endif
+        // A light at infinity is behind the medium's boundary.
+        if (ls.pdf > 0.0 && ls.dist < kLightFar && any(greaterThan(ls.Li, vec3(0.0)))) {
+            vec3 seg = ls.target - p;
+            float segLen = length(seg);
+            float phase = phaseHG(dot(wo, ls.wi), g);
+            o.shadowTried = true;
+            o.shadowOpen = segLen > 0.0;
+            o.shadow = TraceRay(p, 0.0, o.shadowOpen ? seg / segLen : ls.wi, segLen * kShadowEnd);
+            float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, phase);
+            o.contrib = v.beta * exp(-mat.attenuation * segLen) * phase * ls.Li * (w / ls.pdf);
+        }
+    }
+    samplerSetDim(smp, 2u + depth * kDimsPerVertex + 4u);
+    float pdf;
+    vec3 wi = samplePhaseHG(dir, g, sample2D(smp), pdf);
+    v.prevBsdfPdf = pdf;
+    v.prevDelta = false;
+#ifdef STRATA_TEXTURE_LOD
+    gConeSpread += 2.0;  // as a lobe of alpha 1
+#endif
+#ifdef STRATA_LIGHT_TREE
+    v.prevP = p;
+    v.prevN = vec3(0.0);
+#endif
+    o.alive = pathSurvives(v, sample1D(smp), depth);
+    if (o.alive) o.next = TraceRay(p, 0.0, wi, kRayMax);
+    return o;
+}
+#endif
 
 // The ray along `dir` hit `hit` at bounce `depth` (maxDepth counts
 // scattering events, pbrt's convention): the emission found there, then,
@@ -124,6 +202,27 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     if (depth == 0u) gAov.depth = hit.t;
 #endif
 
+#ifdef STRATA_VOLUME_SCATTER
+    // KHR_materials_volume_scatter: the ray travelled hit.t inside the
+    // medium; a free flight (its number the roulette pair's second) either
+    // scatters before the hit or reaches it.
+    if (hasFeature(kFeatureVolumeScatter) && !front && (mat.flags & kMaterialVolumeScatter) != 0u) {
+        samplerSetDim(smp, 2u + depth * kDimsPerVertex + 6u);
+        float tFlight;
+        vec3 w = mediumFreeFlight(mat.attenuation, mat.scatterAlbedo, v.beta, hit.t, sample2D(smp).y, tFlight);
+        v.beta *= w;
+        if (tFlight < hit.t) {
+#ifdef STRATA_TEXTURE_LOD
+            gConeWidth -= gConeSpread * (hit.t - tFlight);
+#endif
+#ifdef STRATA_AOV
+            if (depth == 0u) gAov.depth = tFlight;
+#endif
+            vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2 + (tFlight - hit.t) * dir;
+            return pathShadeMedium(v, smp, dir, p, mat, depth);
+        }
+    } else
+#endif
     // KHR_materials_volume: a ray that reaches a back face of a volume has
     // travelled hit.t inside it (volumes closed and not nested): Beer-Lambert.
     if (hasFeature(kFeatureVolume) && !front && (mat.flags & kMaterialVolume) != 0u)
@@ -301,14 +400,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             v.prevN = ns;
 #endif
 
-            // Russian roulette after depth 3, survival probability max(beta) (>= 0.05).
-            float u = sample1D(smp);
-            o.alive = true;
-            if (depth >= 3u) {
-                float q = max(0.05, 1.0 - max(v.beta.r, max(v.beta.g, v.beta.b)));
-                if (u < q) o.alive = false;
-                else v.beta /= 1.0 - q;
-            }
+            o.alive = pathSurvives(v, sample1D(smp), depth);
             if (o.alive) o.next = TraceRay(PATH_SPAWN(geoSide > 0.0 ? n : -n), 0.0, wi, kRayMax);
         }
     }

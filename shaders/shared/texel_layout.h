@@ -51,7 +51,7 @@ STRATA_CONST(uint, kTriShadingWordLight, 7u);
 STRATA_CONST(uint, kTriShadingWordN2, 8u);
 STRATA_CONST(uint, kTriShadingWordPad0, 11u);
 
-STRATA_CONST(uint, kMaterialTexels, 15u);
+STRATA_CONST(uint, kMaterialTexels, 16u);
 STRATA_CONST(uint, kMaterialWordBaseColor, 0u);
 STRATA_CONST(uint, kMaterialWordEmission, 4u);
 STRATA_CONST(uint, kMaterialWordMetallic, 7u);
@@ -99,6 +99,8 @@ STRATA_CONST(uint, kMaterialWordAnisotropyStrength, 56u);
 STRATA_CONST(uint, kMaterialWordAnisotropyRotation, 57u);
 STRATA_CONST(uint, kMaterialWordAnisotropyTex, 58u);
 STRATA_CONST(uint, kMaterialWordPad3, 59u);
+STRATA_CONST(uint, kMaterialWordScatterAlbedo, 60u);
+STRATA_CONST(uint, kMaterialWordScatterAnisotropy, 63u);
 
 STRATA_CONST(uint, kTriTexcoordsTexels, 3u);
 STRATA_CONST(uint, kTriTexcoordsWordUv0, 0u);
@@ -241,6 +243,8 @@ STRATA_WORD(Material, anisotropyStrength, kMaterialWordAnisotropyStrength);
 STRATA_WORD(Material, anisotropyRotation, kMaterialWordAnisotropyRotation);
 STRATA_WORD(Material, anisotropyTex, kMaterialWordAnisotropyTex);
 STRATA_WORD(Material, pad3, kMaterialWordPad3);
+STRATA_TEXEL_WORD(Material, scatterAlbedo, kMaterialWordScatterAlbedo);
+STRATA_WORD(Material, scatterAnisotropy, kMaterialWordScatterAnisotropy);
 
 STRATA_TEXELS(TriTexcoords, kTriTexcoordsTexels);
 STRATA_TEXEL_WORD(TriTexcoords, uv0, kTriTexcoordsWordUv0);

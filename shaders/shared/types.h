@@ -151,6 +151,8 @@ STRATA_CONST(uint, kFeatureDiffuseTransmission, 524288u);  // KHR_materials_diff
                                                            // Lambertian lobe through the surface
 STRATA_CONST(uint, kFeatureAnisotropy, 1048576u);  // KHR_materials_anisotropy: anisotropic GGX along
                                                    // a direction in the tangent frame
+STRATA_CONST(uint, kFeatureVolumeScatter, 2097152u);  // KHR_materials_volume_scatter: a volume that
+                                                      // scatters (lib/medium.glsl)
 // The material layers: compiled only into the modules with the layers axis
 // (STRATA_LAYERS, lib/features.glsl).
 STRATA_CONST(uint, kFeaturesLayers,
@@ -177,6 +179,8 @@ STRATA_CONST(uint, kMaterialDiffuseTransmission, 512u);  // KHR_materials_diffus
 STRATA_CONST(uint, kMaterialThinWalled, 1024u);  // ... and no volume (KHR_materials_volume thickness 0):
                                                  // its back face sees the outside's ior too
 STRATA_CONST(uint, kMaterialAnisotropy, 2048u);  // KHR_materials_anisotropy: anisotropyStrength > 0
+STRATA_CONST(uint, kMaterialVolumeScatter, 4096u);  // KHR_materials_volume_scatter: kMaterialVolume whose
+                                                    // attenuation partly scatters
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -246,6 +250,11 @@ struct Material {
     float anisotropyRotation;       // radians, counter-clockwise from the tangent
     uint anisotropyTex;             // anisotropyTexture: RG direction, B scales the strength
     uint pad3;
+    // KHR_materials_volume_scatter (kMaterialVolumeScatter; the sixteenth
+    // texel, read under kFeatureVolumeScatter): scattering = attenuation x
+    // scatterAlbedo, the rest absorbs.
+    vec3 scatterAlbedo;             // the single-scatter albedo per channel
+    float scatterAnisotropy;        // Henyey-Greenstein g
 };
 
 // Texture coordinates of one triangle in BVH order: uvK = (TEXCOORD_a.xy,
@@ -535,6 +544,14 @@ STRATA_CONST(uint, kSampleEnvironmentPdf, 9u);    // out: direction xyz at the c
                                                   // (count / width) grid in (phi / 2pi,
                                                   // (z + 1) / 2), polar axis +Z; w: its
                                                   // lightPdfEnvironment
+// Media (lib/medium.glsl):
+STRATA_CONST(uint, kSamplePhase, 12u);            // Henyey-Greenstein g = bsdf4.z about the travel
+                                                  // direction +Z: out: wi xyz, w = its pdf
+STRATA_CONST(uint, kSampleFreeFlight, 13u);       // free flight in attenuation bsdf3.xyz up to
+                                                  // bsdf4.w, channels chosen by shares bsdf1.xyz:
+                                                  // out: x = distance (bsdf4.w: none before it),
+                                                  // yzw = the path weight's rgb (the scattering
+                                                  // albedo bsdf2.xyz folded in)
 
 struct SampleTestParams {
     uint count;
@@ -554,7 +571,8 @@ struct SampleTestParams {
     vec4 bsdf2;         // clearcoat, clearcoat roughness, sheen colour (grey), sheen roughness
     vec4 bsdf3;         // specular colour rgb; w: the coat normal's tilt t from the shading
                         // normal, towards (0.6, 0.8, 0): (0.6 sin t, 0.8 sin t, cos t)
-    vec4 bsdf4;         // anisotropy strength (along x), wo's azimuth from x (radians), unused, unused
+    vec4 bsdf4;         // anisotropy strength (along x), wo's azimuth from x (radians); media:
+                        // phase g, free-flight segment length
 };
 
 // Statistics written by the shader with atomics. Ray counts are 64-bit
@@ -576,7 +594,7 @@ struct RenderCounters {
 static_assert(sizeof(BvhNode) == 32);
 static_assert(sizeof(TriVerts) == 48);
 static_assert(sizeof(TriShading) == 48);
-static_assert(sizeof(Material) == 240);
+static_assert(sizeof(Material) == 256);
 static_assert(sizeof(Emitter) == 80);
 static_assert(sizeof(LightNode) == 48);
 static_assert(sizeof(TriTexcoords) == 48);

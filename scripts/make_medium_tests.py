@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Known-answer scenes for media (KHR_materials_volume_scatter over
+KHR_materials_volume; tests/test_volume_scatter.cpp), written to
+tests/data/media/. Our own work, CC0.
+
+Every scene is the cube [-1, 1]^3 filled with a homogeneous medium behind an
+index-matched boundary (a clear dielectric of ior 1: no reflection, no
+bending), seen head-on by a camera at z = CAMERA_Z looking down -Z whose view
+is HALF_VIEW wide at z = 0 (strata has no orthographic camera): every camera
+ray crosses 2 / cos(theta) units of medium, theta below 1.8 degrees.
+
+fog-cube.gltf: attenuation colour FOG_COLOR at distance 1, a multi-scatter
+albedo of 1 (single-scatter albedo 1: no absorption) and g = FOG_G. In a
+white furnace every path leaves with weight 1 in expectation, whatever g:
+the image is 1. Seen through max depth 2 (the boundary's two crossings) only
+the unscattered light is left: FOG_COLOR^(2 / cos(theta)), Beer-Lambert of
+the whole attenuation.
+
+lantern.gltf: attenuation LANTERN_COLOR at distance 1, multi-scatter albedo
+LANTERN_MS, g = LANTERN_G, a point light of intensity LANTERN_I at the
+centre and nothing else. Through max depth 2 a pixel shows single scattering
+alone, an integral along its ray that the test evaluates by quadrature.
+
+broken/: one bad KHR_materials_volume_scatter value each.
+"""
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True
+sys.path.insert(0, HERE)
+from make_scenes import box_faces, mesh  # noqa: E402
+from gltf_writer import GltfWriter  # noqa: E402
+
+GENERATOR = "strata scripts/make_medium_tests.py"
+COPYRIGHT = "CC0 1.0 (public domain), the strata authors"
+
+CAMERA_Z, HALF_VIEW = 30.0, 0.9
+FOG_COLOR, FOG_G = (0.2, 0.5, 0.8), 0.3
+LANTERN_COLOR, LANTERN_MS, LANTERN_G, LANTERN_I = (0.5, 0.6, 0.7), (0.8, 0.6, 0.9), 0.4, 5.0
+EXTENSIONS = ["KHR_materials_ior", "KHR_materials_transmission", "KHR_materials_volume",
+              "KHR_materials_volume_scatter"]
+
+
+def medium_material(w, color, scatter):
+    """A clear boundary of ior 1 around a medium of attenuation `color` at
+    distance 1; `scatter` is the KHR_materials_volume_scatter object."""
+    return w.add_material("Medium", base_color=(1, 1, 1, 1), metallic=0.0, roughness=0.0, ior=1.0,
+                          transmission=1.0, volume=(2.0, 1.0, color),
+                          extensions={"KHR_materials_volume_scatter": scatter})
+
+
+def cube_scene(color, scatter, light=None):
+    w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
+    yfov = 2.0 * math.atan(HALF_VIEW / CAMERA_Z)
+    roots = [w.add_node("Cube", mesh=mesh(w, "Cube", box_faces(False), medium_material(w, color, scatter))),
+             w.add_node("Camera", camera=w.add_perspective("Camera", yfov, znear=0.1, aspect_ratio=1.0),
+                        translation=[0, 0, CAMERA_Z])]
+    extensions = list(EXTENSIONS)
+    if light is not None:
+        lamp = w.add_light("Lantern", "point", intensity=light)
+        roots.append(w.add_node("Lantern", light=lamp))
+        extensions.append("KHR_lights_punctual")
+    w.set_scene(roots, name="Scene")
+    w.use_extensions(extensions)
+    return w.gltf_text()
+
+
+BROKEN = {
+    "scatter-anisotropy-1.gltf": {"multiscatterColor": [0.5, 0.5, 0.5], "scatterAnisotropy": 1.0},
+    "scatter-anisotropy-string.gltf": {"scatterAnisotropy": "forward"},
+    "scatter-color-negative.gltf": {"multiscatterColor": [0.5, -0.1, 0.5]},
+    "scatter-color-two.gltf": {"multiscatterColor": [0.5, 0.5]},
+}
+
+
+def main():
+    out = os.path.join(HERE, "..", "tests", "data", "media")
+    os.makedirs(os.path.join(out, "broken"), exist_ok=True)
+    scenes = {
+        "fog-cube.gltf": cube_scene(FOG_COLOR, {"multiscatterColor": [1, 1, 1], "scatterAnisotropy": FOG_G}),
+        "lantern.gltf": cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS),
+                                                   "scatterAnisotropy": LANTERN_G}, LANTERN_I),
+    }
+    for name, scatter in BROKEN.items():
+        scenes[os.path.join("broken", name)] = cube_scene(FOG_COLOR, scatter)
+    for name, text in scenes.items():
+        path = os.path.normpath(os.path.join(out, name))
+        with open(path, "w") as f:
+            f.write(text)
+        print("wrote", path)
+
+
+if __name__ == "__main__":
+    main()

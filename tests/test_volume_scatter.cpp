@@ -1,0 +1,321 @@
+// KHR_materials_volume_scatter: homogeneous media inside closed meshes
+// (shaders/lib/medium.glsl, the volscatter axis). The GLSL phase function
+// and free flights run by sample_test.comp (chi-square against their
+// densities, the flights' weights against the transmittance), render tests
+// against known answers (scenes from scripts/make_medium_tests.py:
+// tests/data/media/), and the loader.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <functional>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "cli_util.h"
+#include "gltf_util.h"
+#include "test_util.h"
+#include "measure/sample_dump.h"
+#include "pack/gpu_scene.h"
+#include "stats/stats.h"
+
+using namespace strata;
+using namespace strata::test;
+
+TEST_SUITE_BEGIN("render");
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr std::size_t kChiTests = 5;  // chi-square tests in this file (Sidak correction)
+
+// The extension's phase function, wo towards the viewer, wi towards the light.
+double phaseHG(double cosOI, double g) {
+    const double d = 1.0 + g * g + 2.0 * g * cosOI;
+    return (1.0 - g * g) / (4.0 * kPi * d * std::sqrt(d));
+}
+
+// The draft's single-scatter albedo from the multi-scatter albedo (Kulla and Conty 2017).
+double singleScatter(double ms) {
+    const double r = 4.09712 + 4.20863 * ms - std::sqrt(9.59217 + 41.6808 * ms + 17.7126 * ms * ms);
+    return 1.0 - r * r;
+}
+
+std::vector<glm::vec4> drawMedium(std::uint32_t routine, std::uint32_t count, std::uint32_t seed,
+                                  float g, glm::vec3 sigmaT = {}, glm::vec3 albedo = {}, float tMax = 0.0f,
+                                  glm::vec3 share = {}) {
+    gpu::SampleTestParams p{};
+    p.count = count;
+    p.routine = routine;
+    p.seed = seed;
+    p.bsdf1 = glm::vec4(share, 0.0f);
+    p.bsdf2 = glm::vec4(albedo, 0.0f);
+    p.bsdf3 = glm::vec4(sigmaT, 0.0f);
+    p.bsdf4 = glm::vec4(0.0f, 0.0f, g, tMax);
+    return runSampleKernel(context(), p, 0);
+}
+
+struct ChannelMean {
+    glm::dvec3 mean{0.0}, se{0.0};
+};
+
+// The image mean of each channel over pixels where `keep(x, y)` and its
+// standard error, with the expected mean over the same pixels.
+ChannelMean imageMean(const RenderResult& r, std::uint32_t w, const std::function<bool(std::uint32_t, std::uint32_t)>& keep) {
+    const auto m = r.film.mean();
+    const auto v = r.film.varianceOfMean();
+    ChannelMean out;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < m.size() / 3; ++i) {
+        if (!keep(static_cast<std::uint32_t>(i % w), static_cast<std::uint32_t>(i / w))) continue;
+        ++n;
+        for (int c = 0; c < 3; ++c) out.mean[c] += m[i * 3 + c], out.se[c] += v[i * 3 + c];
+    }
+    for (int c = 0; c < 3; ++c) out.mean[c] /= double(n), out.se[c] = std::sqrt(out.se[c]) / double(n);
+    return out;
+}
+
+// tests/data/media/: the camera's distance and half view at z = 0, and the scenes' media.
+constexpr double kCameraZ = 30.0, kHalfView = 0.9;
+const glm::dvec3 kFogColor(0.2, 0.5, 0.8);
+const glm::dvec3 kLanternColor(0.5, 0.6, 0.7), kLanternMs(0.8, 0.6, 0.9);
+constexpr double kLanternG = 0.4, kLanternI = 5.0;
+
+RenderResult renderMedia(const Scene& scene, std::uint32_t size, std::uint32_t spp, std::uint32_t maxDepth,
+                         IntegratorKind kind = IntegratorKind::Megakernel) {
+    const GpuScene gpu = buildAndPack(scene);
+    CHECK((gpu.features.bits & gpu::kFeatureVolumeScatter) != 0u);
+    RenderSettings s;
+    s.width = s.height = size;
+    s.spp = spp;
+    s.maxDepth = maxDepth;
+    s.integrator = kind;
+    RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
+    CHECK(r.nonFinite == 0);
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("volume scatter: Henyey-Greenstein sampling matches the phase function for g in (-1, 1) (chi-square), and returns it as its pdf") {
+    for (const float g : {-0.7f, 0.0f, 0.45f, 0.9f}) {
+        const std::uint32_t n = 400000;
+        const auto s = drawMedium(gpu::kSamplePhase, n, 31 + static_cast<std::uint32_t>(g * 10.0f + 10.0f), g);
+        // (phi / 2pi, (z + 1) / 2) over [0, 1]^2: density 4 pi phase(-z), the
+        // travel direction +Z (wo = -Z).
+        std::vector<std::pair<double, double>> xy;
+        double worstPdf = 0.0;
+        for (const auto& d : s) {
+            double phi = std::atan2(double(d.y), double(d.x));
+            if (phi < 0.0) phi += 2.0 * kPi;
+            xy.emplace_back(phi / (2.0 * kPi), (double(d.z) + 1.0) / 2.0);
+            const double want = phaseHG(-double(d.z), g);
+            worstPdf = std::max(worstPdf, std::abs(double(d.w) / want - 1.0));
+        }
+        const int rx = 17, ry = 33;
+        const auto observed = stats::histogram2D(xy, rx, ry, 0.0, 1.0, 0.0, 1.0);
+        const auto expected = stats::integrateExpected(
+            [g](double, double u) { return 4.0 * kPi * phaseHG(-(2.0 * u - 1.0), g); }, rx, ry, 0.0, 1.0, 0.0, 1.0, n);
+        const auto r = stats::chiSquareTest(observed, expected, 0.01, kChiTests);
+        MESSAGE("g " << g << ": " << r.detail << "; largest relative pdf error " << worstPdf);
+        CHECK(r.passed);
+        CHECK(worstPdf < 1e-4);
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("volume scatter: free flights in a chromatic medium follow the channels' mixture by throughput (chi-square) and weigh each channel's transmittance exactly") {
+    const glm::vec3 sigma(0.3f, 1.5f, 4.0f), albedo(0.9f, 0.5f, 0.7f), share(1.0f, 2.5f, 0.5f);
+    const float tMax = 1.2f;
+    const std::uint32_t n = 600000;
+    const auto s = drawMedium(gpu::kSampleFreeFlight, n, 41, 0.0f, sigma, albedo, tMax, share);
+    // Distances in 40 bins of [0, tMax) and the end itself: channel c is
+    // chosen with probability share_c / sum(share), then its exponential:
+    // F(t) = 1 - sum_c p_c exp(-sigma_c t).
+    const int bins = 40;
+    const glm::dvec3 prob = glm::dvec3(share) / double(share.x + share.y + share.z);
+    auto cdf = [&](double t) {
+        double f = 0.0;
+        for (int c = 0; c < 3; ++c) f += prob[c] * std::exp(-double(sigma[c]) * t);
+        return 1.0 - f;
+    };
+    std::vector<double> observed(bins + 1, 0.0), expected(bins + 1, 0.0);
+    glm::dvec3 scatterSum(0.0), passSum(0.0), scatterSq(0.0), passSq(0.0);
+    for (const auto& d : s) {
+        const double t = d.x;
+        const glm::dvec3 w(d.y, d.z, d.w);
+        if (t >= tMax) {
+            observed[bins] += 1.0;
+            passSum += w, passSq += w * w;
+        } else {
+            observed[std::min(bins - 1, static_cast<int>(t / tMax * bins))] += 1.0;
+            scatterSum += w, scatterSq += w * w;
+        }
+    }
+    for (int b = 0; b < bins; ++b)
+        expected[b] = double(n) * (cdf(tMax * (b + 1) / bins) - cdf(tMax * b / bins));
+    expected[bins] = double(n) * (1.0 - cdf(tMax));
+    const auto r = stats::chiSquareTest(observed, expected, 0.01, kChiTests);
+    MESSAGE(r.detail);
+    CHECK(r.passed);
+    // Each channel: E[weight; scattered] = albedo (1 - exp(-sigma tMax)) and
+    // E[weight; reached the end] = exp(-sigma tMax).
+    for (int c = 0; c < 3; ++c) {
+        const double tr = std::exp(-double(sigma[c]) * tMax);
+        const double ms = scatterSum[c] / n, mp = passSum[c] / n;
+        const double ses = std::sqrt((scatterSq[c] / n - ms * ms) / n), sep = std::sqrt((passSq[c] / n - mp * mp) / n);
+        MESSAGE("channel " << c << ": scattered " << ms << " +- " << ses << " (want " << albedo[c] * (1.0 - tr)
+                           << "), reached " << mp << " +- " << sep << " (want " << tr << ")");
+        CHECK(std::abs(ms - albedo[c] * (1.0 - tr)) < 4.5 * ses);
+        CHECK(std::abs(mp - tr) < 4.5 * sep);
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("volume scatter: a medium of single-scatter albedo 1 behind an ior-1 boundary leaves a white furnace at 1, for any g") {
+    Scene scene = loadWithWhiteEnvironment(sourcePath("tests/data/media/fog-cube.gltf"));
+    REQUIRE(scene.materials.size() == 1);
+    for (const float g : {0.3f, 0.0f, 0.9f, -0.6f}) {
+        scene.materials[0].scatterAnisotropy = g;
+        for (const IntegratorKind kind : {IntegratorKind::Megakernel, IntegratorKind::Wavefront}) {
+            const RenderResult r = renderMedia(scene, 12, 64, 1000, kind);
+            const ChannelMean m = imageMean(r, 12, [](std::uint32_t, std::uint32_t) { return true; });
+            for (int c = 0; c < 3; ++c) {
+                const std::string integrator = kind == IntegratorKind::Wavefront ? "wavefront" : "megakernel";
+                MESSAGE("g " << g << ", " << integrator << ", channel " << c << ": " << m.mean[c] << " +- " << m.se[c]);
+                CHECK(m.se[c] > 0.0);
+                CHECK(std::abs(m.mean[c] - 1.0) < 4.5 * m.se[c] + 1e-6);
+            }
+        }
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("volume scatter: seen through the boundary's two crossings alone, a scattering medium transmits exp(-sigma_t x) (Beer-Lambert of absorption and scattering)") {
+    const Scene scene = loadWithWhiteEnvironment(sourcePath("tests/data/media/fog-cube.gltf"));
+    const std::uint32_t size = 16;
+    const RenderResult r = renderMedia(scene, size, 128, 2);
+    // Pixel (i, j)'s ray crosses 2 sqrt(1 + x^2 + y^2) units, x and y its
+    // slopes (the pixel's centre: the slope varies by 1e-3 across one).
+    const double slope = kHalfView / kCameraZ;
+    const auto m = r.film.mean();
+    const auto v = r.film.varianceOfMean();
+    glm::dvec3 sum(0.0), want(0.0), var(0.0);
+    for (std::uint32_t j = 0; j < size; ++j)
+        for (std::uint32_t i = 0; i < size; ++i) {
+            const double x = (2.0 * (i + 0.5) / size - 1.0) * slope, y = (2.0 * (j + 0.5) / size - 1.0) * slope;
+            const double len = 2.0 * std::sqrt(1.0 + x * x + y * y);
+            const std::size_t p = (std::size_t(j) * size + i) * 3;
+            for (int c = 0; c < 3; ++c) {
+                sum[c] += m[p + c], var[c] += v[p + c];
+                want[c] += std::pow(kFogColor[c], len);
+            }
+        }
+    for (int c = 0; c < 3; ++c) {
+        const double n = double(size) * size, mean = sum[c] / n, se = std::sqrt(var[c]) / n, w = want[c] / n;
+        MESSAGE("channel " << c << ": " << mean << " +- " << se << ", Beer-Lambert " << w);
+        CHECK(std::abs(mean - w) < 4.5 * se);
+        CHECK(std::abs(mean / w - 1.0) < 0.02);
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("volume scatter: single scattering of a point light inside the medium matches the integral along each pixel's ray") {
+    const Scene scene = loadGltf(sourcePath("tests/data/media/lantern.gltf"));
+    const std::uint32_t size = 20;
+    // Max depth 2: the boundary's crossing, then one scattering event whose
+    // next-event estimate reaches the light (the phase-sampled ray finds
+    // nothing: no environment, a delta light).
+    const RenderResult r = renderMedia(scene, size, 256, 2);
+    glm::dvec3 sigmaT, sigmaS;
+    for (int c = 0; c < 3; ++c) sigmaT[c] = -std::log(kLanternColor[c]), sigmaS[c] = sigmaT[c] * singleScatter(kLanternMs[c]);
+    // The radiance along the ray from the camera (0, 0, kCameraZ) through
+    // (X, Y, 0): the integral over z in [-1, 1] of Tr(entry to p) sigma_s
+    // phase(wo, wi) I / r^2 Tr(r), p on the ray, r = |p| (the light at the
+    // origin), by the midpoint rule; averaged over the pixel by 4 x 4
+    // Gauss-Legendre nodes.
+    std::vector<double> nodes, weights;
+    stats::gaussLegendre(4, nodes, weights);
+    auto radiance = [&](double X, double Y) {
+        const glm::dvec3 cam(0.0, 0.0, kCameraZ), d = glm::normalize(glm::dvec3(X, Y, 0.0) - cam);
+        const double dsdz = 1.0 / std::abs(d.z);
+        const int steps = 4000;
+        glm::dvec3 L(0.0);
+        for (int k = 0; k < steps; ++k) {
+            const double z = 1.0 - 2.0 * (k + 0.5) / steps;
+            const glm::dvec3 p = cam + d * ((kCameraZ - z) * dsdz);
+            const double r2 = glm::dot(p, p), rr = std::sqrt(r2);
+            const double inside = (1.0 - z) * dsdz;
+            const double phase = phaseHG(glm::dot(-d, -p / rr), kLanternG);
+            for (int c = 0; c < 3; ++c)
+                L[c] += std::exp(-sigmaT[c] * inside) * sigmaS[c] * phase * kLanternI / r2 * std::exp(-sigmaT[c] * rr);
+        }
+        return L * (2.0 * dsdz / steps);
+    };
+    const auto m = r.film.mean();
+    const auto v = r.film.varianceOfMean();
+    double worstZ = 0.0;
+    glm::dvec3 sum(0.0), want(0.0), var(0.0);
+    const double px = 2.0 * kHalfView / size;
+    for (std::uint32_t j = 0; j < size; ++j)
+        for (std::uint32_t i = 0; i < size; ++i) {
+            const double x0 = -kHalfView + i * px, y0 = -kHalfView + j * px;
+            if (std::hypot(x0 + 0.5 * px, y0 + 0.5 * px) < 0.3) continue;  // near the light: 1/r^2
+            glm::dvec3 e(0.0);
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b)
+                    e += weights[a] * weights[b] * 0.25 *
+                         radiance(x0 + 0.5 * px * (1.0 + nodes[a]), y0 + 0.5 * px * (1.0 + nodes[b]));
+            const std::size_t p = (std::size_t(j) * size + i) * 3;
+            for (int c = 0; c < 3; ++c) {
+                worstZ = std::max(worstZ, std::abs(m[p + c] - e[c]) / std::sqrt(v[p + c]));
+                sum[c] += m[p + c], want[c] += e[c], var[c] += v[p + c];
+            }
+        }
+    MESSAGE("largest per-pixel z " << worstZ);
+    CHECK(worstZ < 5.0);
+    for (int c = 0; c < 3; ++c) {
+        MESSAGE("channel " << c << ": " << sum[c] << " +- " << std::sqrt(var[c]) << ", integral " << want[c]);
+        CHECK(std::abs(sum[c] - want[c]) < 4.5 * std::sqrt(var[c]));
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("gltf materials: KHR_materials_volume_scatter multiscatterColor and scatterAnisotropy, packed as single-scatter albedo" * doctest::test_suite("unit")) {
+    const Scene scene = loadGltf(sourcePath("tests/data/media/lantern.gltf"));
+    REQUIRE(scene.materials.size() == 1);
+    const MaterialDesc& m = scene.materials[0];
+    CHECK(m.scatterAnisotropy == doctest::Approx(kLanternG));
+    CHECK(m.multiscatterColor.y == doctest::Approx(kLanternMs.y));
+    const GpuScene gpu = buildAndPack(scene);
+    const gpu::Material& g = gpu.materials.at(0);
+    CHECK((g.flags & gpu::kMaterialVolumeScatter) != 0u);
+    for (int c = 0; c < 3; ++c) CHECK(g.scatterAlbedo[c] == doctest::Approx(singleScatter(kLanternMs[c])).epsilon(1e-5));
+    // The mapping's ends: 0 absorbs only, 1 scatters only.
+    CHECK(std::abs(singleScatter(0.0)) < 1e-5);
+    CHECK(singleScatter(1.0) == doctest::Approx(1.0).epsilon(1e-5));
+    // multiscatterColor 0 (the default) is absorption only: no scattering flag, no feature.
+    Scene absorbing = scene;
+    absorbing.materials[0].multiscatterColor = glm::vec3(0.0f);
+    const GpuScene a = buildAndPack(absorbing);
+    CHECK((a.materials.at(0).flags & gpu::kMaterialVolumeScatter) == 0u);
+    CHECK((a.materials.at(0).flags & gpu::kMaterialVolume) != 0u);
+    CHECK((a.features.bits & gpu::kFeatureVolumeScatter) == 0u);
+    // A scene without it: no feature bit.
+    CHECK((buildAndPack(loadGltf(sourcePath("scenes/materials-board.gltf"))).features.bits &
+           gpu::kFeatureVolumeScatter) == 0u);
+}
+
+TEST_CASE("gltf materials: bad KHR_materials_volume_scatter values are refused in one line, and render writes nothing" * doctest::test_suite("unit")) {
+    checkBrokenFolder("media/broken",
+                      {{"scatter-anisotropy-1.gltf",
+                        "material 0 (\"Medium\"): KHR_materials_volume_scatter.scatterAnisotropy 1 is not in (-1, 1)"},
+                       {"scatter-anisotropy-string.gltf",
+                        "material 0 (\"Medium\"): KHR_materials_volume_scatter.scatterAnisotropy is not a number"},
+                       {"scatter-color-negative.gltf", "material 0 (\"Medium\"): KHR_materials_volume_scatter."
+                                                       "multiscatterColor is not three numbers in [0, 1]"},
+                       {"scatter-color-two.gltf", "material 0 (\"Medium\"): KHR_materials_volume_scatter."
+                                                  "multiscatterColor is not three numbers in [0, 1]"}});
+}
+
+TEST_SUITE_END();
