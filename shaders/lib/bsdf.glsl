@@ -110,6 +110,7 @@ struct Bsdf {
     float diffTrans;     // the share of the diffuse light sent through
     vec3 diffTransColor;
     float pDiffuseT;     // probability of its strategy (cosine below the surface)
+    float fdInside;      // seen from inside a volume: the GGX lobe's albedo at wo, which the diffuse lobes leave
 #endif
 #ifdef STRATA_LAYERS
     // KHR_materials_specular's colour (kFeatureSpecularColor).
@@ -337,6 +338,21 @@ void addLayers(inout Bsdf b, BsdfLayers layers, vec3 wo, float ws, float wd) {
 // ior < 1 (KHR_materials_ior allows 0) is treated as 1.5, the default.
 // wo weighs the sampling strategies (wo.z > 0). A coat normal facing away
 // from wo is replaced by the shading normal.
+#ifdef STRATA_DIFFUSE_TRANSMISSION
+// A bound on the directional albedo of the base's GGX reflection at wo: the
+// dielectric Fresnel over its visible normals (the lobe's albedo also has
+// G2 / G1 <= 1), by 16 fixed stratified normals, so the same number for a
+// given wo everywhere it is used.
+float ggxLobeAlbedo(Bsdf b, vec3 wo) {
+    float sum = 0.0;
+    for (int i = 0; i < 16; ++i) {
+        vec2 u = vec2((float(i & 3) + 0.5) * 0.25, (float(i >> 2) + 0.5) * 0.25);
+        sum += dielectricMax(b, dot(wo, ggxSampleVisible(wo, BASE_ALPHA(b), u)));
+    }
+    return sum * 0.0625;
+}
+#endif
+
 Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmission, float ior,
               float specular, BsdfLayers layers, bool entering, vec3 wo) {
     float cosO = wo.z;
@@ -396,9 +412,20 @@ Bsdf makeBsdf(vec3 baseColor, float metallic, float roughness, float transmissio
     float wdt = 0.0;
     b.diffTrans = 0.0;
     b.diffTransColor = vec3(0.0);
+    b.fdInside = 0.0;
     if (hasFeature(kFeatureDiffuseTransmission) && layers.diffuseTransmission > 0.0) {
         b.diffTrans = clamp(layers.diffuseTransmission, 0.0, 1.0);
         b.diffTransColor = clamp(layers.diffuseTransmissionColor, 0.0, 1.0);
+        // Seen from inside a volume (etap < 1), the GGX lobe's microfacets
+        // reach total internal reflection well before the macro normal does
+        // and reflect far more than F(wo): the diffuse lobes keep 1 - its
+        // albedo (`fdInside`), and the strategies are weighed by it.
+        if (b.etap < 1.0) {
+            b.fdInside = b.delta ? fd : ggxLobeAlbedo(b, wo);
+            fd = b.fdInside;
+            ws = b.metallic * max(luminance(fresnelSchlick(b.baseColor, cosO)), 1.0e-3) +
+                 (1.0 - b.metallic) * (fd + (1.0 - fd) * b.transmission * lumBase);
+        }
         float wdAll = (1.0 - b.metallic) * (1.0 - b.transmission) * max(1.0 - fd, 0.05);
         wd = wdAll * (1.0 - b.diffTrans) * lumBase;
         wdt = wdAll * b.diffTrans * luminance(b.diffTransColor);
@@ -442,6 +469,7 @@ Bsdf makeLambert(vec3 baseColor) {
     b.diffTrans = 0.0;
     b.diffTransColor = vec3(0.0);
     b.pDiffuseT = 0.0;
+    b.fdInside = 0.0;
 #endif
 #ifdef STRATA_LAYERS
     clearLayers(b);
@@ -461,6 +489,7 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
         if (b.pDiffuse > 0.0) {
             float fd = b.specular > 0.0 ? dielectricMax(b, c) : 0.0;
 #ifdef STRATA_DIFFUSE_TRANSMISSION
+            if (b.diffTrans > 0.0 && b.etap < 1.0) fd = b.fdInside;
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * (1.0 - b.diffTrans) * b.baseColor *
                  (kInvPi * wi.z);
 #else
@@ -475,13 +504,13 @@ vec3 evalBase(Bsdf b, vec3 wo, vec3 wi, out float pdf) {
     } else {
 #ifdef STRATA_DIFFUSE_TRANSMISSION
         if (b.pDiffuseT > 0.0) {
-            // Fd at the half vector of wo and wi mirrored to wo's side. Seen
-            // from inside a volume (etap < 1) at wo's own angle instead: the
-            // specular lobe's total internal reflection takes everything
-            // beyond the critical angle, and at the mirrored half vector the
-            // two lobes would together reflect more than 1.
+            // Fd at the half vector of wo and wi mirrored to wo's side; seen
+            // from inside a volume (etap < 1) the GGX lobe's albedo instead:
+            // at the mirrored half vector the two lobes would together
+            // reflect up to 1.6 where total internal reflection sets in.
             vec3 m = vec3(wi.xy, -wi.z);
-            float fd = b.specular > 0.0 ? dielectricMax(b, b.etap < 1.0 ? wo.z : dot(wo, normalize(wo + m))) : 0.0;
+            float fd = b.etap < 1.0 ? b.fdInside
+                                    : (b.specular > 0.0 ? dielectricMax(b, dot(wo, normalize(wo + m))) : 0.0);
             f += (1.0 - b.metallic) * (1.0 - b.transmission) * (1.0 - fd) * b.diffTrans * b.diffTransColor *
                  (kInvPi * m.z);
             pdf += b.pDiffuseT * m.z * kInvPi;
