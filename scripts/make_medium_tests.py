@@ -21,6 +21,16 @@ LANTERN_MS, g = LANTERN_G, a point light of intensity LANTERN_I at the
 centre and nothing else. Through max depth 2 a pixel shows single scattering
 alone, an integral along its ray that the test evaluates by quadrature.
 
+sunlit-fog.gltf: lantern.gltf's medium lit by a directional light of
+irradiance SUN_E travelling down -Y instead: through max depth 2 a pixel
+shows single scattering of the sun, whose shadow rays leave through the
+top face (the index-matched boundary lets them through).
+
+lamp-fog.gltf: lantern.gltf's medium under a 3 x 3 lamp of radiance
+LAMP_LE at y = 1.1 facing down, nothing else: light sampling, BSDF (phase)
+sampling and their MIS must agree, the lamp found beyond the boundary's
+crossing weighed from the scattering event before it.
+
 broken/: one bad KHR_materials_volume_scatter value each.
 """
 import math
@@ -30,7 +40,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True
 sys.path.insert(0, HERE)
-from make_scenes import box_faces, mesh  # noqa: E402
+from make_scenes import Quads, box_faces, mesh  # noqa: E402
 from gltf_writer import GltfWriter  # noqa: E402
 
 GENERATOR = "strata scripts/make_medium_tests.py"
@@ -39,6 +49,8 @@ COPYRIGHT = "CC0 1.0 (public domain), the strata authors"
 CAMERA_Z, HALF_VIEW = 30.0, 0.9
 FOG_COLOR, FOG_G = (0.2, 0.5, 0.8), 0.3
 LANTERN_COLOR, LANTERN_MS, LANTERN_G, LANTERN_I = (0.5, 0.6, 0.7), (0.8, 0.6, 0.9), 0.4, 5.0
+SUN_E = 3.0
+LAMP_LE = 2.0
 EXTENSIONS = ["KHR_materials_ior", "KHR_materials_transmission", "KHR_materials_volume",
               "KHR_materials_volume_scatter"]
 
@@ -51,7 +63,7 @@ def medium_material(w, color, scatter):
                           extensions={"KHR_materials_volume_scatter": scatter})
 
 
-def cube_scene(color, scatter, light=None):
+def cube_scene(color, scatter, light=None, sun=None, lamp=None):
     w = GltfWriter(GENERATOR, copyright=COPYRIGHT)
     yfov = 2.0 * math.atan(HALF_VIEW / CAMERA_Z)
     roots = [w.add_node("Cube", mesh=mesh(w, "Cube", box_faces(False), medium_material(w, color, scatter))),
@@ -59,11 +71,22 @@ def cube_scene(color, scatter, light=None):
                         translation=[0, 0, CAMERA_Z])]
     extensions = list(EXTENSIONS)
     if light is not None:
-        lamp = w.add_light("Lantern", "point", intensity=light)
-        roots.append(w.add_node("Lantern", light=lamp))
+        point = w.add_light("Lantern", "point", intensity=light)
+        roots.append(w.add_node("Lantern", light=point))
         extensions.append("KHR_lights_punctual")
+    if sun is not None:  # a directional light shines down its node's -Z: turned to -Y
+        directional = w.add_light("Sun", "directional", intensity=sun)
+        h = math.pi / 4
+        roots.append(w.add_node("Sun", light=directional, rotation=[-math.sin(h), 0.0, 0.0, math.cos(h)]))
+        extensions.append("KHR_lights_punctual")
+    if lamp is not None:  # a 3 x 3 quad at y = 1.1 facing down
+        quad = Quads().add((-1.5, 1.1, -1.5), (3.0, 0.0, 0.0), (0.0, 0.0, 3.0), (0.0, -1.0, 0.0))
+        glow = w.add_material("Lamp", base_color=(0, 0, 0, 1), metallic=0.0, roughness=1.0,
+                              emissive=[1.0, 1.0, 1.0], strength=lamp, specular=0.0)
+        roots.append(w.add_node("Lamp", mesh=mesh(w, "Lamp", quad, glow)))
+        extensions += ["KHR_materials_emissive_strength", "KHR_materials_specular"]
     w.set_scene(roots, name="Scene")
-    w.use_extensions(extensions)
+    w.use_extensions(sorted(set(extensions)))
     return w.gltf_text()
 
 
@@ -82,6 +105,10 @@ def main():
         "fog-cube.gltf": cube_scene(FOG_COLOR, {"multiscatterColor": [1, 1, 1], "scatterAnisotropy": FOG_G}),
         "lantern.gltf": cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS),
                                                    "scatterAnisotropy": LANTERN_G}, LANTERN_I),
+        "sunlit-fog.gltf": cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS),
+                                                      "scatterAnisotropy": LANTERN_G}, sun=SUN_E),
+        "lamp-fog.gltf": cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS),
+                                                    "scatterAnisotropy": LANTERN_G}, lamp=LAMP_LE),
     }
     for name, scatter in BROKEN.items():
         scenes[os.path.join("broken", name)] = cube_scene(FOG_COLOR, scatter)

@@ -31,6 +31,7 @@ layout(push_constant) uniform Push { DispatchParams params; };
 
 #include "lib/lights.glsl"
 #include "lib/bsdf.glsl"
+#define STRATA_MEDIUM_SHADOWS  // a medium's shadow rays through its index-matched boundary (lib/path.glsl)
 #include "lib/path.glsl"
 
 // Rays this invocation traced (SPEC_COUNT_RAYS).
@@ -57,6 +58,12 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
         PathNext o = pathShadeHit(v, smp, dir, hit, depth);
         if (o.shadowTried) {
             if (kCountRays != 0u) ++gShadowRays;
+#ifdef PATH_MEDIUM_SHADOWS
+            if (o.shadowOpen && o.shadowMedium) {
+                if (kCountRays != 0u) ++gClosestRays;
+                o.shadowOpen = pathMediumShadow(o);
+            }
+#endif
             // One call site for both kinds of light: each call is inlined,
             // and a second copy of the traversal adds to pipeline creation.
             bool visible = o.shadowOpen && !bvhTraceAny(o.shadow.origin, o.shadow.dir, 0.0, o.shadow.tmax);

@@ -82,6 +82,20 @@ glm::vec3 singleScatterAlbedo(glm::vec3 multiscatter) {
     return out;
 }
 
+// A scattering medium's boundary that light crosses without bending or
+// reflecting, tinted by baseColorFactor alone (kMaterialIndexMatched): ior
+// 1, transmission 1, metallic 0, smooth (alpha below the shader's delta
+// threshold, 1e-3), opaque, no emission, no texture a crossing would read
+// and no layer. Next-event estimation from inside the medium sees through
+// it (lib/path.glsl).
+bool indexMatched(const MaterialDesc& m) {
+    return m.ior == 1.0f && m.transmission == 1.0f && m.metallic == 0.0f && m.roughness * m.roughness < 1.0e-3f &&
+           m.alphaMode == MaterialDesc::AlphaMode::Opaque && m.emission() == glm::vec3(0.0f) &&
+           !m.baseColorTexture.used() && !m.transmissionTexture.used() && !m.metallicRoughnessTexture.used() &&
+           !m.emissiveTexture.used() && !m.coated() && !m.sheened() && !m.iridescent() &&
+           !m.diffuselyTransmitting() && !m.anisotropic();
+}
+
 double sceneRadius(const Scene& scene) {
     if (scene.triangles.empty()) return 1.0;
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
@@ -339,7 +353,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         gm.scatterAlbedo = singleScatterAlbedo(m.multiscatterColor);
         gm.scatterAnisotropy = m.scatterAnisotropy;
         if ((gm.flags & gpu::kMaterialVolume) != 0u && gm.scatterAlbedo != glm::vec3(0.0f))
-            gm.flags |= gpu::kMaterialVolumeScatter;
+            gm.flags |= gpu::kMaterialVolumeScatter | (indexMatched(m) ? gpu::kMaterialIndexMatched : 0u);
         else
             gm.scatterAlbedo = glm::vec3(0.0f), gm.scatterAnisotropy = 0.0f;
         if (m.coated()) {
@@ -542,6 +556,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         if (m.transmission > 0.0f && m.metallic < 1.0f) g.features.bits |= gpu::kFeatureTransmission;
         if ((m.flags & gpu::kMaterialVolume) != 0u) g.features.bits |= gpu::kFeatureVolume;
         if ((m.flags & gpu::kMaterialVolumeScatter) != 0u) g.features.bits |= gpu::kFeatureVolumeScatter;
+        if ((m.flags & gpu::kMaterialIndexMatched) != 0u) g.features.indexMatchedMedia = true;
         if ((m.flags & gpu::kMaterialClearcoat) != 0u) g.features.bits |= gpu::kFeatureClearcoat;
         if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
         if ((m.flags & gpu::kMaterialSpecularColor) != 0u) g.features.bits |= gpu::kFeatureSpecularColor;

@@ -17,6 +17,7 @@ namespace strata {
 struct SceneFeatures {
     bool emitters = false;  // any light: next-event estimation compiled in
     std::uint32_t bits = 0; // gpu::kFeature* (SPEC_FEATURES)
+    bool indexMatchedMedia = false;  // a kMaterialIndexMatched medium: the megakernel's shadow rays cross it
     std::vector<std::string> names() const;
 };
 

@@ -10,6 +10,12 @@
 
 #ifdef STRATA_VOLUME_SCATTER
 #include "lib/medium.glsl"
+// The megakernel (STRATA_MEDIUM_SHADOWS) traces a medium's shadow rays
+// through its index-matched boundary (pathMediumShadow); the wavefront
+// integrator's shadow rays stop there, as at any surface.
+#ifdef STRATA_MEDIUM_SHADOWS
+#define PATH_MEDIUM_SHADOWS
+#endif
 #endif
 
 // Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
@@ -53,13 +59,26 @@ struct PathVertex {
     vec3 prevP;      // the last vertex's point and the normal the light tree
     vec3 prevN;      // was asked with (lightPdfTriangle)
 #endif
+#ifdef PATH_MEDIUM_SHADOWS
+    float travelled; // the distance along the last direction before this segment (index-matched crossings)
+#endif
 };
 
+PathVertex pathStart() {
+    PathVertex v;
+    v.beta = vec3(1.0);
+    v.L = vec3(0.0);
+    v.prevBsdfPdf = 0.0;
+    v.prevDelta = true;
 #ifdef STRATA_LIGHT_TREE
-PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true, vec3(0.0), vec3(0.0)); }
-#else
-PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true); }
+    v.prevP = vec3(0.0);
+    v.prevN = vec3(0.0);
 #endif
+#ifdef PATH_MEDIUM_SHADOWS
+    v.travelled = 0.0;
+#endif
+    return v;
+}
 
 #ifdef STRATA_TEXTURE_LOD
 // The path's ray cone (texture LOD, lib/material.glsl texLodAt): its width
@@ -86,6 +105,10 @@ struct PathNext {
     vec3 contrib;
     bool alive;        // the path goes on along `next`
     TraceRay next;
+#ifdef PATH_MEDIUM_SHADOWS
+    bool shadowMedium;  // `shadow` starts in a medium of attenuation shadowSigma (pathMediumShadow)
+    vec3 shadowSigma;
+#endif
 };
 
 // The ray along `dir` escaped: the environment, weighted against light sampling.
@@ -114,6 +137,10 @@ PathNext pathShadeMedium(inout PathVertex v, inout Sampler smp, vec3 dir, vec3 p
     o.shadowTried = false;
     o.shadowOpen = false;
     o.alive = false;
+#ifdef PATH_MEDIUM_SHADOWS
+    o.shadowMedium = false;
+    v.travelled = 0.0;
+#endif
 #ifdef STRATA_AOV
     if (!gAov.done) { AOV_RECORD(mat.scatterAlbedo, -dir, 0.0); }
 #endif
@@ -133,6 +160,26 @@ PathNext pathShadeMedium(inout PathVertex v, inout Sampler smp, vec3 dir, vec3 p
 #else
         LightSample ls = sampleLight(p, sample2D(smp));
 #endif
+#ifdef PATH_MEDIUM_SHADOWS
+        // pathMediumShadow takes the transmittance to the boundary, and the
+        // shadow ray on through it when it is index-matched.
+        if (ls.pdf > 0.0 && any(greaterThan(ls.Li, vec3(0.0)))) {
+            float phase = phaseHG(dot(wo, ls.wi), g);
+            o.shadowTried = true;
+            o.shadowOpen = true;
+            o.shadow = TraceRay(p, 0.0, ls.wi, kRayMax);
+            if (ls.dist < kLightFar) {
+                vec3 seg = ls.target - p;
+                float segLen = length(seg);
+                o.shadowOpen = segLen > 0.0;
+                o.shadow = TraceRay(p, 0.0, o.shadowOpen ? seg / segLen : ls.wi, segLen * kShadowEnd);
+            }
+            o.shadowMedium = true;
+            o.shadowSigma = mat.attenuation;
+            float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, phase);
+            o.contrib = v.beta * phase * ls.Li * (w / ls.pdf);
+        }
+#else
         // A light at infinity is behind the medium's boundary.
         if (ls.pdf > 0.0 && ls.dist < kLightFar && any(greaterThan(ls.Li, vec3(0.0)))) {
             vec3 seg = ls.target - p;
@@ -144,6 +191,7 @@ PathNext pathShadeMedium(inout PathVertex v, inout Sampler smp, vec3 dir, vec3 p
             float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, phase);
             o.contrib = v.beta * exp(-mat.attenuation * segLen) * phase * ls.Li * (w / ls.pdf);
         }
+#endif
     }
     samplerSetDim(smp, 2u + depth * kDimsPerVertex + 4u);
     float pdf;
@@ -175,6 +223,9 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     o.shadowTried = false;
     o.shadowOpen = false;
     o.alive = false;
+#ifdef PATH_MEDIUM_SHADOWS
+    o.shadowMedium = false;
+#endif
 
     // An instance's triangle is shaded in world space (lib/scene.glsl, shadeTri).
 #ifdef STRATA_INSTANCING
@@ -221,6 +272,22 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             vec3 p = tv.v0.xyz + hit.u * e1 + hit.v * e2 + (tFlight - hit.t) * dir;
             return pathShadeMedium(v, smp, dir, p, mat, depth);
         }
+#ifdef PATH_MEDIUM_SHADOWS
+        // Out through an index-matched boundary: straight on, tinted, a
+        // bounce for maxDepth; the last scattering vertex keeps its MIS
+        // state, as its shadow rays see through the boundary too.
+        if ((mat.flags & kMaterialIndexMatched) != 0u) {
+            if (depth >= maxDepth) return o;
+            v.beta *= clamp(mat.baseColor.rgb, 0.0, 1.0);
+#ifdef STRATA_AOV
+            if (!gAov.done) gAov.tint *= clamp(mat.baseColor.rgb, 0.0, 1.0);
+#endif
+            v.travelled += hit.t;
+            o.alive = true;
+            o.next = TraceRay(PATH_SPAWN(ng), 0.0, dir, kRayMax);
+            return o;
+        }
+#endif
     } else
 #endif
     // KHR_materials_volume: a ray that reaches a back face of a volume has
@@ -231,13 +298,17 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     // Emission found by the previous vertex's BSDF sample (or directly).
     if (kHasEmitters != 0u && sh.light != kNoLight) {
         if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
+            float dist = hit.t;
+#ifdef PATH_MEDIUM_SHADOWS
+            dist += v.travelled;  // from the vertex before index-matched crossings
+#endif
 #ifdef STRATA_LIGHT_TREE
-            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)), v.prevP, v.prevN);
+            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, dist, abs(dot(dir, ng)), v.prevP, v.prevN);
 #else
             // The ray's origin: the previous vertex moved off its surface by
             // its rounding error, where the light sample was taken from.
-            vec3 from = tv.v0.xyz + hit.u * e1 + hit.v * e2 - hit.t * dir;
-            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, hit.t, abs(dot(dir, ng)), from);
+            vec3 from = tv.v0.xyz + hit.u * e1 + hit.v * e2 - dist * dir;
+            float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, dist, abs(dot(dir, ng)), from);
 #endif
             float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
             vec2 bary = vec2(hit.u, hit.v);
@@ -388,6 +459,9 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
 #endif
             v.prevBsdfPdf = bs.pdf;
             v.prevDelta = bs.delta;
+#ifdef PATH_MEDIUM_SHADOWS
+            v.travelled = 0.0;
+#endif
 #ifdef STRATA_TEXTURE_LOD
             // A rough lobe widens the cone by twice its GGX alpha; a
             // reflection off a curved surface turns it by twice the normal's
@@ -408,5 +482,37 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
 }
 #undef PATH_SPAWN
 #undef PATH_INSTANCE
+
+#ifdef PATH_MEDIUM_SHADOWS
+// A scattering vertex's shadow ray (o.shadowMedium), before its any-hit
+// test: the medium's transmittance up to the first surface, which must be
+// the back face of an index-matched boundary (the ray then goes on from its
+// far side, tinted by its colour), or nothing (a light inside the medium).
+// Returns false where another surface blocks it.
+bool pathMediumShadow(inout PathNext o) {
+    TraceHit bh;
+    if (!bvhTraceClosest(o.shadow.origin, o.shadow.dir, 0.0, o.shadow.tmax, bh)) {
+        o.contrib *= exp(-o.shadowSigma * o.shadow.tmax);
+        o.shadow.tmax = 0.0;
+        return true;
+    }
+#ifdef STRATA_INSTANCING
+    gInstance = gHitInstance;
+#endif
+    TriVerts tv = shadeTri(bh.triangle);
+    vec3 ng = normalize(cross(tv.v1.xyz - tv.v0.xyz, tv.v2.xyz - tv.v0.xyz));
+    Material mat = sceneMaterial(shadeShading(bh.triangle).material);
+    if (dot(o.shadow.dir, ng) <= 0.0 || (mat.flags & kMaterialIndexMatched) == 0u) return false;
+    o.contrib *= exp(-o.shadowSigma * bh.t) * clamp(mat.baseColor.rgb, 0.0, 1.0);
+#ifdef STRATA_INSTANCING
+    o.shadow.origin = spawnOrigin(tv, bh.u, bh.v, ng, shadeSpawnError(bvhFetchTri(bh.triangle)));
+#else
+    o.shadow.origin = spawnOrigin(tv, bh.u, bh.v, ng);
+#endif
+    o.shadow.tmax = max(o.shadow.tmax - bh.t, 0.0);
+    return true;
+}
+#endif
+
 
 #endif

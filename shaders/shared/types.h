@@ -181,6 +181,9 @@ STRATA_CONST(uint, kMaterialThinWalled, 1024u);  // ... and no volume (KHR_mater
 STRATA_CONST(uint, kMaterialAnisotropy, 2048u);  // KHR_materials_anisotropy: anisotropyStrength > 0
 STRATA_CONST(uint, kMaterialVolumeScatter, 4096u);  // KHR_materials_volume_scatter: kMaterialVolume whose
                                                     // attenuation partly scatters
+STRATA_CONST(uint, kMaterialIndexMatched, 8192u);   // ... whose boundary light crosses unchanged but for
+                                                    // its colour: ior 1, transmission 1, smooth, no
+                                                    // texture, layer or emission (pack/gpu_scene.cpp)
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
