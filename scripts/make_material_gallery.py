@@ -6,11 +6,12 @@ project.
 On the materials board's studio sweep: three brushed gold spheres
 (KHR_materials_anisotropy, strength 0, 0.6 and 1 along their lines of
 latitude), a paper lamp shade around a small bright lamp and a row of
-paper screens lit from behind (KHR_materials_diffuse_transmission), under
-a softbox and a rim light.
+paper screens lit from behind (KHR_materials_diffuse_transmission), and a
+ball of haze, a scattering medium behind an index-matched boundary
+(KHR_materials_volume_scatter), under a softbox and a rim light.
 
     python3 scripts/make_material_gallery.py OUT.gltf
-    strata render OUT.gltf -o gallery.png --width 640 --height 360 --spp 256 --light-sampler tree
+    strata render OUT.gltf -o gallery.png --width 640 --height 360 --spp 512 --light-sampler tree --max-depth 64
 """
 
 import math
@@ -32,6 +33,7 @@ BRUSHED = ((-2.6, 0.0), (-1.6, 0.6), (-0.6, 1.0))  # x, anisotropy strength
 SPHERE_RADIUS = 0.45
 SHADE = ((1.4, 0.0, 0.2), 0.45, 0.9)  # base centre, radius, height
 SCREENS = (1.2, 2.0, 2.8)             # x of the paper screens behind the shade
+CLOUD = ((0.45, 0.42, 1.45), 0.42)     # centre, radius
 
 
 def brushed(w, name, strength):
@@ -43,6 +45,18 @@ def paper(w, name, color, factor):
     return w.add_material(name, base_color=(0.92, 0.9, 0.85, 1.0), metallic=0.0, roughness=0.9, double_sided=True,
                           extensions={"KHR_materials_diffuse_transmission": {
                               "diffuseTransmissionFactor": factor, "diffuseTransmissionColorFactor": list(color)}})
+
+
+def cloud(w):
+    """A ball of warm haze (KHR_materials_volume_scatter): an index-matched
+    boundary (ior 1, clear, smooth: light crosses it unchanged, and the
+    scattering events' shadow rays see the lights through it) around a
+    medium whose attenuation (colour 0.3 at 0.25 units: about 4 of optical
+    depth across the ball) mostly scatters, forward."""
+    return w.add_material("Cloud", base_color=(1.0, 1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, ior=1.0,
+                          transmission=1.0, volume=(0.8, 0.25, (0.3, 0.3, 0.3)),
+                          extensions={"KHR_materials_volume_scatter": {
+                              "multiscatterColor": [0.97, 0.85, 0.7], "scatterAnisotropy": 0.5}})
 
 
 def cylinder(centre, radius, height, segments=48):
@@ -79,6 +93,7 @@ def gallery():
         screen = rect((x, 0.75, -1.2), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), 0.4, 0.75)
         material = paper(w, f"Screen{i}", ((0.5, 0.9, 0.3), (0.95, 0.6, 0.3), (0.4, 0.6, 1.0))[i], 0.9)
         roots.append(w.add_node(f"Screen{i}", mesh=mesh(w, f"Screen{i}", screen, material)))
+    roots.append(sphere_node(w, "Cloud", sphere_mesh(w, "Cloud", acc, cloud(w)), CLOUD[0], CLOUD[1]))
     ground = lambert(w, "Ground", (0.35, 0.35, 0.35))
     pos, nrm, idx = sweep(sweep_profile(front=9.0, floor_back=-3.0, radius=2.5, top=9.0), -12, 12)
     roots.append(w.add_node("Sweep", mesh=w.add_triangles("Sweep", pos, nrm, idx, ground)))
