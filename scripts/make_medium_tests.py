@@ -32,6 +32,10 @@ sampling and their MIS must agree, the lamp found beyond the boundary's
 crossing weighed from the scattering event before it.
 
 broken/: one bad KHR_materials_volume_scatter value each.
+
+    python3 scripts/make_medium_tests.py [--haze OUT.gltf]
+        --haze: only lantern.gltf's medium, without its light, to OUT.gltf
+        (the comparison with Cycles, scripts/cycles_medium.py)
 """
 import math
 import os
@@ -99,6 +103,12 @@ BROKEN = {
 
 
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--haze":
+        # lantern.gltf's medium alone, for the comparison with Cycles
+        # (scripts/cycles_medium.py; lit by --env-color 1,1,1).
+        with open(sys.argv[2], "w") as f:
+            f.write(cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS), "scatterAnisotropy": LANTERN_G}))
+        return
     out = os.path.join(HERE, "..", "tests", "data", "media")
     os.makedirs(os.path.join(out, "broken"), exist_ok=True)
     scenes = {

@@ -64,21 +64,15 @@ struct PathVertex {
 #endif
 };
 
-PathVertex pathStart() {
-    PathVertex v;
-    v.beta = vec3(1.0);
-    v.L = vec3(0.0);
-    v.prevBsdfPdf = 0.0;
-    v.prevDelta = true;
-#ifdef STRATA_LIGHT_TREE
-    v.prevP = vec3(0.0);
-    v.prevN = vec3(0.0);
+#if defined(STRATA_LIGHT_TREE) && defined(PATH_MEDIUM_SHADOWS)
+PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true, vec3(0.0), vec3(0.0), 0.0); }
+#elif defined(STRATA_LIGHT_TREE)
+PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true, vec3(0.0), vec3(0.0)); }
+#elif defined(PATH_MEDIUM_SHADOWS)
+PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true, 0.0); }
+#else
+PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true); }
 #endif
-#ifdef PATH_MEDIUM_SHADOWS
-    v.travelled = 0.0;
-#endif
-    return v;
-}
 
 #ifdef STRATA_TEXTURE_LOD
 // The path's ray cone (texture LOD, lib/material.glsl texLodAt): its width
@@ -298,9 +292,10 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     // Emission found by the previous vertex's BSDF sample (or directly).
     if (kHasEmitters != 0u && sh.light != kNoLight) {
         if (front || (mat.flags & kMaterialDoubleSided) != 0u) {
-            float dist = hit.t;
 #ifdef PATH_MEDIUM_SHADOWS
-            dist += v.travelled;  // from the vertex before index-matched crossings
+            float dist = hit.t + v.travelled;  // from the vertex before index-matched crossings
+#else
+            float dist = hit.t;
 #endif
 #ifdef STRATA_LIGHT_TREE
             float lightPdf = v.prevDelta ? 0.0 : lightPdfTriangle(sh.light, dist, abs(dot(dir, ng)), v.prevP, v.prevN);
