@@ -361,7 +361,9 @@ TEST_CASE("volume scatter: light sampling, phase sampling and their MIS agree fo
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("volume scatter: the wavefront integrator refuses a medium behind an index-matched boundary in one line" * doctest::test_suite("unit")) {
+// The refusal comes once the device is open (the integrator is made for
+// it), so this is a render test, not a unit one.
+TEST_CASE("volume scatter: the wavefront integrator refuses a medium behind an index-matched boundary in one line") {
     expectError("render " + sourcePath("tests/data/media/sunlit-fog.gltf") + " --integrator wavefront",
                 "strata: error: a scattering medium behind an index-matched boundary");
 }

@@ -21,7 +21,7 @@
 // Dimensions: 0-1 pixel position; then kDimsPerVertex per path vertex, in
 // 2D pairs: light choice and point, BSDF lobe (1D in a pair; the light
 // tree's choice takes the pair's second), BSDF direction, roulette (1D in a
-// pair).
+// pair; a medium's free flight to this vertex takes the pair's second).
 const uint kDimsPerVertex = 8u;
 const float kRayMax = 3.0e38;
 // A shadow ray towards a point on an emitter ends this fraction of the way
@@ -119,9 +119,9 @@ void pathEscaped(inout PathVertex v, vec3 dir) {
 #ifdef STRATA_VOLUME_SCATTER
 // A scattering event at `p` inside a medium of material `mat` (lib/
 // medium.glsl), the path's vertex `depth`: below maxDepth, next-event
-// estimation weighed by the phase function (the shadow ray's whole length
-// lies in the medium when nothing occludes it, so it takes the medium's
-// transmittance; a boundary in the way occludes it, as any surface does)
+// estimation weighed by the phase function and the medium's transmittance
+// along the shadow ray (its boundary occludes it as any surface does,
+// unless it is index-matched and this is the megakernel: pathMediumShadow)
 // and the next direction drawn from the phase function (weight 1). The
 // dimensions are the surface vertex's: light pair, the tree's number,
 // direction pair, roulette.
@@ -508,6 +508,5 @@ bool pathMediumShadow(inout PathNext o) {
     return true;
 }
 #endif
-
 
 #endif
