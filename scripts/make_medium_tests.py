@@ -31,6 +31,9 @@ LAMP_LE at y = 1.1 facing down, nothing else: light sampling, BSDF (phase)
 sampling and their MIS must agree, the lamp found beyond the boundary's
 crossing weighed from the scattering event before it.
 
+factor-spelling.gltf: lantern.gltf's medium with multiscatterColor written
+as multiscatterColorFactor, as some exporters do, and no light.
+
 broken/: one bad KHR_materials_volume_scatter value each.
 
     python3 scripts/make_medium_tests.py [--haze OUT.gltf]
@@ -119,6 +122,8 @@ def main():
                                                       "scatterAnisotropy": LANTERN_G}, sun=SUN_E),
         "lamp-fog.gltf": cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS),
                                                     "scatterAnisotropy": LANTERN_G}, lamp=LAMP_LE),
+        "factor-spelling.gltf": cube_scene(LANTERN_COLOR, {"multiscatterColorFactor": list(LANTERN_MS),
+                                                           "scatterAnisotropy": LANTERN_G}),
     }
     for name, scatter in BROKEN.items():
         scenes[os.path.join("broken", name)] = cube_scene(FOG_COLOR, scatter)
