@@ -176,8 +176,21 @@ TEST_CASE("hostile: flattened triangles beyond the host memory are refused befor
     const std::string path = dataPath("fuzz/gltf/hostile-flatten-bomb.gltf");
     LoadOptions options;
     options.hostMemory = std::uint64_t(8) << 30;
-    checkRefused(path, "the scene's 20001 placed nodes flatten into 2000000000 triangles, which need about 238.4 GiB of "
-                       "host memory to load and build; 8.0 GiB are available", options);
+    checkRefused(path, "the scene's 20001 placed nodes flatten into 2000000000 triangles (2000000000 of them "
+                       "emitters), which need about 953.7 GiB of host memory to load and build; 8.0 GiB are available",
+                 options);
+}
+
+TEST_CASE("hostile: flattened emitters count their light tree's host memory") {
+    // 8 x 10^6 emitting triangles: 0.95 GiB at kHostBytesPerTriangle alone,
+    // which let them through the fuzz target's 1 GiB until their light tree
+    // took its process past 4 GiB; with kHostBytesPerEmitter, 3.8 GiB.
+    const std::string path = dataPath("fuzz/gltf/oom-emitters-light-tree.gltf");
+    LoadOptions options;
+    options.hostMemory = std::uint64_t(1) << 30;
+    checkRefused(path, "the scene's 8001 placed nodes flatten into 8000000 triangles (8000000 of them emitters), which "
+                       "need about 3.8 GiB of host memory to load and build; 1.0 GiB are available", options);
+    CHECK(std::uint64_t(8000000) * kHostBytesPerTriangle < options.hostMemory);
 }
 
 TEST_CASE("hostile: flattened emitters beyond the device's memory are refused before they are made") {

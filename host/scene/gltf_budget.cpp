@@ -24,12 +24,16 @@ std::uint64_t times(std::size_t n, std::uint64_t bytes) {
 
 void checkHostMemory(const std::string& path, const SceneSize& size, std::uint64_t hostMemory) {
     const std::uint64_t budget = hostMemory != 0 ? hostMemory : hostMemoryBudget();
-    const std::uint64_t needed = times(size.triangles, kHostBytesPerTriangle);
+    const std::uint64_t triangles = times(size.triangles, kHostBytesPerTriangle);
+    const std::uint64_t emitters = times(size.emitters, kHostBytesPerEmitter);
+    const std::uint64_t needed = triangles > UINT64_MAX - emitters ? UINT64_MAX : triangles + emitters;
     const std::uint64_t forInstances = std::uint64_t(size.instances) * kHostBytesPerInstance;
     if (budget == 0 || (needed <= budget && forInstances <= budget - needed)) return;
     if (forInstances == 0 || needed > budget)
         fail(path, "the scene's " + std::to_string(size.placements) + " placed nodes flatten into " +
-                       count(size.triangles) + " triangles, which need about " + bytesText(needed) +
+                       count(size.triangles) + " triangles" +
+                       (size.emitters > 0 ? " (" + count(size.emitters) + " of them emitters)" : std::string()) +
+                       ", which need about " + bytesText(needed) +
                        " of host memory to load and build; " + bytesText(budget) +
                        " are available (--instancing on stores a mesh placed many times once)");
     fail(path, "the scene's " + std::to_string(size.instances) + " instances" +

@@ -403,9 +403,10 @@ struct LoadOptions {
     // (uris are still relative paths or data: URIs).
     std::string restrictPaths;
     // The host memory the loaded scene may take, in bytes; 0: what the
-    // machine has (hostMemoryBudget). A scene whose flattened triangles and
-    // instances need more (kHostBytesPerTriangle, kHostBytesPerInstance each)
-    // is an error before they are made.
+    // machine has (hostMemoryBudget). A scene whose flattened triangles,
+    // emitters and instances need more (kHostBytesPerTriangle,
+    // kHostBytesPerEmitter, kHostBytesPerInstance each) is an error before
+    // they are made.
     std::uint64_t hostMemory = 0;
     // The memory of the device that will render the scene, asked for with
     // the bytes the flattened triangles' packed arrays need at least
@@ -423,6 +424,9 @@ inline constexpr std::uint64_t kHostBytesPerTriangle = 128;
 // The same for an instanced placement (its transforms, the top level's
 // build, the packed record and nodes).
 inline constexpr std::uint64_t kHostBytesPerInstance = 256;
+// More for an emitting triangle (emitters are always flattened): its
+// Emitter, the light tree's build and nodes, the alias table.
+inline constexpr std::uint64_t kHostBytesPerEmitter = 384;
 // Device memory a flattened triangle takes at least: its TriVerts and
 // TriShading (shaders/shared/types.h; pack/gpu_scene.cpp asserts the sum),
 // and an emitting one's Emitter. The tree over them and the other arrays

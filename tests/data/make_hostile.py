@@ -42,11 +42,30 @@ def png_header(width, height):
     return b"\x89PNG\r\n\x1a\n" + struct.pack(">I", 13) + ihdr + b"\0\0\0\0"
 
 
-def write(name, doc_or_bytes):
+def write(name, doc_or_bytes, prefix="hostile-"):
     os.makedirs(OUT, exist_ok=True)
     raw = doc_or_bytes if isinstance(doc_or_bytes, bytes) else json.dumps(doc_or_bytes, separators=(",", ":")).encode()
-    with open(os.path.join(OUT, "hostile-" + name), "wb") as f:
+    with open(os.path.join(OUT, prefix + name), "wb") as f:
         f.write(raw)
+
+
+def emitter_placements(n_tris, n_nodes):
+    """An emissive mesh of n_tris triangles (u8 indices) placed by n_nodes
+    nodes: emitters are never instanced, so n_tris x n_nodes world triangles."""
+    pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    idx = bytes([0, 1, 2]) * n_tris
+    nodes = [{"children": list(range(1, n_nodes + 1))}] + [{"mesh": 0}] * n_nodes
+    return {
+        "asset": {"version": "2.0", "generator": "strata tests/data/make_hostile.py"},
+        "scenes": [{"nodes": [0]}], "nodes": nodes,
+        "materials": [{"emissiveFactor": [1, 1, 1]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5121, "count": 3 * n_tris, "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": len(idx)}],
+        "buffers": [{"byteLength": 36 + len(idx), "uri": data_uri(pos + idx)}],
+    }
 
 
 def main():
@@ -66,23 +85,14 @@ def main():
     # extras nested 100000 deep: a recursive converter's stack overflow.
     doc = json.dumps(triangle(), separators=(",", ":"))
     write("deep-json.gltf", (doc[:-1] + ',"extras":' + "[" * 100000 + "]" * 100000 + "}").encode())
-    # An emissive mesh of 10^5 triangles (u8 indices) placed by 2 x 10^4
-    # nodes: emitters are never instanced, so 2 x 10^9 world triangles.
-    n_tris = 100000
-    pos = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)
-    idx = bytes([0, 1, 2]) * n_tris
-    nodes = [{"children": list(range(1, 20001))}] + [{"mesh": 0}] * 20000
-    write("flatten-bomb.gltf", {
-        "asset": {"version": "2.0", "generator": "strata tests/data/make_hostile.py"},
-        "scenes": [{"nodes": [0]}], "nodes": nodes,
-        "materials": [{"emissiveFactor": [1, 1, 1]}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0}]}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                       "min": [0, 0, 0], "max": [1, 1, 0]},
-                      {"bufferView": 1, "componentType": 5121, "count": 3 * n_tris, "type": "SCALAR"}],
-        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": len(idx)}],
-        "buffers": [{"byteLength": 36 + len(idx), "uri": data_uri(pos + idx)}],
-    })
+    # An emissive mesh of 10^5 triangles placed by 2 x 10^4 nodes: 2 x 10^9
+    # world triangles.
+    write("flatten-bomb.gltf", emitter_placements(100000, 20000))
+    # 8 x 10^6 emitting triangles: 0.95 GiB at kHostBytesPerTriangle, within
+    # the fuzz target's 1 GiB, while their light tree took the fuzzer's
+    # process past 4 GiB (a libFuzzer out-of-memory, 2026-12-06): the
+    # emitters' own memory counts too (kHostBytesPerEmitter).
+    write("oom-emitters-light-tree.gltf", emitter_placements(1000, 8000), prefix="")
 
     # EXT_mesh_gpu_instancing: nodes sharing one accessor of 2^20 zeros as
     # TRANSLATION and SCALE (no bufferView; 2^20 is what any file may have).
