@@ -66,7 +66,7 @@ std::vector<TestMaterial> chiSquareMaterials() {
 
 }  // namespace
 
-TEST_CASE("GLSL BSDF sampling matches the BSDF's pdf (chi-square: GGX conductor, rough glass, Lambert, plastic, mix)") {
+TEST_CASE("GLSL BSDF sampling matches the BSDF's pdf (chi-square: GGX conductor, rough glass, Lambert, plastic, mix)" * doctest::test_suite("slow")) {
     checkBsdfChiSquare(chiSquareMaterials(), 100);
 }
 

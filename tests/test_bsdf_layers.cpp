@@ -182,7 +182,7 @@ double tableNodeRoughness(int j) {
 
 }  // namespace
 
-TEST_CASE("sheen: sampling the sheened BSDF matches its pdf (chi-square over roughness, base and incidence)") {
+TEST_CASE("sheen: sampling the sheened BSDF matches its pdf (chi-square over roughness, base and incidence)" * doctest::test_suite("slow")) {
     checkBsdfChiSquare(sheenMaterials(), 400);
 }
 

@@ -69,7 +69,7 @@ TEST_CASE("denoise: on the textured materials board at 16 spp neither method is 
     CHECK(e.fast < e.raw);
 }
 
-TEST_CASE("denoise: 'strata denoise' on a stored --aov EXR gives the bits of 'render --denoise', every time") {
+TEST_CASE("denoise: 'strata denoise' on a stored --aov EXR gives the bits of 'render --denoise', every time" * doctest::test_suite("slow")) {
     TempDir out;
     const std::string scene = sourcePath("scenes/cornell-box.gltf");
     const std::string common = " --spp 4 --width 24 --height 16 --quiet";

@@ -111,7 +111,7 @@ TEST_SUITE_END();
 
 TEST_SUITE_BEGIN("render");
 
-TEST_CASE("instancing: the two-level traversal renders what the flattened scene renders, with every BVH variant") {
+TEST_CASE("instancing: the two-level traversal renders what the flattened scene renders, with every BVH variant" * doctest::test_suite("slow")) {
     RenderSettings s;
     s.width = 64;
     s.height = 48;
@@ -179,7 +179,7 @@ TEST_CASE("instancing: --stats reports the placements") {
     CHECK(flat.output.find("instances  ") == std::string::npos);
 }
 
-TEST_CASE("instancing: a normal-mapped mesh placed turned, mirrored and scaled shades as its flattened twin") {
+TEST_CASE("instancing: a normal-mapped mesh placed turned, mirrored and scaled shades as its flattened twin" * doctest::test_suite("slow")) {
     // Lit by the default white environment (no lamp), so the light samples
     // do not depend on how the triangles are ordered: the two images differ
     // only by the transforms' float rounding (measured 6e-16). Without
@@ -204,7 +204,7 @@ TEST_CASE("instancing: a normal-mapped mesh placed turned, mirrored and scaled s
     CHECK(compareImages(x.data(), y.data(), x.size()).relMse < 1e-6);
 }
 
-TEST_CASE("instancing: the wavefront integrator renders an instanced scene as the megakernel does, bit for bit") {
+TEST_CASE("instancing: the wavefront integrator renders an instanced scene as the megakernel does, bit for bit" * doctest::test_suite("slow")) {
     RenderSettings s;
     s.width = 48;
     s.height = 36;

@@ -120,7 +120,7 @@ TEST_CASE("the reference values match the closed form" * doctest::test_suite("un
 // puts the emitter in the plane y = 0: the shadow rays' ends on it then carry
 // no rounding error from its coordinates, while the shadow ray's own hit
 // distance still does; the image must not change (direct lighting only).
-TEST_CASE("square light over a plane matches the closed-form irradiance at every pixel") {
+TEST_CASE("square light over a plane matches the closed-form irradiance at every pixel" * doctest::test_suite("slow")) {
     constexpr int kSize = 32;
     constexpr int kSub = 16;  // sub-pixel rays per axis (midpoint rule) for the box filter
     struct Case {

@@ -247,7 +247,7 @@ TEST_CASE("unlit and volume: a scene without them has neither feature bit" * doc
     CHECK((buildAndPack(scene).features.bits & gpu::kFeatureVolume) == 0u);
 }
 
-TEST_CASE("Veach's MIS scene: BSDF-only, light-only and MIS agree in mean, and MIS error stays near the better technique's in every block") {
+TEST_CASE("Veach's MIS scene: BSDF-only, light-only and MIS agree in mean, and MIS error stays near the better technique's in every block" * doctest::test_suite("slow")) {
     // Direct lighting (max depth 1) of scenes/veach-mis.gltf: four lights of
     // equal power and growing size over four plates of growing roughness.
     // Light sampling wins for small lights on rough plates, BSDF sampling for

@@ -136,7 +136,7 @@ double polygonIrradiance(const glm::dvec3& p, const glm::dvec3& n, const std::ve
 // near the lamp's sweep (it hides the plane) are left out. Tolerances as
 // the lights' known answers (checkPixels); both light samplers.
 TEST_CASE("motion: a sliding lamp lights a plane with its irradiance averaged over the shutter (NEE and MIS at the "
-          "path's time)") {
+          "path's time)" * doctest::test_suite("slow")) {
     LoadOptions load;
     load.motion = {true, "slide", 0.0, 1.0};
     const Scene scene = loadGltf(sourcePath("tests/data/motion/lamp-plane.gltf"), load);
@@ -218,7 +218,7 @@ TEST_CASE("motion: a STEP sampler renders two sharp copies weighted by their tim
     }
 }
 
-TEST_CASE("motion: a bar rotating about its centre gives the exact time-averaged angular coverage") {
+TEST_CASE("motion: a bar rotating about its centre gives the exact time-averaged angular coverage" * doctest::test_suite("slow")) {
     constexpr int kSize = 32;
     constexpr std::uint32_t kSpp = 256;
     const Shot spin = render("bar.gltf", kSize, kSize, kSpp, true, 0.0, 1.0, "spin");

@@ -56,7 +56,7 @@ void checkLargePathMatches(const Scene& scene) {
 
 }  // namespace
 
-TEST_CASE("scale: past the storage range every array is read through texel views, with the same image") {
+TEST_CASE("scale: past the storage range every array is read through texel views, with the same image" * doctest::test_suite("slow")) {
     SUBCASE("textures, normal maps, transmission, emissive triangles") {
         checkLargePathMatches(loadGltf(sourcePath("scenes/materials-board.gltf")));
     }
