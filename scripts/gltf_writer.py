@@ -288,3 +288,14 @@ class GltfWriter:
     def write_glb(self, path):
         with open(path, "wb") as f:
             f.write(self.glb_bytes())
+
+
+def write_texts(folder, files):
+    """Writes each {relative path: text} of `files` under `folder`, making
+    sub-folders, and prints each path written."""
+    for name, text in files.items():
+        path = os.path.normpath(os.path.join(folder, name))
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w") as f:
+            f.write(text)
+        print("wrote", path)

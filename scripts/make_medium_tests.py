@@ -48,7 +48,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True
 sys.path.insert(0, HERE)
 from make_scenes import Quads, box_faces, mesh  # noqa: E402
-from gltf_writer import GltfWriter  # noqa: E402
+from gltf_writer import GltfWriter, write_texts  # noqa: E402
 
 GENERATOR = "strata scripts/make_medium_tests.py"
 COPYRIGHT = "CC0 1.0 (public domain), the strata authors"
@@ -113,7 +113,6 @@ def main():
             f.write(cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS), "scatterAnisotropy": LANTERN_G}))
         return
     out = os.path.join(HERE, "..", "tests", "data", "media")
-    os.makedirs(os.path.join(out, "broken"), exist_ok=True)
     scenes = {
         "fog-cube.gltf": cube_scene(FOG_COLOR, {"multiscatterColor": [1, 1, 1], "scatterAnisotropy": FOG_G}),
         "lantern.gltf": cube_scene(LANTERN_COLOR, {"multiscatterColor": list(LANTERN_MS),
@@ -127,11 +126,7 @@ def main():
     }
     for name, scatter in BROKEN.items():
         scenes[os.path.join("broken", name)] = cube_scene(FOG_COLOR, scatter)
-    for name, text in scenes.items():
-        path = os.path.normpath(os.path.join(out, name))
-        with open(path, "w") as f:
-            f.write(text)
-        print("wrote", path)
+    write_texts(out, scenes)
 
 
 if __name__ == "__main__":

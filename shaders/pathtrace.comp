@@ -40,6 +40,9 @@ uint gShadowRays = 0u;
 
 vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     PathVertex v = pathStart();
+#ifdef STRATA_DISPERSION
+    gWavelength = 0.0;  // each sample's path starts RGB
+#endif
 #ifdef STRATA_TEXTURE_LOD
     // A pinhole's cone: no width, a pixel's angle of spread.
     gConeWidth = 0.0;

@@ -18,6 +18,9 @@ layout(push_constant) uniform Push { SampleTestParams params; };
 #include "lib/filter.glsl"
 #include "lib/bsdf.glsl"
 #include "lib/medium.glsl"
+#ifdef STRATA_DISPERSION
+#include "lib/spectrum.glsl"
+#endif
 
 Bsdf testBsdf(out vec3 wo) {
     float c = params.bsdf0.x;
@@ -140,6 +143,14 @@ void main() {
         out4.yzw = mediumFreeFlight(params.bsdf3.xyz, params.bsdf2.xyz, params.bsdf1.xyz, params.bsdf4.w,
                                     sample1D(smp), t);
         out4.x = t;
+#ifdef STRATA_DISPERSION
+    } else if (params.routine == kSampleWavelength) {
+        float lambda = sampleVisibleWavelength(sample1D(smp));
+        out4 = vec4(lambda, wavelengthRgb(lambda) / visibleWavelengthPdf(lambda));
+    } else if (params.routine == kWavelengthFunctions) {
+        float lambda = params.bsdf4.x + float(i) * params.bsdf4.y;
+        out4 = vec4(visibleWavelengthPdf(lambda), wavelengthRgb(lambda));
+#endif
     } else if (params.routine == kSampleBsdf || params.routine == kSampleBsdfWeight) {
         vec3 wo;
         Bsdf b = testBsdf(wo);

@@ -38,7 +38,7 @@ std::vector<std::string> SceneFeatures::names() const {
         {gpu::kFeatureLightTree, "light-tree"},
         {gpu::kFeatureInstancedEmitters, "moving-lights"}, {gpu::kFeatureTextureLod, "texture-lod"},
         {gpu::kFeatureDiffuseTransmission, "diffuse-transmission"}, {gpu::kFeatureAnisotropy, "anisotropy"},
-        {gpu::kFeatureVolumeScatter, "volume-scatter"}};
+        {gpu::kFeatureVolumeScatter, "volume-scatter"}, {gpu::kFeatureDispersion, "dispersion"}};
     for (const auto& [bit, name] : kNames) {
         if (bits & bit) out.push_back(name);
     }
@@ -390,6 +390,11 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
             gm.anisotropyStrength = m.anisotropyStrength;
             gm.anisotropyRotation = m.anisotropyRotation;
         }
+        // Dispersion spreads what refracts: a transmitting dielectric.
+        if (m.dispersion > 0.0f && m.transmission > 0.0f && m.metallic < 1.0f && m.ior > 1.0f && !m.unlit) {
+            gm.flags |= gpu::kMaterialDispersion;
+            gm.dispersion = m.dispersion;
+        }
         gm.baseColorTex = gm.metallicRoughnessTex = gm.normalTex = gm.emissiveTex = gm.transmissionTex =
             gm.clearcoatTex = gm.clearcoatRoughnessTex = gm.clearcoatNormalTex = gm.sheenColorTex =
                 gm.sheenRoughnessTex = gm.specularColorTex = gm.specularTex = gm.iridescenceTex =
@@ -557,6 +562,7 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
         if ((m.flags & gpu::kMaterialVolume) != 0u) g.features.bits |= gpu::kFeatureVolume;
         if ((m.flags & gpu::kMaterialVolumeScatter) != 0u) g.features.bits |= gpu::kFeatureVolumeScatter;
         if ((m.flags & gpu::kMaterialIndexMatched) != 0u) g.features.indexMatchedMedia = true;
+        if ((m.flags & gpu::kMaterialDispersion) != 0u) g.features.bits |= gpu::kFeatureDispersion;
         if ((m.flags & gpu::kMaterialClearcoat) != 0u) g.features.bits |= gpu::kFeatureClearcoat;
         if ((m.flags & gpu::kMaterialSheen) != 0u) g.features.bits |= gpu::kFeatureSheen;
         if ((m.flags & gpu::kMaterialSpecularColor) != 0u) g.features.bits |= gpu::kFeatureSpecularColor;

@@ -267,6 +267,11 @@ MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& mod
     if (!(g > -1.0 && g < 1.0))
         fail(path, label + ": " + scatter + ".scatterAnisotropy " + formatNumber(g) + " is not in (-1, 1)");
     m.scatterAnisotropy = static_cast<float>(g);
+    const double dispersion = extensionNumber(path, label, src, "KHR_materials_dispersion", "dispersion", 0.0);
+    if (!(dispersion >= 0.0) || !std::isfinite(dispersion))
+        fail(path, label + ": KHR_materials_dispersion.dispersion " + formatNumber(dispersion) +
+                       " is not a finite number >= 0");
+    m.dispersion = static_cast<float>(dispersion);
     m.uvSets = uvSets(path, label, m);
     return m;
 }

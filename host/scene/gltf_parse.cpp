@@ -35,7 +35,7 @@ namespace {
 constexpr std::string_view kSupportedExtensions[] = {
     "EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "KHR_draco_mesh_compression",
     "KHR_lights_punctual", "KHR_materials_anisotropy", "KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_diffuse_transmission", "KHR_materials_iridescence",
+    "KHR_materials_diffuse_transmission", "KHR_materials_dispersion", "KHR_materials_iridescence",
     "KHR_materials_sheen", "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
     "KHR_materials_variants",
     "KHR_materials_volume", "KHR_materials_volume_scatter", "KHR_mesh_quantization",

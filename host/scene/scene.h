@@ -131,6 +131,9 @@ struct MaterialDesc {
     // singleScatterAlbedo), and the Henyey-Greenstein g of its events.
     glm::vec3 multiscatterColor{0.0f};     // multiscatterColor, linear (0: absorption only)
     float scatterAnisotropy = 0.0f;        // in (-1, 1)
+    // KHR_materials_dispersion: 20 / the Abbe number V_d (0: none); the ior
+    // is n_d, at 587.56 nm (lib/spectrum.glsl dispersiveIor).
+    float dispersion = 0.0f;
     // KHR_materials_specular's colour or textures change the dielectric's Fresnel.
     bool tinted() const {
         return (specularColor != glm::vec3(1.0f) || specularTexture.used() || specularColorTexture.used()) &&

@@ -8,6 +8,16 @@
 #ifndef STRATA_LIB_PATH_GLSL
 #define STRATA_LIB_PATH_GLSL
 
+// A colour that joins the path's throughput or radiance: its value at the
+// path's wavelength under the dispersion axis (lib/spectrum.glsl), itself
+// otherwise.
+#ifdef STRATA_DISPERSION
+#include "lib/spectrum.glsl"
+#define PATH_SPECTRAL(c) pathSpectral(c)
+#else
+#define PATH_SPECTRAL(c) (c)
+#endif
+
 #ifdef STRATA_VOLUME_SCATTER
 #include "lib/medium.glsl"
 // The megakernel (STRATA_MEDIUM_SHADOWS) traces a medium's shadow rays
@@ -109,7 +119,7 @@ struct PathNext {
 void pathEscaped(inout PathVertex v, vec3 dir) {
     if (kHasEmitters != 0u && hasFeature(kFeatureEnvironment)) {
         float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, v.prevDelta ? 0.0 : lightPdfEnvironment(dir));
-        v.L += v.beta * w * environmentRadiance(dir);
+        v.L += v.beta * w * PATH_SPECTRAL(environmentRadiance(dir));
     }
 #ifdef STRATA_AOV
     if (!gAov.done) { AOV_RECORD(vec3(1.0), vec3(0.0), 1.0); }
@@ -171,7 +181,7 @@ PathNext pathShadeMedium(inout PathVertex v, inout Sampler smp, vec3 dir, vec3 p
             o.shadowMedium = true;
             o.shadowSigma = mat.attenuation;
             float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, phase);
-            o.contrib = v.beta * phase * ls.Li * (w / ls.pdf);
+            o.contrib = v.beta * phase * PATH_SPECTRAL(ls.Li) * (w / ls.pdf);
         }
 #else
         // A light at infinity is behind the medium's boundary.
@@ -183,7 +193,7 @@ PathNext pathShadeMedium(inout PathVertex v, inout Sampler smp, vec3 dir, vec3 p
             o.shadowOpen = segLen > 0.0;
             o.shadow = TraceRay(p, 0.0, o.shadowOpen ? seg / segLen : ls.wi, segLen * kShadowEnd);
             float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, phase);
-            o.contrib = v.beta * exp(-mat.attenuation * segLen) * phase * ls.Li * (w / ls.pdf);
+            o.contrib = v.beta * exp(-mat.attenuation * segLen) * phase * PATH_SPECTRAL(ls.Li) * (w / ls.pdf);
         }
 #endif
     }
@@ -308,7 +318,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
             float w = misWeightBsdf(v.prevDelta, v.prevBsdfPdf, lightPdf);
             vec2 bary = vec2(hit.u, hit.v);
             vec3 le = emissionAt(sh.material, hit.triangle, bary);
-            v.L += v.beta * w * coatedEmission(sh.material, hit.triangle, bary, le, -dir, PATH_INSTANCE);
+            v.L += v.beta * w * PATH_SPECTRAL(coatedEmission(sh.material, hit.triangle, bary, le, -dir, PATH_INSTANCE));
 #ifdef STRATA_AOV
             if (!gAov.done) { AOV_RECORD(vec3(1.0), front ? ng : -ng, 1.0); }
 #endif
@@ -316,7 +326,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     }
     // KHR_materials_unlit: the surface's colour, seen from either side, and no scattering.
     if (hasFeature(kFeatureUnlit) && (mat.flags & kMaterialUnlit) != 0u) {
-        v.L += v.beta * unlitColor(mat, hit.triangle, vec2(hit.u, hit.v));
+        v.L += v.beta * PATH_SPECTRAL(unlitColor(mat, hit.triangle, vec2(hit.u, hit.v)));
 #ifdef STRATA_AOV
         if (!gAov.done) { AOV_RECORD(unlitColor(mat, hit.triangle, vec2(hit.u, hit.v)), front ? ng : -ng, 1.0); }
 #endif
@@ -387,6 +397,21 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                 if ((mat.flags & kMaterialThinWalled) != 0u) entering = true;
             }
 #endif
+#ifdef STRATA_DISPERSION
+            // KHR_materials_dispersion: the path draws its wavelength at the
+            // first dispersive surface it reaches (its throughput weighed by
+            // the draw, lib/spectrum.glsl) and refracts with that
+            // wavelength's index here and at every dispersive surface after.
+            if (hasFeature(kFeatureDispersion) && (mat.flags & kMaterialDispersion) != 0u) {
+                if (gWavelength == 0.0) {
+                    samplerSetDim(smp, kDimWavelength);
+                    float lambda = sampleVisibleWavelength(sample1D(smp));
+                    v.beta *= wavelengthRgb(lambda) / visibleWavelengthPdf(lambda);
+                    gWavelength = lambda;
+                }
+                sp.ior = dispersiveIor(sp.ior, mat.dispersion, gWavelength);
+            }
+#endif
             bsdf = makeBsdf(sp.baseColor, sp.metallic, sp.roughness, sp.transmission, sp.ior,
                             sp.specular, layers, entering, woL);
         }
@@ -436,7 +461,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                     o.shadowOpen = open;
                     o.shadow = TraceRay(from, 0.0, shadowDir, shadowMax);
                     float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
-                    o.contrib = v.beta * f * ls.Li * (w / ls.pdf);
+                    o.contrib = v.beta * PATH_SPECTRAL(f) * PATH_SPECTRAL(ls.Li) * (w / ls.pdf);
                 }
             }
         }
@@ -448,7 +473,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
         vec3 wi = bs.wi.x * t + bs.wi.y * b + bs.wi.z * ns;
         float geoSide = dot(n, wi);
         if (bs.valid && !(geoSide == 0.0 || (geoSide > 0.0) != (bs.wi.z > 0.0))) {
-            v.beta *= bs.weight;
+            v.beta *= PATH_SPECTRAL(bs.weight);
 #ifdef STRATA_AOV
             if (aovFollow) gAov.tint *= bs.weight;
 #endif

@@ -141,14 +141,14 @@ Material sceneMaterial(uint i) {
     // (volume: the sixth; clearcoat: the seventh and eighth; sheen: the
     // eighth and ninth; specular colour: the tenth and eleventh; iridescence:
     // the eleventh and twelfth; diffuse transmission: the thirteenth and
-    // fourteenth; anisotropy: the fifteenth; volume scattering: the
-    // sixteenth). The last four are in the module only with their axes
-    // (difftrans, aniso, volscatter): without them the decoder is the
-    // twelve- or fifteen-texel one, their fields constants.
+    // fourteenth; anisotropy and dispersion: the fifteenth; volume
+    // scattering: the sixteenth). The last four are in the module only with
+    // their axes (difftrans, aniso, dispersion, volscatter): without them the
+    // decoder is the twelve- or fifteen-texel one, their fields constants.
     int base = int(kMaterialTexels * i);
 #if defined(STRATA_VOLUME_SCATTER)
     uvec4 t[16] = uvec4[16](
-#elif defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY)
+#elif defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY) || defined(STRATA_DISPERSION)
     uvec4 t[15] = uvec4[15](
 #else
     uvec4 t[12] = uvec4[12](
@@ -162,10 +162,11 @@ Material sceneMaterial(uint i) {
         hasFeature(kFeatureSpecularColor) ? texelFetch(materialsTexel, base + 9) : uvec4(0u),
         hasFeature(kFeatureSpecularColor | kFeatureIridescence) ? texelFetch(materialsTexel, base + 10) : uvec4(0u),
         hasFeature(kFeatureIridescence) ? texelFetch(materialsTexel, base + 11) : uvec4(0u)
-#if defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY) || defined(STRATA_VOLUME_SCATTER)
+#if defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY) || defined(STRATA_VOLUME_SCATTER) || \
+    defined(STRATA_DISPERSION)
         , hasFeature(kFeatureDiffuseTransmission) ? texelFetch(materialsTexel, base + 12) : uvec4(0u),
         hasFeature(kFeatureDiffuseTransmission) ? texelFetch(materialsTexel, base + 13) : uvec4(0u),
-        hasFeature(kFeatureAnisotropy) ? texelFetch(materialsTexel, base + 14) : uvec4(0u)
+        hasFeature(kFeatureAnisotropy | kFeatureDispersion) ? texelFetch(materialsTexel, base + 14) : uvec4(0u)
 #endif
 #if defined(STRATA_VOLUME_SCATTER)
         , hasFeature(kFeatureVolumeScatter) ? texelFetch(materialsTexel, base + 15) : uvec4(0u)
@@ -190,16 +191,17 @@ Material sceneMaterial(uint i) {
                     TEXEL_UINT(t, kMaterialWordIridescenceTex), TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMin),
                     TEXEL_FLOAT(t, kMaterialWordIridescenceThicknessMax),
                     TEXEL_UINT(t, kMaterialWordIridescenceThicknessTex), TEXEL_UINT(t, kMaterialWordPad0),
-#if defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY) || defined(STRATA_VOLUME_SCATTER)
+#if defined(STRATA_DIFFUSE_TRANSMISSION) || defined(STRATA_ANISOTROPY) || defined(STRATA_VOLUME_SCATTER) || \
+    defined(STRATA_DISPERSION)
                     TEXEL_VEC3(t, kMaterialWordDiffuseTransmissionColor),
                     TEXEL_FLOAT(t, kMaterialWordDiffuseTransmission),
                     TEXEL_UINT(t, kMaterialWordDiffuseTransmissionTex),
                     TEXEL_UINT(t, kMaterialWordDiffuseTransmissionColorTex), TEXEL_UINT(t, kMaterialWordPad1),
                     TEXEL_UINT(t, kMaterialWordPad2), TEXEL_FLOAT(t, kMaterialWordAnisotropyStrength),
                     TEXEL_FLOAT(t, kMaterialWordAnisotropyRotation), TEXEL_UINT(t, kMaterialWordAnisotropyTex),
-                    TEXEL_UINT(t, kMaterialWordPad3),
+                    TEXEL_FLOAT(t, kMaterialWordDispersion),
 #else
-                    vec3(0.0), 0.0, kNoTexture, kNoTexture, 0u, 0u, 0.0, 0.0, kNoTexture, 0u,
+                    vec3(0.0), 0.0, kNoTexture, kNoTexture, 0u, 0u, 0.0, 0.0, kNoTexture, 0.0,
 #endif
 #if defined(STRATA_VOLUME_SCATTER)
                     TEXEL_VEC3(t, kMaterialWordScatterAlbedo), TEXEL_FLOAT(t, kMaterialWordScatterAnisotropy)

@@ -98,7 +98,7 @@ STRATA_CONST(uint, kMaterialWordPad2, 55u);
 STRATA_CONST(uint, kMaterialWordAnisotropyStrength, 56u);
 STRATA_CONST(uint, kMaterialWordAnisotropyRotation, 57u);
 STRATA_CONST(uint, kMaterialWordAnisotropyTex, 58u);
-STRATA_CONST(uint, kMaterialWordPad3, 59u);
+STRATA_CONST(uint, kMaterialWordDispersion, 59u);
 STRATA_CONST(uint, kMaterialWordScatterAlbedo, 60u);
 STRATA_CONST(uint, kMaterialWordScatterAnisotropy, 63u);
 
@@ -242,7 +242,7 @@ STRATA_WORD(Material, pad2, kMaterialWordPad2);
 STRATA_WORD(Material, anisotropyStrength, kMaterialWordAnisotropyStrength);
 STRATA_WORD(Material, anisotropyRotation, kMaterialWordAnisotropyRotation);
 STRATA_WORD(Material, anisotropyTex, kMaterialWordAnisotropyTex);
-STRATA_WORD(Material, pad3, kMaterialWordPad3);
+STRATA_WORD(Material, dispersion, kMaterialWordDispersion);
 STRATA_TEXEL_WORD(Material, scatterAlbedo, kMaterialWordScatterAlbedo);
 STRATA_WORD(Material, scatterAnisotropy, kMaterialWordScatterAnisotropy);
 

@@ -153,6 +153,8 @@ STRATA_CONST(uint, kFeatureAnisotropy, 1048576u);  // KHR_materials_anisotropy: 
                                                    // a direction in the tangent frame
 STRATA_CONST(uint, kFeatureVolumeScatter, 2097152u);  // KHR_materials_volume_scatter: a volume that
                                                       // scatters (lib/medium.glsl)
+STRATA_CONST(uint, kFeatureDispersion, 4194304u);  // KHR_materials_dispersion: paths through it carry
+                                                   // a wavelength (lib/spectrum.glsl)
 // The material layers: compiled only into the modules with the layers axis
 // (STRATA_LAYERS, lib/features.glsl).
 STRATA_CONST(uint, kFeaturesLayers,
@@ -184,6 +186,8 @@ STRATA_CONST(uint, kMaterialVolumeScatter, 4096u);  // KHR_materials_volume_scat
 STRATA_CONST(uint, kMaterialIndexMatched, 8192u);   // ... whose boundary light crosses unchanged but for
                                                     // its colour: ior 1, transmission 1, smooth, no
                                                     // texture, layer or emission (pack/gpu_scene.cpp)
+STRATA_CONST(uint, kMaterialDispersion, 16384u);   // KHR_materials_dispersion: dispersion > 0 on a
+                                                   // refracting dielectric
 
 STRATA_CONST(uint, kNoTexture, 0xffffffffu);
 
@@ -248,11 +252,12 @@ struct Material {
     uint pad1;
     uint pad2;
     // KHR_materials_anisotropy (kMaterialAnisotropy; the fifteenth texel,
-    // read under kFeatureAnisotropy).
+    // read under kFeatureAnisotropy), and KHR_materials_dispersion's number
+    // (kMaterialDispersion; read under kFeatureDispersion).
     float anisotropyStrength;
     float anisotropyRotation;       // radians, counter-clockwise from the tangent
     uint anisotropyTex;             // anisotropyTexture: RG direction, B scales the strength
-    uint pad3;
+    float dispersion;               // 20 / the Abbe number (0: none)
     // KHR_materials_volume_scatter (kMaterialVolumeScatter; the sixteenth
     // texel, read under kFeatureVolumeScatter): scattering = attenuation x
     // scatterAlbedo, the rest absorbs.
@@ -555,6 +560,11 @@ STRATA_CONST(uint, kSampleFreeFlight, 13u);       // free flight in attenuation 
                                                   // out: x = distance (bsdf4.w: none before it),
                                                   // yzw = the path weight's rgb (the scattering
                                                   // albedo bsdf2.xyz folded in)
+// Wavelengths (lib/spectrum.glsl; the dispersion axis, kFeatureDispersion):
+STRATA_CONST(uint, kSampleWavelength, 14u);       // out: x = lambda (nm), yzw = the throughput's
+                                                  // weight wavelengthRgb / pdf
+STRATA_CONST(uint, kWavelengthFunctions, 15u);    // at lambda = bsdf4.x + i * bsdf4.y: out: x =
+                                                  // visibleWavelengthPdf, yzw = wavelengthRgb
 
 struct SampleTestParams {
     uint count;
