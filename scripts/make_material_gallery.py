@@ -6,9 +6,10 @@ project.
 On the materials board's studio sweep: three brushed gold spheres
 (KHR_materials_anisotropy, strength 0, 0.6 and 1 along their lines of
 latitude), a paper lamp shade around a small bright lamp and a row of
-paper screens lit from behind (KHR_materials_diffuse_transmission), and a
+paper screens lit from behind (KHR_materials_diffuse_transmission), a
 ball of haze, a scattering medium behind an index-matched boundary
-(KHR_materials_volume_scatter), under a softbox and a rim light.
+(KHR_materials_volume_scatter), and a cut gem of strongly dispersive glass
+(KHR_materials_dispersion), under a softbox and a rim light.
 
     python3 scripts/make_material_gallery.py OUT.gltf
     strata render OUT.gltf -o gallery.png --width 640 --height 360 --spp 512 --light-sampler tree --max-depth 64
@@ -34,6 +35,7 @@ SPHERE_RADIUS = 0.45
 SHADE = ((1.4, 0.0, 0.2), 0.45, 0.9)  # base centre, radius, height
 SCREENS = (1.2, 2.0, 2.8)             # x of the paper screens behind the shade
 CLOUD = ((0.45, 0.42, 1.45), 0.42)     # centre, radius
+GEM = ((-1.15, 0.36, 2.0), 0.42)        # girdle centre (the culet on the floor), girdle radius
 
 
 def brushed(w, name, strength):
@@ -57,6 +59,42 @@ def cloud(w):
                           transmission=1.0, volume=(0.8, 0.25, (0.3, 0.3, 0.3)),
                           extensions={"KHR_materials_volume_scatter": {
                               "multiscatterColor": [0.97, 0.85, 0.7], "scatterAnisotropy": 0.5}})
+
+
+def gem_material(w):
+    """Dense flint-like glass: ior 1.75, Abbe number 20 (dispersion 1),
+    clear, a volume without attenuation."""
+    return w.add_material("Gem", base_color=(1.0, 1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, ior=1.75,
+                          transmission=1.0, extensions={"KHR_materials_volume": {"thicknessFactor": 0.5},
+                                                        "KHR_materials_dispersion": {"dispersion": 1.0}})
+
+
+def gem(centre, radius, sides=8):
+    """A simple brilliant: an octagonal table, a crown of quads down to the
+    girdle, a pavilion of triangles down to the culet; flat facets (each
+    triangle its own vertices and normal), closed, normals outward."""
+    cx, cy, cz = centre
+    table, crown, depth = 0.55 * radius, 0.35 * radius, cy
+
+    def ring(r, y, turn=0.0):
+        return [(cx + r * math.cos(2 * math.pi * (k + turn) / sides), y, cz - r * math.sin(2 * math.pi * (k + turn) / sides))
+                for k in range(sides)]
+    top, girdle = ring(table, cy + crown, 0.5), ring(radius, cy)
+    apex, culet = (cx, cy + crown, cz), (cx, cy - depth, cz)
+    tris = []
+    for k in range(sides):
+        n = (k + 1) % sides
+        tris.append((apex, top[k], top[n]))
+        tris += [(top[k], girdle[k], girdle[n]), (top[k], girdle[n], top[n])]
+        tris.append((girdle[n], girdle[k], culet))
+    points, normals = [], []
+    for a, b, c in tris:
+        normal = normalize(cross(sub(b, a), sub(c, a)))
+        if sum((p - q) * m for p, q, m in zip(a, centre, normal)) < 0:  # face outward
+            b, c, normal = c, b, tuple(-x for x in normal)
+        points += [a, b, c]
+        normals += [normal] * 3
+    return points, normals, list(range(len(points)))
 
 
 def cylinder(centre, radius, height, segments=48):
@@ -94,6 +132,8 @@ def gallery():
         material = paper(w, f"Screen{i}", ((0.5, 0.9, 0.3), (0.95, 0.6, 0.3), (0.4, 0.6, 1.0))[i], 0.9)
         roots.append(w.add_node(f"Screen{i}", mesh=mesh(w, f"Screen{i}", screen, material)))
     roots.append(sphere_node(w, "Cloud", sphere_mesh(w, "Cloud", acc, cloud(w)), CLOUD[0], CLOUD[1]))
+    pos, nrm, idx = gem(*GEM)
+    roots.append(w.add_node("Gem", mesh=w.add_triangles("Gem", pos, nrm, idx, gem_material(w))))
     ground = lambert(w, "Ground", (0.35, 0.35, 0.35))
     pos, nrm, idx = sweep(sweep_profile(front=9.0, floor_back=-3.0, radius=2.5, top=9.0), -12, 12)
     roots.append(w.add_node("Sweep", mesh=w.add_triangles("Sweep", pos, nrm, idx, ground)))
