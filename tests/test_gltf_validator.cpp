@@ -101,4 +101,12 @@ TEST_CASE("validator corpus: an image in a data: URI of a type tinygltf does not
 }
 #endif
 
+TEST_CASE("validator corpus: a .gltf buffer without a uri is one line naming it, not tinygltf's words") {
+    // The corpus' root/named_objects.gltf and unused_objects.gltf, valid to
+    // the validator (it loads no data), have a scene whose data is nowhere.
+    const std::string path = dataPath("validator/buffer-without-uri.gltf");
+    CHECK(loadError(path) == path + ": error: buffer 0 has no uri: only a .glb's binary chunk can be a buffer "
+                                    "without one, so its data is nowhere");
+}
+
 TEST_SUITE_END();

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
 #include <stb/stb_image.h>
 #if STRATA_WEBP
 #include <webp/decode.h>
@@ -454,6 +455,15 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<unsigned c
     // 'attributes' that are not accessor indices, and its mesh with them),
     // which would otherwise surface as a misleading error later.
     const std::string why = gltf::oneLine(err);
+    // A buffer without a uri in a .gltf: said plainly, with its index.
+    if (!binary && why.find("'uri' is missing from non binary glTF file buffer") != std::string::npos) {
+        const auto root = nlohmann::json::parse(input.begin(), input.end(), nullptr, false);
+        if (root.is_object() && root.contains("buffers") && root["buffers"].is_array())
+            for (std::size_t b = 0; b < root["buffers"].size(); ++b)
+                if (root["buffers"][b].is_object() && !root["buffers"][b].contains("uri"))
+                    fail(path, "buffer " + std::to_string(b) + " has no uri: only a .glb's binary chunk can be a "
+                                   "buffer without one, so its data is nowhere");
+    }
     if (!ok || !why.empty()) fail(path, "invalid glTF: " + (why.empty() ? std::string("parse failed") : why));
     const std::string notes = gltf::oneLine(warnings);
     if (!notes.empty()) warn(path, notes);

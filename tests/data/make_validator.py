@@ -49,8 +49,10 @@ class File:
                                           count=count, type=type_, **extra))
         return len(self.doc["accessors"]) - 1
 
-    def write(self, name):
+    def write(self, name, uri=True):
         self.doc["buffers"] = [{"byteLength": len(self.bin), "uri": data(bytes(self.bin))}]
+        if not uri:
+            del self.doc["buffers"][0]["uri"]
         with open(os.path.join(OUT, name), "w", encoding="utf-8", newline="\n") as f:
             json.dump(self.doc, f, indent=1)
             f.write("\n")
@@ -136,6 +138,9 @@ def main():
     f.doc["scenes"][0]["nodes"] = [0, 2]
     f.doc["extensionsUsed"] = ["KHR_node_visibility"]
     f.write("node-visibility.gltf")
+    # A .gltf whose buffer has no uri: valid to the validator (which reads no
+    # data), but the data is nowhere: one error line naming the buffer.
+    File().write("buffer-without-uri.gltf", uri=False)
     print("wrote", OUT)
 
 
