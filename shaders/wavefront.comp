@@ -74,6 +74,9 @@ void shadeStage(uint k) {
     PathState st = state[slot];
     vec3 dir = inRays[k].dir;
     PathVertex v = PathVertex(st.betaPdf.xyz, st.lDelta.xyz, st.betaPdf.w, st.lDelta.w != 0.0);
+#ifdef STRATA_DISPERSION
+    gWavelength = uintBitsToFloat(st.misc.w);  // 0 until the path reaches a dispersive surface
+#endif
     uint depth = st.misc.y;
     uvec2 pixel = uvec2(st.misc.x % frame.image.x, st.misc.x / frame.image.x);
     Sampler smp = pixelSampler(pixel, params.sampleIndex);
@@ -88,6 +91,9 @@ void shadeStage(uint k) {
     else o = pathShadeHit(v, smp, dir, hit, depth);
     state[slot] = PathState(vec4(v.beta, v.prevBsdfPdf), vec4(v.L, v.prevDelta ? 1.0 : 0.0),
                             uvec4(st.misc.x, depth + 1u, o.alive ? 1u : 0u, 0u));
+#ifdef STRATA_DISPERSION
+    state[slot].misc.w = floatBitsToUint(gWavelength);
+#endif
     uint ni = appendIndex(0u, o.alive);
     if (o.alive) {
         nextRays[ni] = o.next;

@@ -20,10 +20,6 @@ std::unique_ptr<Integrator> makeIntegrator(const vk::Context& ctx, const DeviceS
             throw Error("strata: error: a scattering medium behind an index-matched boundary (ior 1, "
                         "KHR_materials_volume_scatter) needs the megakernel integrator (--integrator megakernel); "
                         "the wavefront integrator's shadow rays stop at the boundary");
-        if ((dev.features.bits & gpu::kFeatureDispersion) != 0u)
-            throw Error("strata: error: a dispersive material (KHR_materials_dispersion) needs the megakernel "
-                        "integrator (--integrator megakernel); the wavefront integrator's paths carry no "
-                        "wavelength");
         return std::make_unique<WavefrontIntegrator>(ctx, dev, s, t, maxTilePixels, film);
     }
     return makeMegakernel(ctx, dev, s, t, film);

@@ -79,9 +79,9 @@ const Axis kAxes[] = {
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureVolumeScatter) != 0u; },
      "a KHR_materials_volume_scatter material (`kFeatureVolumeScatter`)",
      "free flights, medium vertices and their phase function (lib/medium.glsl)"},
-    {"dispersion", "STRATA_DISPERSION", bit(KernelId::Pathtrace) | bit(KernelId::SampleTest), 0, 0,
+    {"dispersion", "STRATA_DISPERSION", kShading | bit(KernelId::SampleTest), 0, 0,
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureDispersion) != 0u; },
-     "a KHR_materials_dispersion material (`kFeatureDispersion`); the megakernel only",
+     "a KHR_materials_dispersion material (`kFeatureDispersion`)",
      "the path's wavelength, its sampling and the spectral upsampling (lib/spectrum.glsl)"},
 };
 

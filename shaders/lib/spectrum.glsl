@@ -20,7 +20,8 @@
 const uint kDimWavelength = 0xfffffffau;  // the wavelength's pair (its first number)
 
 // The path's wavelength in nm; 0: the path is RGB. Set once a path reaches
-// a dispersive material (pathtrace.comp clears it at each path's start).
+// a dispersive material (pathtrace.comp clears it at each path's start;
+// wavefront.comp keeps it in PathState between stages).
 float gWavelength = 0.0;
 
 // One lobe of the matching functions' fit: a Gaussian with a width on each side.

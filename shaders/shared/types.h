@@ -493,7 +493,8 @@ STRATA_CONST(uint, kQueueWords, 8u);
 struct PathState {
     vec4 betaPdf;       // path throughput; w: the last BSDF sample's pdf
     vec4 lDelta;        // radiance so far; w: 1 if the last sample was a delta lobe (or the camera)
-    uvec4 misc;         // x: pixel index (y * width + x), y: bounces so far, z: 1 while alive
+    uvec4 misc;         // x: pixel index (y * width + x), y: bounces so far, z: 1 while alive,
+                        // w: the path's wavelength's float bits (the dispersion axis; 0: RGB)
 };
 
 // Wavefront stage push constants.
