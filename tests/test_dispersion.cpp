@@ -244,6 +244,30 @@ TEST_CASE("dispersion: a glass wedge spreads a white strip into the spectrum Sne
     CHECK(vk::validationMessageCount() == 0);
 }
 
+TEST_CASE("dispersion: white furnace: a dispersive glass sphere vanishes in a uniform environment, in every channel") {
+    // As the clear sphere of test_materials.cpp: every path through a white
+    // dielectric carries the environment's 1 unchanged in expectation; here
+    // each path through it also draws a wavelength, its weight 1 per channel
+    // on average, and the environment upsampled to that wavelength is 1.
+    Scene scene = loadWithWhiteEnvironment(sourcePath("tests/data/materials/glass-sphere.gltf"));
+    for (MaterialDesc& m : scene.materials) m.dispersion = 1.0f;
+    const GpuScene gpu = buildAndPack(scene);
+    REQUIRE((gpu.features.bits & gpu::kFeatureDispersion) != 0u);
+    RenderSettings s;
+    s.width = s.height = 32;
+    s.spp = 256;
+    s.maxDepth = 1000;
+    const RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
+    CHECK(r.nonFinite == 0);
+    const FurnaceMean m = imageMeans(r.film);
+    for (int c = 0; c < 3; ++c) {
+        MESSAGE("channel " << c << ": " << m.mean[c] << " +- " << m.se[c]);
+        CHECK(std::abs(m.mean[c] - 1.0) < 4.0 * m.se[c] + 1e-6);
+        CHECK(m.se[c] < 0.01);  // 4 errors: a loss of 4% is seen
+    }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
 TEST_CASE("dispersion: the wavefront integrator renders the wedge as the megakernel does, bit for bit") {
     // Its paths keep their wavelength between stages (PathState.misc.w).
     const RenderResult mega = renderWedge("wedge.gltf", 8);

@@ -123,6 +123,22 @@ struct FurnaceMean {
     glm::dvec3 mean{0.0};
     glm::dvec3 se{0.0};
 };
+
+// Each channel's image mean of `film` and its standard error.
+inline FurnaceMean imageMeans(const Film& film) {
+    const auto m = film.mean();
+    const auto v = film.varianceOfMean();
+    const std::size_t n = m.size() / 3;
+    FurnaceMean out;
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0.0, var = 0.0;
+        for (std::size_t i = 0; i < n; ++i) sum += m[i * 3 + c], var += v[i * 3 + c];
+        out.mean[c] = sum / double(n);
+        out.se[c] = std::sqrt(var) / double(n);
+    }
+    return out;
+}
+
 inline FurnaceMean whiteFurnaceMean(const std::string& file, std::uint32_t features) {
     const Scene scene = loadWithWhiteEnvironment(sourcePath(file));
     const GpuScene gpu = buildAndPack(scene);
@@ -133,17 +149,7 @@ inline FurnaceMean whiteFurnaceMean(const std::string& file, std::uint32_t featu
     s.maxDepth = 1;
     const RenderResult r = uploadAndRender(gpu, scene.cameras.at(0), s);
     CHECK(r.nonFinite == 0);
-    const auto m = r.film.mean();
-    const auto v = r.film.varianceOfMean();
-    const std::size_t n = m.size() / 3;
-    FurnaceMean out;
-    for (int c = 0; c < 3; ++c) {
-        double sum = 0.0, var = 0.0;
-        for (std::size_t i = 0; i < n; ++i) sum += m[i * 3 + c], var += v[i * 3 + c];
-        out.mean[c] = sum / double(n);
-        out.se[c] = std::sqrt(var) / double(n);
-    }
-    return out;
+    return imageMeans(r.film);
 }
 
 // The materials board under scenes/env/sky.hdr with a directional light
