@@ -8,8 +8,9 @@ at (0, 0, CAMERA_Z) looks down -Z through the wedge's front face, the plane
 z = FRONT_Z, and out of its back face, the plane z = -tan(APEX) x, whose
 outward normal is (-sin APEX, 0, -cos APEX); the wedge spans x, y in
 [-HALF, HALF]. Refraction bends the rays towards +X, by an angle that grows
-with the index: the strip at z = STRIP_Z, centred on x = STRIP_X, STRIP_W
-wide, shows as a spectrum across the image's columns. The test traces the
+with the index: the strip at z = STRIP_Z, centred where the view's axis
+lands after refraction at IOR (strip_x) and 2 pixels wide as the camera
+sees it, shows as a spectrum across the image's columns. The test traces the
 same geometry on the host, wavelength by wavelength, with the extension's
 index, and compares each channel's centroid.
 
