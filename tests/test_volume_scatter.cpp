@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
 #include "cli_util.h"
@@ -16,6 +18,7 @@
 #include "test_util.h"
 #include "measure/sample_dump.h"
 #include "pack/gpu_scene.h"
+#include "scene/media_check.h"
 #include "stats/stats.h"
 
 using namespace strata;
@@ -411,6 +414,54 @@ TEST_CASE("gltf materials: bad KHR_materials_volume_scatter values are refused i
                                                        "multiscatterColor is not three numbers in [0, 1]"},
                        {"scatter-color-two.gltf", "material 0 (\"Medium\"): KHR_materials_volume_scatter."
                                                   "multiscatterColor is not three numbers in [0, 1]"}});
+}
+
+TEST_CASE("gltf media: surfaces, emitters and other media inside a medium get one warning line, as does multiscatterTexture; a floor on its boundary and a point light inside do not" * doctest::test_suite("unit")) {
+    const std::string inside = " lie inside the volume of material 0 (\"Medium\") (first: one of material 1 (";
+    const std::string tail = ")): strata does not nest media or render surfaces inside one; a path segment ending on them "
+                             "crosses no medium\n";
+    const auto warning = [](const std::string& name) {
+        const std::string path = sourcePath("tests/data/media/" + name);
+        CAPTURE(path);
+        CerrCapture capture;
+        (void)loadGltf(path);
+        const std::string text = capture.text();
+        CHECK(std::count(text.begin(), text.end(), '\n') <= 1);
+        const std::string prefix = path + ": warning: ";
+        return text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
+    };
+    CHECK(warning("lamp-inside-fog.gltf") == "2 triangle(s)" + inside + "\"Bulb\"" + tail);
+    CHECK(warning("glass-inside-fog.gltf") == "12 triangle(s)" + inside + "\"Glass\"" + tail);
+    // The floor's 8 triangles under the cube lie on its bottom face.
+    CHECK(warning("fog-on-floor.gltf").empty());
+    CHECK(warning("lantern.gltf").empty());
+    CHECK(warning("lamp-fog.gltf").empty());
+    CHECK(warning("scatter-texture.gltf") ==
+          "1 material(s) have KHR_materials_volume_scatter.multiscatterTexture, which strata does not read: their "
+          "media scatter by multiscatterColor alone\n");
+}
+
+TEST_CASE("gltf media: the check for surfaces inside a medium poses instanced meshes at each placement" * doctest::test_suite("unit")) {
+    Scene scene = loadGltf(sourcePath("tests/data/media/lamp-fog.gltf"));
+    REQUIRE(surfacesInsideMedia(scene).empty());
+    // The lamp's two triangles become a shared mesh placed three times: at
+    // its own place (outside), lowered into the cube, and mirrored into it.
+    const std::uint32_t lamp = 1;
+    REQUIRE(scene.materials.at(lamp).name == "Lamp");
+    std::vector<Triangle> world, shared;
+    for (const Triangle& t : scene.triangles) (t.material == lamp ? shared : world).push_back(t);
+    REQUIRE(shared.size() == 2);
+    scene.triangles = world;
+    scene.triangles.insert(scene.triangles.end(), shared.begin(), shared.end());
+    scene.sharedMeshes = {SharedMesh{world.size(), 2, "lamp", false}};
+    const glm::mat4 down = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -1.5f, 0.0f));
+    const glm::mat4 mirrored = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, -0.5f, 1.0f));
+    scene.instances = {MeshInstance{0, glm::mat4(1.0f), {}}, MeshInstance{0, down, {}}, MeshInstance{0, mirrored, {}}};
+    CHECK(surfacesInsideMedia(scene).rfind("4 triangle(s) lie inside the volume of material 0 (\"Medium\") (first: "
+                                           "one of material 1 (\"Lamp\"))", 0) == 0);
+    // Without a medium the check looks at nothing.
+    scene.materials[0].thickness = 0.0f;
+    CHECK(surfacesInsideMedia(scene).empty());
 }
 
 TEST_SUITE_END();

@@ -53,10 +53,7 @@ namespace {
 // KHR_materials_diffuse_transmission), finite distance, a colour below 1.
 // Zero otherwise. A channel of colour 0 absorbs everything (float max).
 glm::vec3 volumeAttenuation(const MaterialDesc& m) {
-    const bool volume = m.thickness > 0.0f && (m.transmission > 0.0f || m.diffuselyTransmitting()) &&
-                        m.metallic < 1.0f && !m.unlit &&
-                        std::isfinite(m.attenuationDistance) && glm::any(glm::lessThan(m.attenuationColor, glm::vec3(1.0f)));
-    if (!volume) return glm::vec3(0.0f);
+    if (!m.hasVolume()) return glm::vec3(0.0f);
     glm::vec3 sigma;
     for (int k = 0; k < 3; ++k) {
         const double c = m.attenuationColor[k];

@@ -19,6 +19,7 @@
 #include "scene/gltf_deform.h"
 #include "scene/gltf_internal.h"
 #include "scene/gltf_motion.h"
+#include "scene/media_check.h"
 #include "scene/scene.h"
 #include "scene/tangents.h"
 #include "util/files.h"
@@ -532,6 +533,7 @@ Scene loadGltf(const std::string& path, const std::vector<unsigned char>& bytes,
         scene.materials.push_back(gltf::convertMaterial(path, model, static_cast<int>(i)));
     }
     gltf::warnTextureFallbacks(path, model, scene.materials);
+    gltf::warnUnreadMaterialTextures(path, model);
     std::optional<gltf::Animation> animation;
     if (options.motion.enabled && model.animations.empty() && options.motion.animation.empty())
         warn(path, "no animations in the file: --shutter poses nothing and blurs nothing");
@@ -582,6 +584,8 @@ Scene loadGltf(const std::string& path, const std::vector<unsigned char>& bytes,
         fail(path, msg);
     }
     builder.warnLights();
+    const std::string inside = surfacesInsideMedia(scene);
+    if (!inside.empty()) warn(path, inside);
     if (!skipped.empty()) warn(path, "skipped " + skipped);
     if (!invalid.empty()) warn(path, "skipped " + invalid);
     if (scene.droppedEmitters > 0) {

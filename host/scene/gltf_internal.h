@@ -307,6 +307,10 @@ int textureImage(const tinygltf::Model& model, int index, std::string& why);
 void warnTextureFallbacks(const std::string& path, const tinygltf::Model& model,
                           const std::vector<MaterialDesc>& materials);
 
+// One warning when materials have a KHR_materials_volume_scatter
+// multiscatterTexture, which strata does not read (multiscatterColor alone).
+void warnUnreadMaterialTextures(const std::string& path, const tinygltf::Model& model);
+
 // The TextureSlot of a textureInfo: `index` (checked against model.textures),
 // `texCoord` (a TEXCOORD set, >= 0) and the KHR_texture_transform object `transform`
 // (nullptr when absent). `label` names the textureInfo in messages.

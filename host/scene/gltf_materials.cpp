@@ -125,6 +125,18 @@ std::string formatNumber(double v) {
 
 }  // namespace
 
+void warnUnreadMaterialTextures(const std::string& path, const tinygltf::Model& model) {
+    std::size_t count = 0;
+    for (const tinygltf::Material& material : model.materials) {
+        const auto it = material.extensions.find("KHR_materials_volume_scatter");
+        count += it != material.extensions.end() && it->second.IsObject() && it->second.Has("multiscatterTexture");
+    }
+    if (count > 0) {
+        warn(path, std::to_string(count) + " material(s) have KHR_materials_volume_scatter.multiscatterTexture, which "
+                                           "strata does not read: their media scatter by multiscatterColor alone");
+    }
+}
+
 MaterialDesc convertMaterial(const std::string& path, const tinygltf::Model& model, int index) {
     const tinygltf::Material& src = model.materials[static_cast<std::size_t>(index)];
     const std::string label = materialLabel(model, index);

@@ -1,6 +1,7 @@
 // The scene as the host sees it after loading: flat arrays in world space,
 // and with instancing the meshes stored once and their placements.
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <array>
 #include <cstdint>
@@ -120,6 +121,13 @@ struct MaterialDesc {
     TextureSlot diffuseTransmissionTexture;           // linear A: scales the factor
     TextureSlot diffuseTransmissionColorTexture;      // sRGB RGB: scales the colour
     bool diffuselyTransmitting() const { return diffuseTransmission > 0.0f && !unlit; }
+    // A closed volume that attenuates (KHR_materials_volume: thickness > 0,
+    // a finite distance, a colour below 1, on a transmitting dielectric):
+    // a medium, the one rule for the loader's check and packing.
+    bool hasVolume() const {
+        return thickness > 0.0f && (transmission > 0.0f || diffuselyTransmitting()) && metallic < 1.0f && !unlit &&
+               std::isfinite(attenuationDistance) && glm::any(glm::lessThan(attenuationColor, glm::vec3(1.0f)));
+    }
     // KHR_materials_anisotropy: the base's GGX lobes stretched along a
     // direction of the tangent frame (strength 0: none).
     float anisotropyStrength = 0.0f;
