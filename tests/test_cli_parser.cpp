@@ -159,7 +159,7 @@ TEST_CASE("cli parser: bad flags are the same one-line errors as before") {
 }
 
 TEST_CASE("cli help: each command's help shows every flag of its table, with metavar and default") {
-    CHECK(cli::commands().size() == 10);  // render ... devices, shaders
+    CHECK(cli::commands().size() == 11);  // render, reference, view ... devices, shaders
     for (const cli::CommandInfo& c : cli::commands()) {
         CAPTURE(c.name);
         const std::string help = flat(c.help()), tuning = flat(c.tuningHelp());

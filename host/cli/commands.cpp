@@ -72,14 +72,6 @@ const CommandText kDenoiseText{"denoise", "IN.exr -o OUT.exr [-o OUT.png] [optio
 const CommandText kDevicesText{"devices", "", "List the Vulkan devices.",
     "One line per device: index, name, type, driver and Vulkan version; --device takes the index.\n"};
 
-// The spec of the command `text` names, made on first use from its flags
-// and its starting value (the command struct's own without `init`) and kept:
-// the parser and the help share it.
-template <const CommandText& text, class T>
-const CommandSpec<T>& kept(std::vector<Flag<T>> (*flags)(), T (*init)() = nullptr) {
-    static const CommandSpec<T> spec = makeSpec<T>(text, flags(), init ? init() : T{});
-    return spec;
-}
 
 std::vector<Flag<RenderCommand>> renderFlags() {
     using C = RenderCommand;
@@ -120,20 +112,6 @@ std::vector<Flag<RenderCommand>> renderFlags() {
                         "reached",
                         1e9, "seconds", STRATA_FIELD(settings.timeLimit))
                 .withDefault("no limit"),
-            flag<C>(
-                "--sampler", joined(samplerNames(), "|"), kSamplerHelp,
-                [](C& c, const std::string&, const std::string& v) { c.settings.sampler = samplerByName(v).kind; },
-                [](const C& c) { return std::string(samplerByKind(c.settings.sampler).name); }),
-            flag<C>(
-                "--filter", joined(filterNames(), "|"),
-                "the pixel reconstruction filter, sampled by importance: each sample weighs 1",
-                // With its own radius; --filter-radius, applied last, overrides it.
-                [](C& c, const std::string&, const std::string& v) { c.settings.filter = filterByName(v); },
-                [](const C& c) { return std::string(filterName(c.settings.filter.kind)); }),
-            positive<C>("--filter-radius", "PIXELS", "the filter's radius, in pixels", 16, "a radius in pixels",
-                        STRATA_FIELD(settings.filter.radius))
-                .withDefault(filterRadii())
-                .appliedLast(),
             choice<C, std::uint32_t>("--mis",
                                      "how light sampling and BSDF sampling combine: Veach's power heuristic, or "
                                      "one technique alone",
@@ -180,6 +158,7 @@ std::vector<Flag<RenderCommand>> renderFlags() {
                       "'--denoise fast' for the edge-aware a-trous filter instead of the regression",
                       [](C& c) { c.denoise = true, c.settings.aov = true; }),
         },
+        pixelFlags<C>(),
         pathFlags<C>(settings),
         traceFlags<C>(settings, true),
         envFlags<C>(),
@@ -442,34 +421,6 @@ int listDevices(const std::vector<std::string>& args) {
     return 0;
 }
 
-// Every name of the flags (aliases, old names), or of the tuning flags alone.
-template <class T>
-std::vector<std::string> flagNames(const CommandSpec<T>& spec, bool tuningOnly) {
-    std::vector<std::string> names;
-    for (const Flag<T>& f : spec.flags)
-        if (f.tuning || !tuningOnly)
-            for (const std::string* n : {&f.alias, &f.name, &f.oldName})
-                if (!n->empty()) names.push_back(*n);
-    return names;
-}
-
-template <class T>
-CommandInfo command(const CommandSpec<T>& spec, std::function<int(const std::vector<std::string>&)> run) {
-    return {spec.name,
-            spec.summary,
-            [&spec] { return helpText(spec); },
-            [&spec] { return hasTuning(flagTexts(spec)) ? helpText(spec, HelpPart::Tuning) : std::string(); },
-            [&spec] { return flagNames(spec, false); },
-            [&spec] { return flagNames(spec, true); },
-            [&spec, run](const std::vector<std::string>& args) {
-                const HelpPart part = helpRequested(flagTexts(spec), args);
-                if (part != HelpPart::None) {
-                    std::fputs(helpText(spec, part).c_str(), stdout);
-                    return 0;
-                }
-                return run(args);
-            }};
-}
 
 #undef STRATA_FIELD
 
@@ -572,6 +523,7 @@ const std::vector<CommandInfo>& commands() {
     static const std::vector<CommandInfo> list = {
         command(renderSpec("render"), [](const auto& a) { return runRender(parseRender(a)); }),
         command(renderSpec("reference"), [](const auto& a) { return runRender(parseReference(a)); }),
+        viewCommand(),
         command(compareSpec(),
                 [](const auto& a) {
                     const CompareArgs c = parseCompare(a);

@@ -27,7 +27,7 @@ struct CommandInfo {
     std::function<int(const std::vector<std::string>& args)> run;
 };
 
-// render, reference, compare, converge, edges, bench, denoise, merge, devices, shaders.
+// render, reference, view, compare, converge, edges, bench, denoise, merge, devices, shaders.
 const std::vector<CommandInfo>& commands();
 const CommandInfo* findCommand(const std::string& name);
 // `strata --help`: the commands with their summaries.
@@ -51,5 +51,7 @@ BenchCommand parseBench(const std::vector<std::string>& args);
 DenoiseCommand parseDenoise(const std::vector<std::string>& args);
 MergeCommand parseMerge(const std::vector<std::string>& args);
 ShadersCommand parseShaders(const std::vector<std::string>& args);
+// `strata view` (cli/view_command.cpp).
+CommandInfo viewCommand();
 
 }  // namespace strata::cli

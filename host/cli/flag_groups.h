@@ -2,6 +2,8 @@
 // environment, the scene, the device) and the helpers that build a
 // command's table from them, for cli/commands.cpp.
 #pragma once
+#include <cstdio>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <vector>
@@ -46,6 +48,65 @@ inline std::string filterRadii() {
     std::vector<std::string> radii;
     for (const std::string& name : filterNames()) radii.push_back(name + " " + numberText(filterByName(name).radius));
     return joined(radii, ", ");
+}
+
+// The spec of the command `text` names, made on first use from its flags
+// and its starting value (the command struct's own without `init`) and kept:
+// the parser and the help share it.
+template <const CommandText& text, class T>
+const CommandSpec<T>& kept(std::vector<Flag<T>> (*flags)(), T (*init)() = nullptr) {
+    static const CommandSpec<T> spec = makeSpec<T>(text, flags(), init ? init() : T{});
+    return spec;
+}
+
+// Every name of the flags (aliases, old names), or of the tuning flags alone.
+template <class T>
+std::vector<std::string> flagNames(const CommandSpec<T>& spec, bool tuningOnly) {
+    std::vector<std::string> names;
+    for (const Flag<T>& f : spec.flags)
+        if (f.tuning || !tuningOnly)
+            for (const std::string* n : {&f.alias, &f.name, &f.oldName})
+                if (!n->empty()) names.push_back(*n);
+    return names;
+}
+
+template <class T>
+CommandInfo command(const CommandSpec<T>& spec, std::function<int(const std::vector<std::string>&)> run) {
+    return {spec.name,
+            spec.summary,
+            [&spec] { return helpText(spec); },
+            [&spec] { return hasTuning(flagTexts(spec)) ? helpText(spec, HelpPart::Tuning) : std::string(); },
+            [&spec] { return flagNames(spec, false); },
+            [&spec] { return flagNames(spec, true); },
+            [&spec, run](const std::vector<std::string>& args) {
+                const HelpPart part = helpRequested(flagTexts(spec), args);
+                if (part != HelpPart::None) {
+                    std::fputs(helpText(spec, part).c_str(), stdout);
+                    return 0;
+                }
+                return run(args);
+            }};
+}
+
+// --sampler, --filter, --filter-radius (render, view).
+template <class T>
+std::vector<Flag<T>> pixelFlags() {
+    return {
+        flag<T>(
+            "--sampler", joined(samplerNames(), "|"), kSamplerHelp,
+            [](T& c, const std::string&, const std::string& v) { c.settings.sampler = samplerByName(v).kind; },
+            [](const T& c) { return std::string(samplerByKind(c.settings.sampler).name); }),
+        flag<T>(
+            "--filter", joined(filterNames(), "|"),
+            "the pixel reconstruction filter, sampled by importance: each sample weighs 1",
+            // With its own radius; --filter-radius, applied last, overrides it.
+            [](T& c, const std::string&, const std::string& v) { c.settings.filter = filterByName(v); },
+            [](const T& c) { return std::string(filterName(c.settings.filter.kind)); }),
+        positive<T>("--filter-radius", "PIXELS", "the filter's radius, in pixels", 16, "a radius in pixels",
+                    STRATA_FIELD(settings.filter.radius))
+            .withDefault(filterRadii())
+            .appliedLast(),
+    };
 }
 
 // The shared groups. `settings` gives the command's RenderSettings, which

@@ -6,17 +6,18 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string_view>
 #include <system_error>
 
-#include <dlfcn.h>
 #include <unistd.h>
 
 #include "oiio/api.h"
 #include "util/error.h"
 #include "util/files.h"
 #include "util/interrupt.h"
+#include "util/module.h"
 
 namespace strata {
 namespace fs = std::filesystem;
@@ -35,38 +36,9 @@ float linearToSrgb(float x) {
     return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }
 
-namespace {
+std::uint8_t srgb8(float linear) { return static_cast<std::uint8_t>(std::lround(linearToSrgb(linear) * 255.0f)); }
 
-// The module: $STRATA_OIIO_MODULE when set (only there), else where CMake
-// built it, else beside the running executable.
-const oiio::Api* loadModule(std::string& error) {
-    std::vector<std::string> candidates;
-    if (const char* env = std::getenv("STRATA_OIIO_MODULE")) {
-        candidates.push_back(env);
-    } else if (!imageSupportBuilt()) {
-        error = "strata was built without OpenImageIO (cmake -DSTRATA_OIIO=OFF)";
-        return nullptr;
-    } else {
-        candidates.push_back(STRATA_OIIO_MODULE);
-        std::error_code ec;
-        const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-        if (!ec) candidates.push_back((exe.parent_path() / "libstrata_oiio.so").string());
-    }
-    for (const std::string& path : candidates) {
-        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-        if (!handle) {
-            const char* why = dlerror();
-            if (error.empty()) error = why ? why : path + ": cannot be loaded";
-            continue;
-        }
-        auto entry = reinterpret_cast<const oiio::Api* (*)()>(dlsym(handle, "strata_oiio_api"));
-        const oiio::Api* api = entry ? entry() : nullptr;
-        if (api && api->version == oiio::kApiVersion) return api;  // stays loaded
-        dlclose(handle);
-        error = path + ": not this build's image module";
-    }
-    return nullptr;
-}
+namespace {
 
 void writeOne(const std::string& path, const std::string& tmp, int w, int h, const std::vector<float>& rgb,
               const ExtraChannels& extra) {
@@ -77,7 +49,7 @@ void writeOne(const std::string& path, const std::string& tmp, int w, int h, con
     } else {
         std::vector<std::uint8_t> bytes(rgb.size());
         for (std::size_t i = 0; i < rgb.size(); ++i)
-            bytes[i] = static_cast<std::uint8_t>(std::lround(linearToSrgb(rgb[i]) * 255.0f));
+            bytes[i] = srgb8(rgb[i]);
         error = module.writePng(path, tmp, w, h, bytes.data());
     }
     if (!error.empty()) fail(path, error);
@@ -94,13 +66,20 @@ void requireImageSupport(const std::string& path) {
 
 const oiio::Api& imageModule(const std::string& path) {
     static std::string error;
-    static const oiio::Api* api = loadModule(error);
+    static const auto* api = static_cast<const oiio::Api*>(loadModuleApi(
+        {"STRATA_OIIO_MODULE", STRATA_OIIO_MODULE, "libstrata_oiio.so", "strata_oiio_api", oiio::kApiVersion,
+         "strata was built without OpenImageIO (cmake -DSTRATA_OIIO=OFF)", "image module"},
+        error));
     if (!api) fail(path, "image support (OpenImageIO) could not be loaded: " + error);
     return *api;
 }
 
-void writeImages(const std::vector<std::string>& paths, int width, int height,
-                 const std::vector<float>& rgb, const ExtraChannels& extra) {
+namespace {
+
+// Each of `paths` written by write(path, tmp) under a temporary name beside
+// it, then renamed: all of them, or none.
+void writeAll(const std::vector<std::string>& paths,
+              const std::function<void(const std::string&, const std::string&)>& write) {
     std::vector<std::string> temps;
     std::vector<std::unique_ptr<TempFileGuard>> guards;  // removed by a second SIGINT or SIGTERM
     auto cleanup = [&] {
@@ -117,7 +96,7 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
             const fs::path tmp = p.parent_path() / name;
             temps.push_back(tmp.string());
             guards.push_back(std::make_unique<TempFileGuard>(tmp.string()));
-            writeOne(path, tmp.string(), width, height, rgb, extra);
+            write(path, tmp.string());
         }
         for (std::size_t i = 0; i < paths.size(); ++i) {
             std::error_code ec;
@@ -128,6 +107,23 @@ void writeImages(const std::vector<std::string>& paths, int width, int height,
         cleanup();
         throw;
     }
+}
+
+}  // namespace
+
+void writeImages(const std::vector<std::string>& paths, int width, int height,
+                 const std::vector<float>& rgb, const ExtraChannels& extra) {
+    writeAll(paths, [&](const std::string& path, const std::string& tmp) {
+        writeOne(path, tmp, width, height, rgb, extra);
+    });
+}
+
+void writePng8(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
+    if (outputFormat(path) != ImageFormat::Png) fail(path, "not a .png file");
+    writeAll({path}, [&](const std::string& p, const std::string& tmp) {
+        const std::string error = imageModule(p).writePng(p, tmp, width, height, rgb.data());
+        if (!error.empty()) fail(p, error);
+    });
 }
 
 Image readImage(const std::string& path) {

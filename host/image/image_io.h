@@ -3,6 +3,7 @@
 // appears whole or not at all: written under a temporary name in the same
 // directory, then renamed.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ ImageFormat outputFormat(const std::string& path);
 // AOVs); PNG files ignore them.
 void writeImages(const std::vector<std::string>& paths, int width, int height,
                  const std::vector<float>& rgb, const ExtraChannels& extra = {});
+
+// A PNG of sRGB-encoded 8-bit RGB (3 bytes per pixel), as it is: whole or
+// not at all.
+void writePng8(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb);
 
 // An RGB image and, when the file has variance.R/G/B channels, the variance
 // of each pixel's mean (as `strata reference` writes it).
@@ -60,5 +65,7 @@ const oiio::Api& imageModule(const std::string& path);
 
 // IEC 61966-2-1 sRGB transfer function (linear -> encoded), input clamped to [0,1].
 float linearToSrgb(float linear);
+// A PNG's byte: linearToSrgb rounded to 8 bits (strata view shows the same).
+std::uint8_t srgb8(float linear);
 
 }  // namespace strata

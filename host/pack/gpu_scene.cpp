@@ -93,11 +93,14 @@ bool indexMatched(const MaterialDesc& m) {
            !m.diffuselyTransmitting() && !m.anisotropic();
 }
 
-double sceneRadius(const Scene& scene) {
+// The triangles' bounding sphere: radius (1 if none) and centre.
+double sceneRadius(const Scene& scene, glm::dvec3& center) {
+    center = glm::dvec3(0.0);
     if (scene.triangles.empty()) return 1.0;
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const Triangle& t : scene.triangles)
         for (const glm::vec3& v : t.v) lo = glm::min(lo, glm::dvec3(v)), hi = glm::max(hi, glm::dvec3(v));
+    center = 0.5 * (lo + hi);
     const double r = 0.5 * glm::length(hi - lo);
     return r > 0.0 ? r : 1.0;
 }
@@ -401,13 +404,14 @@ GpuScene pack(S& scene, SceneBvh&& sceneBvh, int bvhWidth, LightSampler lightSam
     }
     std::vector<bool> used(g.materials.size(), false);
     for (const auto& t : scene.triangles) used[t.material] = true;
-    g.sceneRadius = sceneRadius(scene);  // before the triangles are consumed
+    g.sceneRadius = sceneRadius(scene, g.sceneCenter);  // before the triangles are consumed
     std::vector<PlacedRecord> records;  // per bottom level
     if (sceneBvh.instanced()) {
         packInstances(scene, sceneBvh, g, &records);
         const gpu::BvhNode& root = sceneBvh.top.nodes[0];  // every placement's world box
         const double r = 0.5 * glm::length(glm::dvec3(root.bmax) - glm::dvec3(root.bmin));
         g.sceneRadius = r > 0.0 ? r : 1.0;
+        g.sceneCenter = 0.5 * (glm::dvec3(root.bmax) + glm::dvec3(root.bmin));
     } else {
         g.placedTriangles = n;
     }

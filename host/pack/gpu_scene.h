@@ -60,6 +60,7 @@ struct GpuScene {
     double lightTreeMs = 0.0;               // its build's host time
     double totalPower = 0.0;                // sum of the emitters' estimated powers (packScene)
     double sceneRadius = 0.0;               // bounding sphere of the triangles' bounds (1 if none)
+    glm::dvec3 sceneCenter{0.0};            // and its centre
     std::uint32_t environment = gpu::kNoLight;  // the environment's emitter index
     glm::vec3 envScale{0.0f};               // Environment::scale
     float envRotation = 0.0f;               // radians about +Y

@@ -40,22 +40,6 @@ bool usesStates(const RenderCommand& cmd) { return !cmd.states.empty() || !cmd.r
 
 void checkResumable(const RenderCommand& cmd, const RenderState& st, const StateInfo& here);
 
-// What the command asks of the stages: its file, environment, loader
-// options, view, BVH, reads and limits; with --frames the placements kept.
-SceneRequest sceneRequest(const RenderCommand& cmd) {
-    SceneRequest r = sceneRequest(cmd.settings, cmd.tuning);
-    r.file = cmd.scene;
-    r.env = cmd.env;
-    r.load.variant = cmd.variant;
-    if (!cmd.restrictPaths.empty()) r.load.restrictPaths = restrictRoot(cmd.restrictPaths);
-    r.load.instancing = cmd.instancing;
-    r.textureMaxSize = cmd.textureMaxSize;
-    r.load.motion.frames = cmd.frames.enabled;
-    r.camera->view = cmd.view;
-    r.consume = Consume::All;
-    r.keepPlacements = cmd.frames.enabled;
-    return r;
-}
 
 // Below this the loader's lower bound of the flattened triangles' device
 // memory is not worth a Vulkan instance to read the device's (any device
@@ -298,6 +282,23 @@ int dryRun(const RenderCommand& cmd) {
 }
 
 }  // namespace
+
+// What the command asks of the stages: its file, environment, loader
+// options, view, BVH, reads and limits; with --frames the placements kept.
+SceneRequest sceneRequest(const RenderCommand& cmd) {
+    SceneRequest r = sceneRequest(cmd.settings, cmd.tuning);
+    r.file = cmd.scene;
+    r.env = cmd.env;
+    r.load.variant = cmd.variant;
+    if (!cmd.restrictPaths.empty()) r.load.restrictPaths = restrictRoot(cmd.restrictPaths);
+    r.load.instancing = cmd.instancing;
+    r.textureMaxSize = cmd.textureMaxSize;
+    r.load.motion.frames = cmd.frames.enabled;
+    r.camera->view = cmd.view;
+    r.consume = Consume::All;
+    r.keepPlacements = cmd.frames.enabled;
+    return r;
+}
 
 SampleRange renderRange(const RenderCommand& cmd) {
     if (cmd.shards) return shardRange(cmd.settings.spp, cmd.shard, cmd.shards, cmd.tuning.maxBatch);

@@ -10,6 +10,7 @@
 #include "scene/scene.h"
 #include "scene/environment.h"
 #include "scene/view.h"
+#include "stages/stages.h"
 
 namespace strata {
 
@@ -55,6 +56,11 @@ struct RenderCommand {
     bool denoiseFast = false;           // '--denoise fast': the a-trous filter, not the regression
     FrameRange frames;                  // --frames: outputs and statsJson hold a run of '#'
 };
+
+// What the command asks of the stages (stages/stages.h): its file,
+// environment, loader options, view, BVH, reads and limits; with --frames
+// the placements kept.
+SceneRequest sceneRequest(const RenderCommand& cmd);
 
 // The sample indices the command renders: its shard of [0, spp), or all.
 SampleRange renderRange(const RenderCommand& cmd);

@@ -199,6 +199,19 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
     std::uint32_t batch = t.fixedBatch ? t.fixedBatch : 1u;  // samples in the next submission
     std::size_t nextCheckpoint = 0;
+    // The tiles of a sample, in dispatch order. With t.splitSamples a
+    // sample slower than the submission target goes a run of `tileRun`
+    // tiles per submission, from `tileNext`: each pixel still takes its
+    // samples in order, so the image is the same.
+    struct Tile {
+        std::uint32_t x, y, w, h;
+    };
+    std::vector<Tile> tiles;
+    for (std::uint32_t ty = 0; ty < static_cast<std::uint32_t>(s.height); ty += tile)
+        for (std::uint32_t tx = 0; tx < static_cast<std::uint32_t>(s.width); tx += tile)
+            tiles.push_back({tx, ty, std::min<std::uint32_t>(tile, s.width - tx),
+                             std::min<std::uint32_t>(tile, s.height - ty)});
+    std::size_t tileNext = 0, tileRun = tiles.size();
 
     // The device sums samples in float32 and the host folds each complete
     // batch into the film. Folds happen at fixed sample indices (multiples
@@ -223,9 +236,10 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         readback.invalidate();
         return static_cast<const float*>(readback.mapped());
     };
-    // The batch in progress, left on the device: its sums as they are.
-    auto pendingSums = [&]() -> std::vector<float> {
-        if (unfolded == 0) return {};
+    // The batch in progress, left on the device: its sums as they are
+    // (`partial`: also when it holds only a split sample's first tiles).
+    auto pendingSums = [&](bool partial = false) -> std::vector<float> {
+        if (unfolded == 0 && !partial) return {};
         recordCopy(submit.begin(), false);
         submit.submitAndWait();
         const float* f = readBatch();
@@ -263,21 +277,25 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
             nextCheckpoint < checkpoints.spp.size() && checkpoints.spp[nextCheckpoint] == after - begin;
         const bool fold = after % foldEvery == 0;
 
+        // A split sample: its next run of tiles (batch is 1), the sample
+        // complete once the last tile is in.
+        const bool split = t.splitSamples && batch == 1 && (tileNext > 0 || tileRun < tiles.size());
+        const std::size_t tileEnd = split ? std::min(tiles.size(), tileNext + tileRun) : tiles.size();
+        const bool complete = tileEnd == tiles.size();
         const auto t0 = Clock::now();
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
         for (std::uint32_t k = 0; k < batch; ++k) {
-            for (std::uint32_t ty = 0; ty < static_cast<std::uint32_t>(s.height); ty += tile)
-                for (std::uint32_t tx = 0; tx < static_cast<std::uint32_t>(s.width); tx += tile) {
-                    DispatchParams p{};
-                    p.tileX = tx;
-                    p.tileY = ty;
-                    p.tileW = std::min<std::uint32_t>(tile, s.width - tx);
-                    p.tileH = std::min<std::uint32_t>(tile, s.height - ty);
-                    p.sampleIndex = cur + k;
-                    p.blockStride = blockStride(p.tileW, p.tileH);
-                    ownSeconds += integrator->addSample(cmd, p);
-                }
+            for (std::size_t i = split ? tileNext : 0; i < tileEnd; ++i) {
+                DispatchParams p{};
+                p.tileX = tiles[i].x;
+                p.tileY = tiles[i].y;
+                p.tileW = tiles[i].w;
+                p.tileH = tiles[i].h;
+                p.sampleIndex = cur + k;
+                p.blockStride = blockStride(p.tileW, p.tileH);
+                ownSeconds += integrator->addSample(cmd, p);
+            }
             vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                               VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
                               VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -285,12 +303,31 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
                               VK_ACCESS_TRANSFER_READ_BIT);
         }
         timer.end(cmd);
-        if (fold) recordCopy(cmd, true);
+        if (fold && complete) recordCopy(cmd, true);
         submit.submitAndWait();
         const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
         result.hostSubmitSeconds += secs;
         result.deviceSeconds += timer.supported() ? timer.seconds() + ownSeconds : secs;
         ownSeconds = 0.0;
+        if (t.splitSamples && batch == 1) {  // the tiles that fit the target next time
+            const double perTile = secs / double(tileEnd - (split ? tileNext : 0));
+            tileRun = std::clamp<std::size_t>(std::size_t(t.submitSeconds / std::max(perTile, 1e-6)), 1, tiles.size());
+        }
+        if (!complete) {  // the sample goes on: the image so far, then its next tiles
+            tileNext = tileEnd;
+            ++result.submissions;
+            if (run.onSubmission) {
+                const auto image = [&] {
+                    Film f = sums;
+                    f.fold(pendingSums(true).data());  // a sample's tiles so far included
+                    return f;
+                };
+                if (!run.onSubmission(cur - begin, image)) break;
+            }
+            if ((result.interrupted = interruptSignal()) != 0) break;
+            continue;
+        }
+        tileNext = 0;
         cur = after;
         unfolded += batch;
         result.sppRendered += batch;
@@ -317,6 +354,14 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
             lastCheckpoint = elapsed();
         }
 
+        if (run.onSubmission) {
+            const auto image = [&] {
+                Film f = sums;
+                if (unfolded > 0) f.fold(pendingSums().data());
+                return f;
+            };
+            if (!run.onSubmission(cur - begin, image)) break;
+        }
         const double perSample = secs / batch;
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
         if ((result.interrupted = interruptSignal()) != 0) break;  // SIGINT or SIGTERM: the samples reached
@@ -324,6 +369,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         if (s.timeLimit > 0.0) target = std::min(target, s.timeLimit - elapsed());
         batch = t.fixedBatch ? t.fixedBatch
                              : static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));
+        if (t.splitSamples && tileRun < tiles.size()) batch = 1;  // a sample is still too long
         if (showProgress)
             printProgress(cur - begin, end - begin, elapsed(), static_cast<double>(result.samplesTaken) / elapsed() * 1e-6);
     }

@@ -39,6 +39,11 @@ struct SampleRun {
     bool keep = false;                   // fill RenderResult::state
     double checkpointSeconds = 0.0;      // call onCheckpoint this often (wall time), 0: never
     std::function<void(const Accumulation&)> onCheckpoint;
+    // Called after every submission with the image's spp and a function
+    // that returns the image so far (the batch in progress included: one
+    // readback); returning false ends the render there, as a signal does
+    // (strata view: a window's event loop between submissions).
+    std::function<bool(std::uint32_t spp, const std::function<Film()>& image)> onSubmission;
 };
 
 // Called when the render has taken exactly `checkpoint` spp (ascending values

@@ -85,6 +85,9 @@ struct RenderTuning {
     std::uint32_t tileSize = 512;       // a dispatch covers at most tileSize^2 pixels
     std::uint32_t fixedBatch = 0;       // samples per submission (cut at folds and checkpoints);
                                         // 0: adapt to submitSeconds
+    bool splitSamples = false;          // a sample that takes longer than submitSeconds is
+                                        // submitted a run of tiles at a time (strata view, whose
+                                        // window answers between submissions; the same image)
     bool warmUp = false;                // one dispatch (a tile of at most 64x64 pixels, sample 0)
                                         // before the loop, timed apart and cleared from the image
     bool countRays = true;              // SPEC_COUNT_RAYS: closest/shadow ray counters

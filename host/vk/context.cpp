@@ -68,7 +68,7 @@ bool hasLayer(const char* name) {
     return false;
 }
 
-VkInstance createInstance(bool validation) {
+VkInstance createInstance(bool validation, const std::vector<std::string>& wanted = {}) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "strata";
     app.pEngineName = "strata";
@@ -82,6 +82,7 @@ VkInstance createInstance(bool validation) {
         layers.push_back("VK_LAYER_KHRONOS_validation");
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    for (const std::string& e : wanted) extensions.push_back(e.c_str());
     VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     info.pApplicationInfo = &app;
     info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
@@ -189,7 +190,7 @@ std::vector<DeviceInfo> listDevices() {
 
 Context::Context(const ContextOptions& options) {
     validation = options.validation || validationRequestedByEnvironment();
-    instance = createInstance(validation);
+    instance = createInstance(validation, options.instanceExtensions);
     try {
         if (validation) {
             VkDebugUtilsMessengerCreateInfoEXT info{
@@ -206,6 +207,7 @@ Context::Context(const ContextOptions& options) {
             VK_CHECK(create(instance, &info, nullptr, &messenger));
         }
 
+        if (options.makeSurface) surface = options.makeSurface(instance);
         auto devices = physicalDevices(instance);
         if (devices.empty()) throw DeviceError("no Vulkan device found");
         const int pick = chooseDevice(devices, options.deviceIndex);
@@ -226,9 +228,15 @@ Context::Context(const ContextOptions& options) {
         std::vector<VkQueueFamilyProperties> families(familyCount);
         vkGetPhysicalDeviceQueueFamilyProperties(physical, &familyCount, families.data());
         bool found = false;
-        for (std::uint32_t i = 0; i < familyCount && !found; ++i)
-            if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) queueFamily = i, found = true;
+        for (std::uint32_t i = 0; i < familyCount && !found; ++i) {
+            VkBool32 present = VK_TRUE;
+            if (surface) VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(physical, i, surface, &present));
+            if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && present) queueFamily = i, found = true;
+        }
+        if (!found && surface)
+            throw Error("strata: error: device " + info.name + " has no queue that computes and presents to the window");
         if (!found) throw DeviceError("device " + info.name + " has no compute queue");
+        const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
 
         float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -238,6 +246,10 @@ Context::Context(const ContextOptions& options) {
         VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
         deviceInfo.queueCreateInfoCount = 1;
         deviceInfo.pQueueCreateInfos = &queueInfo;
+        if (surface) {
+            deviceInfo.enabledExtensionCount = 1;
+            deviceInfo.ppEnabledExtensionNames = &swapchain;
+        }
         VK_CHECK(vkCreateDevice(physical, &deviceInfo, nullptr, &device));
         vkGetDeviceQueue(device, queueFamily, 0, &queue);
 
@@ -253,6 +265,11 @@ Context::Context(const ContextOptions& options) {
 
 Context::~Context() { release(); }
 
+void Context::destroySurface() {
+    if (surface && instance) vkDestroySurfaceKHR(instance, surface, nullptr);
+    surface = VK_NULL_HANDLE;
+}
+
 void Context::release() {
     if (device) {
         vkDeviceWaitIdle(device);
@@ -262,6 +279,7 @@ void Context::release() {
         device = VK_NULL_HANDLE;
         commandPool = VK_NULL_HANDLE;
     }
+    destroySurface();
     if (messenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));

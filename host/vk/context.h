@@ -3,6 +3,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -28,6 +29,12 @@ struct DeviceInfo {
 struct ContextOptions {
     int deviceIndex = -1;      // -1: discrete, else integrated, else CPU, else first
     bool validation = false;   // enable VK_LAYER_KHRONOS_validation + messenger
+    // A window to present to (strata view): the instance extensions its
+    // surface needs, and the surface made once the instance exists. The
+    // queue must then present to it too, and the device gets
+    // VK_KHR_swapchain; without a surface nothing changes.
+    std::vector<std::string> instanceExtensions;
+    std::function<VkSurfaceKHR(VkInstance)> makeSurface;
 };
 
 struct Context {
@@ -42,6 +49,8 @@ struct Context {
     VkPhysicalDeviceMemoryProperties memory{};
     DeviceInfo info;
     bool validation = false;
+    VkSurfaceKHR surface = VK_NULL_HANDLE;  // ContextOptions::makeSurface's; destroyed with the
+                                            // instance, or before by destroySurface
     // Compiled pipelines that Kernels built with reuse share (vk/kernel.h),
     // most recently used first, at most kMaxReusedPrograms; released before
     // the device.
@@ -55,6 +64,8 @@ struct Context {
     Context& operator=(const Context&) = delete;
 
     std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags want) const;
+    // Destroys the surface (its window is about to go); the device stays.
+    void destroySurface();
 
 private:
     void release();
