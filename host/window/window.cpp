@@ -402,6 +402,7 @@ void drawPanel(Panel& p) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.75f);
     ImGui::Begin("strata", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::PushItemWidth(110.0f);
     ImGui::Text("%u / %u spp", p.spp, p.sppCap);
     ImGui::Text("%.2f Msamples/s, %.1f s", p.samplesPerSecond * 1e-6, p.seconds);
     ImGui::TextUnformatted(p.device.c_str());
@@ -415,11 +416,13 @@ void drawPanel(Panel& p) {
         for (const std::string& c : p.cameras) names.push_back(c.c_str());
         ImGui::Combo("camera", &p.camera, names.data(), static_cast<int>(names.size()));
     }
-    p.save = ImGui::Button("save EXR + PNG (F2)");
+    p.save = ImGui::Button("save (F2)");
     ImGui::SameLine();
-    p.printCommand = ImGui::Button("print command (P)");
+    p.printCommand = ImGui::Button("command (P)");
     if (!p.status.empty()) ImGui::TextUnformatted(p.status.c_str());
-    ImGui::TextDisabled("drag: orbit, right: pan, wheel: zoom, WASDQE: fly, R: reset, C: camera");
+    ImGui::TextDisabled("drag orbit, right pan, wheel zoom");
+    ImGui::TextDisabled("WASDQE fly, R reset, C camera");
+    ImGui::PopItemWidth();
     ImGui::End();
 }
 
