@@ -309,9 +309,13 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         result.hostSubmitSeconds += secs;
         result.deviceSeconds += timer.supported() ? timer.seconds() + ownSeconds : secs;
         ownSeconds = 0.0;
-        if (t.splitSamples && batch == 1) {  // the tiles that fit the target next time
-            const double perTile = secs / double(tileEnd - (split ? tileNext : 0));
-            tileRun = std::clamp<std::size_t>(std::size_t(t.submitSeconds / std::max(perTile, 1e-6)), 1, tiles.size());
+        // A whole sample's time: this submission's per sample, or per tile
+        // times the tiles (split); with t.splitSamples, the tiles that fit
+        // the target next time.
+        const double perSample = split ? secs / double(tileEnd - tileNext) * double(tiles.size()) : secs / batch;
+        if (t.splitSamples) {
+            const double perTile = perSample / double(tiles.size());
+            tileRun = std::clamp<std::size_t>(std::size_t(t.submitSeconds / std::max(perTile, 1e-9)), 1, tiles.size());
         }
         if (!complete) {  // the sample goes on: the image so far, then its next tiles
             tileNext = tileEnd;
@@ -362,7 +366,6 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
             };
             if (!run.onSubmission(cur - begin, image)) break;
         }
-        const double perSample = secs / batch;
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
         if ((result.interrupted = interruptSignal()) != 0) break;  // SIGINT or SIGTERM: the samples reached
         double target = t.submitSeconds;
