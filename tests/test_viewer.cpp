@@ -5,6 +5,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -13,6 +15,7 @@
 
 #include "cli_util.h"
 #include "test_util.h"
+#include "image/image_io.h"
 #include "view/camera_control.h"
 #include "view/viewer.h"
 
@@ -207,6 +210,30 @@ TEST_CASE("view: the camera control orbits at a constant distance, zooms by 15% 
     m.fly(glm::vec3(0.0f, 0.0f, 1.0f), 0.5);
     CHECK(m.camera().motion.empty());
     CHECK(m.camera().position.z == doctest::Approx(4.5f));  // half the radius a second
+}
+
+TEST_CASE("view: the display's sRGB table gives the PNG writer's byte (every 127th float in [0, 1], each step's neighbours, outside)") {
+    const Srgb8Table table;
+    std::size_t checked = 0, wrong = 0;
+    auto check = [&](float x) {
+        ++checked;
+        wrong += table(x) != srgb8(x);
+    };
+    for (std::uint32_t bits = 0; bits <= 0x3f800000u; bits += 127) {
+        float x;
+        std::memcpy(&x, &bits, sizeof x);
+        check(x);
+    }
+    for (int k = 1; k < 256; ++k) {  // 2,000 floats around each step, where a byte changes
+        const double e = (k - 0.5) / 255.0;  // the encoded value halfway between two bytes, decoded
+        float x = float(e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4));
+        for (int i = 0; i < 1000; ++i) x = std::nextafter(x, 0.0f);
+        for (int i = 0; i < 2000; ++i, x = std::nextafter(x, 2.0f)) check(x);
+    }
+    for (float x : {-1.0f, -0.0f, 1.0f, 1.5f, 1e30f, std::numeric_limits<float>::infinity()}) check(x);
+    CHECK(table(std::numeric_limits<float>::quiet_NaN()) == 0);
+    CHECK(checked > 8800000);
+    CHECK(wrong == 0);
 }
 
 TEST_CASE("view: --script steps are parsed, and a bad one is refused in one line") {

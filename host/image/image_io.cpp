@@ -1,6 +1,9 @@
 #include "image/image_io.h"
 
 #include <algorithm>
+#include <array>
+#include <limits>
+#include <cstring>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -37,6 +40,28 @@ float linearToSrgb(float x) {
 }
 
 std::uint8_t srgb8(float linear) { return static_cast<std::uint8_t>(std::lround(linearToSrgb(linear) * 255.0f)); }
+
+Srgb8Table::Srgb8Table() {
+    // srgb8 never falls as x grows: each step is the first float in [0, 1]
+    // where it reaches k, found by bisecting the floats' bit patterns.
+    steps_[0] = -std::numeric_limits<float>::infinity();
+    for (int k = 1; k < 256; ++k) {
+        std::uint32_t lo = 0, hi = 0x3f800000u;  // 0 and 1.0f: srgb8(1) = 255
+        while (lo < hi) {
+            const std::uint32_t mid = lo + (hi - lo) / 2;
+            float x;
+            std::memcpy(&x, &mid, sizeof x);
+            if (srgb8(x) >= k) hi = mid;
+            else lo = mid + 1;
+        }
+        std::memcpy(&steps_[std::size_t(k)], &lo, sizeof lo);
+    }
+}
+
+std::uint8_t Srgb8Table::operator()(float linear) const {
+    if (!(linear > 0.0f)) return 0;  // NaN too
+    return static_cast<std::uint8_t>(std::upper_bound(steps_.begin() + 1, steps_.end(), linear) - steps_.begin() - 1);
+}
 
 namespace {
 

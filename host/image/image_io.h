@@ -3,6 +3,7 @@
 // appears whole or not at all: written under a temporary name in the same
 // directory, then renamed.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -65,7 +66,18 @@ const oiio::Api& imageModule(const std::string& path);
 
 // IEC 61966-2-1 sRGB transfer function (linear -> encoded), input clamped to [0,1].
 float linearToSrgb(float linear);
-// A PNG's byte: linearToSrgb rounded to 8 bits (strata view shows the same).
+// A PNG's byte: linearToSrgb rounded to 8 bits.
 std::uint8_t srgb8(float linear);
+
+// srgb8 by a table of the 255 values where it steps (strata view's
+// display, a frame at a time): the same byte, without a pow a channel.
+class Srgb8Table {
+public:
+    Srgb8Table();
+    std::uint8_t operator()(float linear) const;
+
+private:
+    std::array<float, 256> steps_;  // steps_[k]: the least x with srgb8(x) >= k
+};
 
 }  // namespace strata
