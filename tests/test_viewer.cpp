@@ -15,6 +15,7 @@
 
 #include "cli_util.h"
 #include "test_util.h"
+#include "image/aov.h"
 #include "image/image_io.h"
 #include "view/camera_control.h"
 #include "view/viewer.h"
@@ -64,6 +65,24 @@ TEST_CASE("view: the window's image after 16 spp is the PNG that render writes w
                                            "--look-from 0,1,4 --look-at 0,1,0");
     REQUIRE(moved.status == 0);
     CHECK(fileBytes(dir.path / "moved.png") != rendered);
+}
+
+TEST_CASE("view: the albedo view restarts with the AOV sums and shows render --aov's albedo layer") {
+    TempDir dir;
+    const Run v = view(dir, kCornell + " --width 64 --height 48 --exit-after-spp 8 --screenshot albedo.png "
+                                       "--script '1 view albedo'");
+    CAPTURE(v.output);
+    REQUIRE(v.status == 0);
+    CHECK(v.output.find("validation") == std::string::npos);
+    const std::string exr = (dir.path / "aov.exr").string();
+    REQUIRE(run("render " + kCornell + " --width 64 --height 48 --spp 8 --aov -o " + exr + " --quiet").status == 0);
+    const AovImages aov = readAovImages(exr);
+    writeImages({(dir.path / "rendered-albedo.png").string()}, aov.width, aov.height, aov.albedo);
+    const std::string shown = fileBytes(dir.path / "albedo.png");
+    REQUIRE(!shown.empty());
+    CHECK(shown == fileBytes(dir.path / "rendered-albedo.png"));
+    writeImages({(dir.path / "rendered-color.png").string()}, aov.width, aov.height, aov.color);
+    CHECK(shown != fileBytes(dir.path / "rendered-color.png"));
 }
 
 TEST_CASE("view: a camera change restarts the accumulation with a new image, a resize keeps rendering, and closing the window exits 0 writing nothing unasked") {

@@ -97,6 +97,13 @@ std::vector<float> viewImage(const vk::Context& ctx, const Film& film, int view)
     }
 }
 
+int viewByName(const std::string& name) {
+    static const char* names[view::kViewCount] = {"colour", "albedo", "normal", "depth", "denoised"};
+    for (int v = 0; v < view::kViewCount; ++v)
+        if (name == names[v]) return v;
+    return -1;
+}
+
 class Viewer {
 public:
     Viewer(const ViewCommand& cmd, const view::Api& api) : cmd_(cmd), api_(api) {}
@@ -123,11 +130,12 @@ private:
         restart_ = true;
     }
     void selectCamera(int k);
+    void setView(int v);
     void nextCamera() {
         if (!cameras_.empty()) selectCamera((panel_.camera + 1) % int(cameras_.size()));
     }
     bool frame(double waitSeconds);  // false: stop the render in progress
-    void show(const Film& film, std::uint32_t spp);
+    void show(Film film, std::uint32_t spp);
     void redisplay();
     void runScript();
     void saveImages();
@@ -156,8 +164,8 @@ private:
     double renderSeconds_ = 0.0;
     std::uint64_t samples_ = 0;
     std::string sceneStem_;
-    std::string captureTo_;
-    std::vector<Clock::time_point> frames_;  // --stats: when each frame was shown  // --script's window FILE: the next frame, panel included
+    std::string captureTo_;                  // --script's window FILE: the next frame, panel included
+    std::vector<Clock::time_point> frames_;  // --stats: when each frame was shown
     glm::vec3 center_{0.0f};
     double radius_ = 1.0;
 };
@@ -170,7 +178,7 @@ void Viewer::redisplay() {
         for (int c = 0; c < 3; ++c) rgba_[4 * i + c] = encode(linear_[3 * i + c] * scale);
 }
 
-void Viewer::show(const Film& film, std::uint32_t spp) {
+void Viewer::show(Film film, std::uint32_t spp) {
     if (waitingImage_ && cmd_.stats) {
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - changed_).count();
         std::fprintf(stderr, "strata view: %s image (%u spp) %.0f ms after %s\n", firstImage_ ? "first" : "new",
@@ -178,11 +186,11 @@ void Viewer::show(const Film& film, std::uint32_t spp) {
     }
     waitingImage_ = false;
     firstImage_ = false;
-    film_ = film;
+    film_ = std::move(film);
     spp_ = spp;
     haveImage_ = true;
-    shownWidth_ = film.width;
-    shownHeight_ = film.height;
+    shownWidth_ = film_.width;
+    shownHeight_ = film_.height;
     linear_ = viewImage(*ctx_, film_, panel_.view);
     redisplay();
 }
@@ -220,6 +228,7 @@ void Viewer::runScript() {
         else if (step.action == "camera") nextCamera();
         else if (step.action == "screenshot") writeScreenshot(step.args.at(0));
         else if (step.action == "window") captureTo_ = step.args.at(0);
+        else if (step.action == "view") setView(viewByName(step.args.at(0)));
         else if (step.action == "close") api_.requestClose(window_);
         else if (step.action == "resize") {
             api_.requestSize(window_, int(number(0)), int(number(1)));
@@ -232,7 +241,7 @@ bool Viewer::frame(double waitSeconds) {
     view::Input in;
     api_.poll(window_, waitSeconds, in);
     const auto now = Clock::now();
-    frames_.push_back(now);
+    if (cmd_.stats) frames_.push_back(now);
     const double dt = std::chrono::duration<double>(now - lastFrame_).count();
     lastFrame_ = now;
     if (in.close) quit_ = true;
@@ -278,11 +287,7 @@ bool Viewer::frame(double waitSeconds) {
         captureTo_.clear();
     }
     if (panel_.maxDepth != before.maxDepth) settings_.maxDepth = std::uint32_t(panel_.maxDepth), restart();
-    if (panel_.view != before.view) {
-        const bool needsAov = panel_.view != view::kViewColor;
-        if (needsAov && !settings_.aov) settings_.aov = true, restart();
-        else if (haveImage_) linear_ = viewImage(*ctx_, film_, panel_.view), redisplay();
-    }
+    if (panel_.view != before.view) setView(panel_.view);
     if (panel_.exposure != before.exposure && haveImage_) redisplay();
     if (panel_.save) saveImages();
     if (panel_.printCommand) {
@@ -291,6 +296,19 @@ bool Viewer::frame(double waitSeconds) {
     }
     if (panel_.camera != before.camera) selectCamera(panel_.camera);
     return !restart_ && !quit_;
+}
+
+void Viewer::setView(int v) {
+    panel_.view = v;
+    const bool needsAov = v != view::kViewColor;
+    if (needsAov && settings_.integrator == IntegratorKind::Wavefront) {
+        panel_.view = view::kViewColor;
+        panel_.status = "the wavefront integrator keeps no AOVs: --integrator megakernel shows them";
+    } else if (needsAov && !settings_.aov) {
+        settings_.aov = true, restart();  // the AOV sums from the next accumulation on
+    } else if (haveImage_) {
+        linear_ = viewImage(*ctx_, film_, panel_.view), redisplay();
+    }
 }
 
 void Viewer::selectCamera(int k) {
@@ -407,14 +425,20 @@ std::vector<ViewScriptStep> parseViewScript(const std::string& text) {
         std::string a;
         while (words >> a) step.args.push_back(a);
         const std::size_t need = step.action == "orbit" || step.action == "pan" || step.action == "resize" ? 2
-                                 : step.action == "zoom" || step.action == "screenshot" || step.action == "window" ? 1
+                                 : step.action == "zoom" || step.action == "screenshot" || step.action == "window" ||
+                                           step.action == "view"
+                                       ? 1
                                  : step.action == "close" || step.action == "camera"                      ? 0
                                                                                                            : 99;
         if (need == 99) throw Error("strata: error: --script: unknown action '" + step.action + "'");
         if (step.args.size() != need)
             throw Error("strata: error: --script: '" + step.action + "' takes " + std::to_string(need) +
                         " argument(s), got " + std::to_string(step.args.size()));
-        for (std::size_t k = 0; k < need && step.action != "screenshot" && step.action != "window"; ++k) {
+        if (step.action == "view" && viewByName(step.args[0]) < 0)
+            throw Error("strata: error: --script: view takes colour, albedo, normal, depth or denoised, got '" +
+                        step.args[0] + "'");
+        const bool numbers = step.action != "screenshot" && step.action != "window" && step.action != "view";
+        for (std::size_t k = 0; k < need && numbers; ++k) {
             char* end = nullptr;
             std::strtod(step.args[k].c_str(), &end);
             if (end == step.args[k].c_str() || *end != '\0')

@@ -14,7 +14,8 @@ namespace strata {
 // One step of --script (tests, demos): when the accumulation shown reaches
 // `spp`, do `action` ("orbit DX DY", "pan DX DY", "zoom STEPS",
 // "resize W H", "screenshot FILE" (the image), "window FILE" (the window as
-// shown, panel included), "camera", "close").
+// shown, panel included), "view NAME" (colour, albedo, normal, depth,
+// denoised), "camera", "close").
 struct ViewScriptStep {
     std::uint32_t spp = 0;
     std::string action;
