@@ -20,6 +20,7 @@ inline constexpr int kApiVersion = 1;
 
 // The views the panel offers (Panel::view).
 enum View : int { kViewColor = 0, kViewAlbedo, kViewNormal, kViewDepth, kViewDenoised, kViewCount };
+inline constexpr const char* kViewNames[kViewCount] = {"colour", "albedo", "normal", "depth", "denoised"};
 
 // What the panel shows, and the settings it edits (view, exposure,
 // maxDepth, camera): present() writes the user's changes back.

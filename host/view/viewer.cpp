@@ -98,9 +98,8 @@ std::vector<float> viewImage(const vk::Context& ctx, const Film& film, int view)
 }
 
 int viewByName(const std::string& name) {
-    static const char* names[view::kViewCount] = {"colour", "albedo", "normal", "depth", "denoised"};
     for (int v = 0; v < view::kViewCount; ++v)
-        if (name == names[v]) return v;
+        if (name == view::kViewNames[v]) return v;
     return -1;
 }
 
@@ -400,11 +399,12 @@ int Viewer::run() {
         show(result.film, result.spp);
         if (cmd_.exitAfterSpp && result.spp >= std::min(cmd_.exitAfterSpp, settings_.spp)) {
             frame(0.0);
-            if (!cmd_.screenshot.empty()) writeScreenshot(cmd_.screenshot);
-            return 0;
+            break;
         }
         while (!restart_ && !quit_) frame(0.1);
     }
+    // --screenshot: the image last shown, however the window ended.
+    if (!cmd_.screenshot.empty() && !linear_.empty()) writeScreenshot(cmd_.screenshot);
     return 0;
 }
 
