@@ -85,6 +85,39 @@ TEST_CASE("view: the albedo view restarts with the AOV sums and shows render --a
     CHECK(shown != fileBytes(dir.path / "rendered-color.png"));
 }
 
+TEST_CASE("view: the printed render command renders the view the window shows after an orbit") {
+    TempDir dir;
+    const Run v = view(dir, kCornell + " --width 80 --height 60 --exit-after-spp 8 --screenshot shown.png "
+                                       "--script '1 orbit 8 3; 1 print'");
+    CAPTURE(v.output);
+    REQUIRE(v.status == 0);
+    const std::size_t at = v.output.find("strata render ");
+    REQUIRE(at != std::string::npos);
+    const std::string line = v.output.substr(at, v.output.find('\n', at) - at);
+    CHECK(line.find("--look-from ") != std::string::npos);
+    CHECK(line.find(" --spp 8") != std::string::npos);
+    CHECK(line.find("--script") == std::string::npos);
+    const Run r = runShell("cd " + dir.path.string() + " && " + std::string(STRATA_EXE) +
+                           line.substr(std::string("strata").size()) + " -o rendered.png --quiet");
+    CAPTURE(r.output);
+    REQUIRE(r.status == 0);
+    const Image a = readImage((dir.path / "shown.png").string()), b = readImage((dir.path / "rendered.png").string());
+    REQUIRE(a.pixels.size() == b.pixels.size());
+    // The same view to the printed digits: the camera's vectors are made
+    // again from --look-from, --look-at and --up, so a few edge pixels may
+    // move; against the view before the orbit, most pixels differ.
+    std::size_t same = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) same += std::abs(a.pixels[i] - b.pixels[i]) <= 1.5f / 255.0f;
+    CHECK(double(same) / double(a.pixels.size()) > 0.99);
+    const Run before = run("render " + kCornell + " --width 80 --height 60 --spp 8 -o " +
+                           (dir.path / "before.png").string() + " --quiet");
+    REQUIRE(before.status == 0);
+    const Image c = readImage((dir.path / "before.png").string());
+    std::size_t unmoved = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) unmoved += std::abs(a.pixels[i] - c.pixels[i]) <= 1.5f / 255.0f;
+    CHECK(double(unmoved) / double(a.pixels.size()) < 0.8);
+}
+
 TEST_CASE("view: a camera change restarts the accumulation with a new image, a resize keeps rendering, and closing the window exits 0 writing nothing unasked") {
     TempDir dir;
     const Run v = view(dir, kCornell + " --width 96 --height 64 --stats --script '4 screenshot a.png; 4 orbit 40 10; "

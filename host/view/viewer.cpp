@@ -44,33 +44,34 @@ const view::Api& windowModule() {
 
 std::string vecText(glm::vec3 v) {
     char buf[96];
-    std::snprintf(buf, sizeof buf, "%.6g,%.6g,%.6g", double(v.x), double(v.y), double(v.z));
+    std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g", double(v.x), double(v.y), double(v.z));
     return buf;
 }
 
-// The flags of `args` (view's words) that the printed render command keeps:
-// all but the view's own and those it sets from the current view.
+// The render command of the current view: view's words (`args`) but its
+// own flags and those the view sets (the camera, the size, the depth, the
+// spp it stops at), then those from the view.
 std::string renderCommandLine(const ViewCommand& cmd, const CameraControl& control, const RenderSettings& s) {
     static const std::vector<std::string> dropped = {"--exit-after-spp", "--screenshot", "--script", "--look-from",
                                                      "--look-at",        "--up",         "--fov",    "--camera",
-                                                     "--width",          "--height",     "--max-depth"};
-    static const std::vector<std::string> valueless = {};
+                                                     "--width",          "--height",     "--max-depth", "--spp"};
     std::string line = "strata render";
     for (std::size_t i = 0; i < cmd.args.size(); ++i) {
         const std::string& a = cmd.args[i];
-        const bool drop = std::find(dropped.begin(), dropped.end(), a) != dropped.end();
-        if (drop) {
-            ++i;  // and its value
+        const std::string name = a.substr(0, a.find('='));
+        if (std::find(dropped.begin(), dropped.end(), name) != dropped.end()) {
+            if (name == a) ++i;  // and its value, when it is the next word
             continue;
         }
         line += " " + a;
     }
     const Camera& c = control.camera();
     char fov[32];
-    std::snprintf(fov, sizeof fov, "%.6g", double(c.yfov) * 180.0 / 3.14159265358979323846);
+    std::snprintf(fov, sizeof fov, "%.9g", double(c.yfov) * 180.0 / 3.14159265358979323846);
     line += " --look-from " + vecText(c.position) + " --look-at " + vecText(control.target()) + " --up " +
             vecText(c.up) + " --fov " + fov + " --width " + std::to_string(s.width) + " --height " +
-            std::to_string(s.height) + " --max-depth " + std::to_string(s.maxDepth);
+            std::to_string(s.height) + " --max-depth " + std::to_string(s.maxDepth) + " --spp " +
+            std::to_string(s.spp);
     return line;
 }
 
@@ -130,6 +131,10 @@ private:
     }
     void selectCamera(int k);
     void setView(int v);
+    void printCommand() {
+        std::printf("%s\n", renderCommandLine(cmd_, *control_, settings_).c_str());
+        std::fflush(stdout);
+    }
     void nextCamera() {
         if (!cameras_.empty()) selectCamera((panel_.camera + 1) % int(cameras_.size()));
     }
@@ -228,6 +233,7 @@ void Viewer::runScript() {
         else if (step.action == "screenshot") writeScreenshot(step.args.at(0));
         else if (step.action == "window") captureTo_ = step.args.at(0);
         else if (step.action == "view") setView(viewByName(step.args.at(0)));
+        else if (step.action == "print") printCommand();
         else if (step.action == "close") api_.requestClose(window_);
         else if (step.action == "resize") {
             api_.requestSize(window_, int(number(0)), int(number(1)));
@@ -258,10 +264,7 @@ bool Viewer::frame(double waitSeconds) {
     if (in.resetView) *control_ = *home_, restart();
     if (in.nextCamera) nextCamera();
     if (in.save) saveImages();
-    if (in.printCommand) {
-        std::printf("%s\n", renderCommandLine(cmd_, *control_, settings_).c_str());
-        std::fflush(stdout);
-    }
+    if (in.printCommand) printCommand();
     runScript();
 
     // The panel: its edits apply at the next frame.
@@ -289,10 +292,7 @@ bool Viewer::frame(double waitSeconds) {
     if (panel_.view != before.view) setView(panel_.view);
     if (panel_.exposure != before.exposure && haveImage_) redisplay();
     if (panel_.save) saveImages();
-    if (panel_.printCommand) {
-        std::printf("%s\n", renderCommandLine(cmd_, *control_, settings_).c_str());
-        std::fflush(stdout);
-    }
+    if (panel_.printCommand) printCommand();
     if (panel_.camera != before.camera) selectCamera(panel_.camera);
     return !restart_ && !quit_;
 }
@@ -428,7 +428,7 @@ std::vector<ViewScriptStep> parseViewScript(const std::string& text) {
                                  : step.action == "zoom" || step.action == "screenshot" || step.action == "window" ||
                                            step.action == "view"
                                        ? 1
-                                 : step.action == "close" || step.action == "camera"                      ? 0
+                                 : step.action == "close" || step.action == "camera" || step.action == "print" ? 0
                                                                                                            : 99;
         if (need == 99) throw Error("strata: error: --script: unknown action '" + step.action + "'");
         if (step.args.size() != need)

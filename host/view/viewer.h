@@ -15,7 +15,8 @@ namespace strata {
 // `spp`, do `action` ("orbit DX DY", "pan DX DY", "zoom STEPS",
 // "resize W H", "screenshot FILE" (the image), "window FILE" (the window as
 // shown, panel included), "view NAME" (colour, albedo, normal, depth,
-// denoised), "camera", "close").
+// denoised), "camera", "print" (the render command of the view, as P
+// prints it), "close").
 struct ViewScriptStep {
     std::uint32_t spp = 0;
     std::string action;
