@@ -416,7 +416,7 @@ TEST_CASE("gltf materials: bad KHR_materials_volume_scatter values are refused i
                                                   "multiscatterColor is not three numbers in [0, 1]"}});
 }
 
-TEST_CASE("gltf media: surfaces, emitters and other media inside a medium get one warning line, as does multiscatterTexture; a floor on its boundary and a point light inside do not" * doctest::test_suite("unit")) {
+TEST_CASE("gltf media: surfaces, emitters and other media inside a medium get one warning line, as does multiscatterTexture, but not a floor on its boundary or a point light inside" * doctest::test_suite("unit")) {
     const std::string inside = " lie inside the volume of material 0 (\"Medium\") (first: one of material 1 (";
     const std::string tail = ")): strata does not nest media or render surfaces inside one; a path segment ending on them "
                              "crosses no medium\n";
