@@ -19,6 +19,7 @@
 #include "measure/tracer.h"
 #include "scene/tangents.h"
 #include "stats/stats.h"
+#include "settings/filter.h"
 #include "test_util.h"
 
 using namespace strata;
@@ -351,6 +352,31 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
         REQUIRE(m.pixels >= 200);
         CHECK(std::abs(m.measured - m.analytic) <= 0.25);
     }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// The camera cone spans the pixel filter's diameter (FrameUniforms
+// scene.z): the tent filter of radius 1 reads one level above the box
+// filter's pixel, here from 2.9 away (the box filter's level there is below
+// the measured range).
+TEST_CASE("texture: LOD with a tent filter of radius 1 reads the level of the filter's two-pixel footprint") {
+    RenderSettings s;
+    s.maxDepth = 0;
+    s.seed = 5;
+    s.filter = filterByName("tent");
+    REQUIRE(s.filter.radius == 1.0f);
+    ViewOptions v;
+    v.lookFrom = glm::vec3(0.0f, 0.0f, 2.9f);
+    v.lookAt = glm::vec3(0.0f);
+    v.fovDegrees = 20.0f;
+    const MeasuredLevel m = measureLevel("lod-plane.gltf", s, v, [](const CameraRays& rays, double spread, glm::dvec3 d) {
+        const double t = -rays.origin.z / d.z;
+        return std::log2(2.0 * spread * t * 32.0) - 0.5;
+    });
+    MESSAGE("tent, 2.9 away: level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
+                                     << " pixels)");
+    REQUIRE(m.pixels >= 200);
+    CHECK(std::abs(m.measured - m.analytic) <= 0.25);
     CHECK(vk::validationMessageCount() == 0);
 }
 

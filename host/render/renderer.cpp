@@ -51,6 +51,7 @@ gpu::FrameUniforms frameUniforms(const DeviceScene& dev, const Camera& cam, cons
     f.camRight = glm::vec4(right * tanHalf * aspect, 0.0f);
     f.camUp = glm::vec4(up * tanHalf, 0.0f);
     f.image = glm::uvec4(s.width, s.height, s.maxDepth, s.seed);
+    f.scene.z = 2.0f * s.filter.radius;  // texture LOD's camera cone: the filter's footprint
     f.counts.w = s.spp;
     f.lens = glm::vec4(s.lensRadius, s.focusDistance, static_cast<float>(s.apertureBlades), 0.0f);
     if (s.cameraEffects()) {

@@ -416,7 +416,8 @@ struct FrameUniforms {
     uvec4 counts;       // emitterCount, triangleCount, nodeCount, spp (of the whole render)
     vec4 scene;         // x: total emitted power (for stats); y: with the light tree, the
                         // probability of choosing a bounded light (the tree) over the
-                        // directional and environment lights; zw unused
+                        // directional and environment lights; z: the camera ray cone's
+                        // width in pixels, the pixel filter's diameter (texture LOD); w unused
     // Environment light (scene.h states the equirectangular convention).
     vec4 envScale;      // xyz: radiance (constant) or the map's multiplier; w unused
     vec4 envRotation;   // x, y: cos, sin of the rotation about +Y; zw unused
