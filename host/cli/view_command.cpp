@@ -36,9 +36,8 @@ std::vector<Flag<ViewCommand>> viewFlags() {
                     STRATA_FIELD(screenshot)),
             flag<C>("--script", "'SPP ACTION [ARGS]; ...'",
                     "when the image reaches SPP, do ACTION: orbit DX DY, pan DX DY, zoom STEPS, resize W H, camera, "
-                    "view colour|albedo|normal|depth|denoised, print (the render command), screenshot FILE (the image), window FILE (with the panel), "
-                    "close (tests, demos); each step run is "
-                    "printed",
+                    "view colour|albedo|normal|depth|denoised, print (the render command), screenshot FILE (the "
+                    "image), window FILE (with the panel), close (tests, demos); each step run is printed",
                     [](C& c, const std::string&, const std::string& v) { c.script = parseViewScript(v); }),
             toggle<C>("--quiet", "print no device line", [](C& c) { c.quiet = true; }),
             toggle<C>("--stats", "print how long the first image, and each after a change, took to show",
