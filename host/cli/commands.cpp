@@ -158,12 +158,7 @@ std::vector<Flag<RenderCommand>> renderFlags() {
                       "'--denoise fast' for the edge-aware a-trous filter instead of the regression",
                       [](C& c) { c.denoise = true, c.settings.aov = true; }),
         },
-        pixelFlags<C>(),
-        pathFlags<C>(settings),
-        traceFlags<C>(settings, true),
-        envFlags<C>(),
-        sceneFlags<C>(),
-        deviceFlags<C>(),
+        renderGroups<C>(settings),
     });
 }
 

@@ -109,6 +109,11 @@ std::vector<Flag<T>> pixelFlags() {
     };
 }
 
+// The groups render and view share after their own flags: the pixel, path,
+// trace, environment, scene and device flags.
+template <class T, class Settings>
+std::vector<Flag<T>> renderGroups(Settings settings);
+
 // The shared groups. `settings` gives the command's RenderSettings, which
 // holds seed, maxDepth and the traversal choices.
 template <class T, class Settings>
@@ -313,6 +318,12 @@ CommandSpec<T> makeSpec(CommandText text, std::vector<Flag<T>> flags, T init = {
     spec.flags = std::move(flags);
     spec.init = std::move(init);
     return spec;
+}
+
+template <class T, class Settings>
+std::vector<Flag<T>> renderGroups(Settings settings) {
+    return concat<T>({pixelFlags<T>(), pathFlags<T>(settings), traceFlags<T>(settings, true), envFlags<T>(),
+                      sceneFlags<T>(), deviceFlags<T>()});
 }
 
 }  // namespace strata::cli

@@ -43,12 +43,7 @@ std::vector<Flag<ViewCommand>> viewFlags() {
             toggle<C>("--stats", "print how long the first image, and each after a change, took to show",
                       [](C& c) { c.stats = true; }),
         },
-        pixelFlags<C>(),
-        pathFlags<C>(settings),
-        traceFlags<C>(settings, true),
-        envFlags<C>(),
-        sceneFlags<C>(),
-        deviceFlags<C>(),
+        renderGroups<C>(settings),
     });
 }
 
