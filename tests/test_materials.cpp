@@ -139,7 +139,8 @@ TEST_CASE("furnace: a smooth glass sphere (ior 1.5) vanishes in a uniform enviro
     // and eta^2 in radiance at entry and exit), so the image is 1 everywhere
     // up to the depth cap. The sphere is faceted, and rays caught by total
     // internal reflection between facets can bounce for long: at depth 64
-    // the image mean measured 0.9957 +- 0.0007, so the cap here is 1000.
+    // the image mean measured 0.99533 +- 0.00015, at 300 0.99960, so the
+    // cap here is 1000 (3000 gave the same bits).
     RenderSettings s;
     s.width = s.height = 32;
     s.spp = 1024;
@@ -149,14 +150,16 @@ TEST_CASE("furnace: a smooth glass sphere (ior 1.5) vanishes in a uniform enviro
     const PixelStats p = pixelStats(r.film, 1.0);
     MESSAGE("glass sphere: image mean " << p.mean << " +- " << p.stdError << ", largest pixel |z| "
                                         << p.maxZ << ", exact pixels off " << p.exactMismatches);
-    // Russian roulette over paths of hundreds of bounces makes single pixels
-    // heavy-tailed (their variance estimates are unreliable: |z| up to 6 was
-    // seen), so the test is on the image mean; pixels whose paths never
-    // reached roulette have zero variance and must be exactly 1.
+    // The test is on the image mean. Pixels whose paths never reached
+    // roulette have zero variance and must be exactly 1. Roulette with a
+    // floor (every path ended with 5% a bounce, survivors' weights growing
+    // as 1/0.95: strata before 2026-12-07) made long paths heavy-tailed:
+    // the mean measured 0.99682 +- 0.00062, largest pixel |z| 8.2.
     CHECK(std::abs(p.mean - 1.0) < 4.0 * p.stdError + 1e-6);
     CHECK(p.exactMismatches == 0);
-    // A sphere that lost 0.6% of the energy would be more than 4 errors off.
-    CHECK(p.stdError < 0.0015);
+    // A sphere that lost 0.1% of the energy would be more than 4 errors off
+    // (0.00015 measured).
+    CHECK(p.stdError < 0.00025);
     CHECK(vk::validationMessageCount() == 0);
 }
 
