@@ -44,10 +44,8 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
     gWavelength = 0.0;  // each sample's path starts RGB
 #endif
 #ifdef STRATA_TEXTURE_LOD
-    // A pinhole's cone: no width, the angle of the pixel filter's diameter
-    // (frame.scene.z pixels: 1 for the box filter of radius 0.5).
     gConeWidth = 0.0;
-    gConeSpread = 2.0 * length(frame.camUp.xyz) / float(frame.image.y) * frame.scene.z;
+    gConeSpread = cameraConeSpread();
 #endif
 #ifdef STRATA_AOV
     aovStart();

@@ -39,6 +39,10 @@ layout(std430, set = 0, binding = BINDING_WAVE_SHADOW_HITS) readonly buffer Shad
 #ifdef STRATA_INSTANCING
 layout(std430, set = 0, binding = BINDING_HIT_INSTANCES) readonly buffer HitInstanceBuffer { uint hitInstances[]; };
 #endif
+#ifdef STRATA_TEXTURE_LOD
+// Each path's ray cone (lib/path.glsl gConeWidth, gConeSpread) between bounces.
+layout(std430, set = 0, binding = BINDING_WAVE_CONES) buffer ConeBuffer { vec2 cones[]; };
+#endif
 
 // This lane's place in a list that the subgroup's wanting lanes append to
 // together: one atomic per subgroup.
@@ -65,6 +69,9 @@ void cameraStage(uint k) {
     cameraSample(pixel, params.sampleIndex, smp, origin, dir);
     uint pixelIndex = pixel.y * frame.image.x + pixel.x;
     state[k] = PathState(vec4(1.0, 1.0, 1.0, 0.0), vec4(0.0, 0.0, 0.0, 1.0), uvec4(pixelIndex, 0u, 1u, 0u));
+#ifdef STRATA_TEXTURE_LOD
+    cones[k] = vec2(0.0, cameraConeSpread());
+#endif
     nextRays[k] = TraceRay(origin, 0.0, dir, kRayMax);
     nextLive[k] = k;
 }
@@ -84,6 +91,10 @@ void shadeStage(uint k) {
     o.shadowOpen = false;
     o.alive = false;
     TraceHit hit = hits[k];
+#ifdef STRATA_TEXTURE_LOD
+    gConeWidth = cones[slot].x;
+    gConeSpread = cones[slot].y;
+#endif
 #ifdef STRATA_INSTANCING
     gHitInstance = hitInstances[k];  // the trace kernel's, for pathShadeHit
 #endif
@@ -93,6 +104,9 @@ void shadeStage(uint k) {
                             uvec4(st.misc.x, depth + 1u, o.alive ? 1u : 0u, 0u));
 #ifdef STRATA_DISPERSION
     state[slot].misc.w = floatBitsToUint(gWavelength);
+#endif
+#ifdef STRATA_TEXTURE_LOD
+    cones[slot] = vec2(gConeWidth, gConeSpread);
 #endif
     uint ni = appendIndex(0u, o.alive);
     if (o.alive) {

@@ -232,8 +232,9 @@ namespace {
 // order, and each pixel's sums are added in sample order either way. Both
 // read textures at full resolution (the wavefront integrator has no
 // texture LOD: its renders pack no mip chains).
-void checkWavefrontMatches(const Scene& scene, RenderSettings s) {
-    const GpuScene gpu = buildAndPack(scene, {}, 4, false);
+void checkWavefrontMatches(const Scene& scene, RenderSettings s, bool textureLod = false) {
+    const GpuScene gpu = buildAndPack(scene, {}, 4, textureLod);
+    if (textureLod) CHECK((gpu.features.bits & gpu::kFeatureTextureLod) != 0u);
     RenderTuning t;
     t.tileSize = 16;
     s.integrator = IntegratorKind::Megakernel;
@@ -267,6 +268,10 @@ TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit" 
         checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/layer-spheres.gltf")), s);
     }
     SUBCASE("alpha test") { checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/alpha-mask.gltf")), s); }
+    SUBCASE("texture LOD: ray cones carried between the stages, through a mirror bounce") {
+        checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/lod-mirror.gltf")), s, true);
+        checkWavefrontMatches(loadGltf(sourcePath("scenes/materials-board.gltf")), s, true);
+    }
     SUBCASE("diffuse transmission (a sun-lit sheet seen from behind) and anisotropy (a brushed plate)") {
         checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/translucent-backlit.gltf")), s);
         checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/anisotropy-90.gltf")), s);

@@ -49,10 +49,8 @@ struct RenderSettings {
         return integrator == IntegratorKind::Wavefront ? LightSampler::Power : lightSampler;
     }
     // --texture-lod: textures read at the level of each lookup's ray-cone
-    // footprint (mip chains, kFeatureTextureLod); the wavefront integrator
-    // keeps no cones (the full-resolution lookups there).
+    // footprint (mip chains, kFeatureTextureLod), by either integrator.
     bool textureLod = true;
-    bool packedTextureLod() const { return textureLod && integrator != IntegratorKind::Wavefront; }
     // The camera effects (the motion axis, lib/camera.glsl):
     float lensRadius = 0.0f;            // --lens-radius (world units): 0 is a pinhole
     float focusDistance = 1.0f;         // --focus-distance: the plane in focus, along the view direction

@@ -59,7 +59,7 @@ const Axis kAxes[] = {
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureLightTree) != 0u; },
      "lights chosen by the light tree (`kFeatureLightTree`: `--light-sampler tree`, or `auto` where the lights form 16 clusters or more)",
      "the tree's descent and probabilities (lib/light_tree.glsl): lights chosen by power alone"},
-    {"texlod", "STRATA_TEXTURE_LOD", bit(KernelId::Pathtrace), 0, 0,
+    {"texlod", "STRATA_TEXTURE_LOD", bit(KernelId::Pathtrace) | bit(KernelId::Wavefront), 0, 0,
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureTextureLod) != 0u; },
      "textures with mip chains (`kFeatureTextureLod`: `--texture-lod on`, the default, in a textured scene)",
      "the ray cones and the level choice (lib/material.glsl `textureLevel`): every lookup at full resolution"},

@@ -21,7 +21,7 @@ SceneRequest sceneRequest(const RenderSettings& settings, const RenderTuning& tu
     r.camera = CameraChoice{{}, settings.width, settings.height};
     r.bvhWidth = settings.bvhWidth;
     r.lights = settings.packedLightSampler();
-    r.textureLod = settings.packedTextureLod();
+    r.textureLod = settings.textureLod;
     r.stack = settings.bvhStack;
     r.reads = settings.reads;
     r.limits = tuning.limits;

@@ -89,6 +89,10 @@ PathVertex pathStart() { return PathVertex(vec3(1.0), vec3(0.0), 0.0, true); }
 // at the last vertex and its spread angle; tracePath starts it at the camera.
 float gConeWidth = 0.0;
 float gConeSpread = 0.0;
+
+// A pinhole camera's cone starts with no width and the angle of the pixel
+// filter's diameter (frame.scene.z pixels: 1 for the box filter of radius 0.5).
+float cameraConeSpread() { return 2.0 * length(frame.camUp.xyz) / float(frame.image.y) * frame.scene.z; }
 #endif
 
 // Russian roulette after depth 3 with number u: the path goes on with

@@ -60,7 +60,9 @@ STRATA_BINDING(BINDING_LIGHT_TREE, 44);        // storage LightNode[] (kFeatureL
 STRATA_BINDING(BINDING_LIGHT_TREE_TEXEL, 45);  // usamplerBuffer over BINDING_LIGHT_TREE (RGBA32UI)
 STRATA_BINDING(BINDING_ACTIVE_BLOCKS, 46);  // storage uint[]: 1 per 8x8 block of the image still sampled
                                             // (SPEC_ADAPTIVE; 16 bytes otherwise)
-STRATA_BINDING(BINDING_COUNT, 47);
+STRATA_BINDING(BINDING_WAVE_CONES, 47);  // storage vec2[]: each path's ray cone, width and spread
+                                         // (STRATA_TEXTURE_LOD; 16 bytes otherwise)
+STRATA_BINDING(BINDING_COUNT, 48);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views
