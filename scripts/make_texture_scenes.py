@@ -28,8 +28,8 @@ then black along u = x + 0.5: only its half x < 0 emits.
 
 import base64
 import math
-import random
 import os
+import random
 import struct
 import sys
 import zlib
@@ -284,6 +284,39 @@ def receding_octaves_scene(path):
     s.write(path)
 
 
+def receding_bumps_scene(path):
+    """A glossy metal floor (x in [-20, 20], z in [-60, 0]) whose 64x64
+    normal map tilts each texel at random (slopes uniform in [-0.6, 0.6],
+    bilinear, repeated twice per world unit), under a lit wall at its far end
+    (z = -60, y in [0, 20]), seen as receding.gltf is. Far away, the mip
+    levels average the bumps to a flat normal; the wall's reflection must
+    stay as blurred as the bumps make it (Toksvig's roughness,
+    docs/experiments/textures.md)."""
+    rng = random.Random(11)
+    rows = []
+    for _ in range(64):
+        row = []
+        for _ in range(64):
+            sx, sy = rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6)
+            inv = 1.0 / math.sqrt(sx * sx + sy * sy + 1.0)
+            row.append(tuple(round(255 * (0.5 * c * inv + 0.5)) for c in (sx, sy, 1.0)))
+        rows.append(row)
+    s = Scene()
+    tex = s.texture(s.image(data_uri(png(rows))), REPEAT, REPEAT, LINEAR)
+    floor = s.material(name="Floor", pbrMetallicRoughness={"baseColorFactor": [0.9, 0.9, 0.9, 1],
+                                                           "metallicFactor": 1.0, "roughnessFactor": 0.2},
+                       normalTexture={"index": tex})
+    s.quad("Floor", [(-20, 0, 0), (20, 0, 0), (20, 0, -60), (-20, 0, -60)],
+           [(0, 0), (80, 0), (80, 120), (0, 120)], floor, (0, 1, 0))
+    wall = s.material(name="Wall", pbrMetallicRoughness={"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+                      emissiveFactor=[1, 1, 1])
+    s.quad("Wall", [(-20, 0, -60), (20, 0, -60), (20, 20, -60), (-20, 20, -60)],
+           [(0, 0), (1, 0), (1, 1), (0, 1)], wall, (0, 0, 1))
+    a = math.radians(-15) / 2
+    s.camera(2 * math.atan(0.5), (0, 1, 2), [math.sin(a), 0, 0, math.cos(a)])
+    s.write(path)
+
+
 def lod_plane_scene(path):
     """The plane z = 0 (x, y in [-10, 10], facing +Z) emitting a 64x64
     checker of single texels (bilinear) repeated 10 times across: a texel is
@@ -432,6 +465,7 @@ def main():
     loader_scene(p("loader.gltf"))
     receding_scene(p("receding.gltf"))
     receding_octaves_scene(p("receding-octaves.gltf"))
+    receding_bumps_scene(p("receding-bumps.gltf"))
     lod_plane_scene(p("lod-plane.gltf"))
     lod_mirror_scene(p("lod-mirror.gltf"))
     lod_sphere_scene(p("lod-sphere.gltf"))
