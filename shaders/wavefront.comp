@@ -39,6 +39,11 @@ layout(std430, set = 0, binding = BINDING_WAVE_SHADOW_HITS) readonly buffer Shad
 #ifdef STRATA_INSTANCING
 layout(std430, set = 0, binding = BINDING_HIT_INSTANCES) readonly buffer HitInstanceBuffer { uint hitInstances[]; };
 #endif
+#ifdef STRATA_LIGHT_TREE
+// Each path's PathVertex prevP and prevN (the light tree's probability of
+// an emitter a BSDF ray finds) between bounces, two entries a path.
+layout(std430, set = 0, binding = BINDING_WAVE_TREE_VERTEX) buffer TreeVertexBuffer { vec4 treeVertex[]; };
+#endif
 #ifdef STRATA_TEXTURE_LOD
 // Each path's ray cone (lib/path.glsl gConeWidth, gConeSpread) between bounces.
 layout(std430, set = 0, binding = BINDING_WAVE_CONES) buffer ConeBuffer { vec2 cones[]; };
@@ -72,6 +77,10 @@ void cameraStage(uint k) {
 #ifdef STRATA_TEXTURE_LOD
     cones[k] = vec2(0.0, cameraConeSpread());
 #endif
+#ifdef STRATA_LIGHT_TREE
+    treeVertex[2u * k] = vec4(0.0);
+    treeVertex[2u * k + 1u] = vec4(0.0);
+#endif
     nextRays[k] = TraceRay(origin, 0.0, dir, kRayMax);
     nextLive[k] = k;
 }
@@ -80,7 +89,15 @@ void shadeStage(uint k) {
     uint slot = live[k];
     PathState st = state[slot];
     vec3 dir = inRays[k].dir;
-    PathVertex v = PathVertex(st.betaPdf.xyz, st.lDelta.xyz, st.betaPdf.w, st.lDelta.w != 0.0);
+    PathVertex v = pathStart();
+    v.beta = st.betaPdf.xyz;
+    v.L = st.lDelta.xyz;
+    v.prevBsdfPdf = st.betaPdf.w;
+    v.prevDelta = st.lDelta.w != 0.0;
+#ifdef STRATA_LIGHT_TREE
+    v.prevP = treeVertex[2u * slot].xyz;
+    v.prevN = treeVertex[2u * slot + 1u].xyz;
+#endif
 #ifdef STRATA_DISPERSION
     gWavelength = uintBitsToFloat(st.misc.w);  // 0 until the path reaches a dispersive surface
 #endif
@@ -107,6 +124,10 @@ void shadeStage(uint k) {
 #endif
 #ifdef STRATA_TEXTURE_LOD
     cones[slot] = vec2(gConeWidth, gConeSpread);
+#endif
+#ifdef STRATA_LIGHT_TREE
+    treeVertex[2u * slot] = vec4(v.prevP, 0.0);
+    treeVertex[2u * slot + 1u] = vec4(v.prevN, 0.0);
 #endif
     uint ni = appendIndex(0u, o.alive);
     if (o.alive) {

@@ -232,9 +232,10 @@ namespace {
 // order, and each pixel's sums are added in sample order either way. Both
 // read textures at full resolution (the wavefront integrator has no
 // texture LOD: its renders pack no mip chains).
-void checkWavefrontMatches(const Scene& scene, RenderSettings s, bool textureLod = false) {
+// `required`: feature bits the packed scene must have (the code under test).
+void checkWavefrontMatches(const Scene& scene, RenderSettings s, bool textureLod = false, std::uint32_t required = 0) {
     const GpuScene gpu = buildAndPack(scene, {}, 4, textureLod);
-    if (textureLod) CHECK((gpu.features.bits & gpu::kFeatureTextureLod) != 0u);
+    CHECK((gpu.features.bits & required) == required);
     RenderTuning t;
     t.tileSize = 16;
     s.integrator = IntegratorKind::Megakernel;
@@ -261,6 +262,9 @@ TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit" 
     s.height = 28;
     SUBCASE("Cornell box (area lights, Lambert)") { checkWavefrontMatches(loadGltf(sourcePath("scenes/cornell-box.gltf")), s); }
     SUBCASE("Veach MIS (glossy, four lights)") { checkWavefrontMatches(loadGltf(sourcePath("scenes/veach-mis.gltf")), s); }
+    SUBCASE("many lights by the light tree (its MIS probability from the last vertex kept between stages)") {
+        checkWavefrontMatches(loadGltf(sourcePath("scenes/many-lights.gltf")), s, false, gpu::kFeatureLightTree);
+    }
     SUBCASE("materials board (textures, normal maps, transmission)") {
         checkWavefrontMatches(loadGltf(sourcePath("scenes/materials-board.gltf")), s);
     }
@@ -269,8 +273,8 @@ TEST_CASE("the wavefront integrator renders the megakernel's image bit for bit" 
     }
     SUBCASE("alpha test") { checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/alpha-mask.gltf")), s); }
     SUBCASE("texture LOD: ray cones carried between the stages, through a mirror bounce") {
-        checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/lod-mirror.gltf")), s, true);
-        checkWavefrontMatches(loadGltf(sourcePath("scenes/materials-board.gltf")), s, true);
+        checkWavefrontMatches(loadGltf(sourcePath("tests/data/textures/lod-mirror.gltf")), s, true, gpu::kFeatureTextureLod);
+        checkWavefrontMatches(loadGltf(sourcePath("scenes/materials-board.gltf")), s, true, gpu::kFeatureTextureLod);
     }
     SUBCASE("diffuse transmission (a sun-lit sheet seen from behind) and anisotropy (a brushed plate)") {
         checkWavefrontMatches(loadGltf(sourcePath("tests/data/materials/translucent-backlit.gltf")), s);

@@ -75,9 +75,6 @@ void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
 }
 
 void checkSamplingFlags(const RenderSettings& s, std::uint32_t cap) {
-    if (s.lightSampler == LightSampler::Tree && s.integrator == IntegratorKind::Wavefront)
-        badFlag("--light-sampler tree needs the megakernel integrator; the wavefront integrator chooses lights by "
-                "power");
     if (s.minSpp > 0 && !s.adaptive()) badFlag("--min-spp needs --noise-threshold");
     if (!s.adaptive()) return;
     if (s.minSpp > cap)

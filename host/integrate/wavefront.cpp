@@ -32,7 +32,7 @@ void barrier(VkCommandBuffer cmd) {
 struct WavefrontIntegrator::Impl {
     const vk::Context& ctx;
     bool queue;
-    vk::Buffer state, hits, hitInstances, shadowRays, contrib, shadowSlots, shadowHits, work, counts, cones;
+    vk::Buffer state, hits, hitInstances, shadowRays, contrib, shadowSlots, shadowHits, work, counts, cones, treeVertex;
     vk::Buffer rays[2], live[2];  // each bounce's list and the next one's, in turn
     std::unique_ptr<vk::Kernel> closest, anyHit, stages[4];  // stages by kStage*
     vk::OneShot submit;
@@ -74,6 +74,10 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     // The paths' ray cones, read only with the texlod axis (STRATA_TEXTURE_LOD).
     m.cones = (dev.features.bits & kFeatureTextureLod) != 0u ? list(8)
                                                               : vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Device);
+    // Their last points and normals, read only with the lighttree axis (STRATA_LIGHT_TREE).
+    m.treeVertex = (dev.features.bits & kFeatureLightTree) != 0u
+                       ? list(32)
+                       : vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Device);
     m.counts = vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Readback);
     m.work = vk::Buffer(ctx, traceWorkBytes(n),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -102,6 +106,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
             b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         b.push_back({BINDING_HIT_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         b.push_back({BINDING_WAVE_CONES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
+        b.push_back({BINDING_WAVE_TREE_VERTEX, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER});
         auto k = std::make_unique<vk::Kernel>(
             ctx, wavefrontShader(dev), std::move(b),
             sizeof(WaveParams), spec, t.reusePipeline);
@@ -115,6 +120,7 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
         k->bind(BINDING_WAVE_SHADOW_HITS, m.shadowHits);
         k->bind(BINDING_HIT_INSTANCES, m.hitInstances);
         k->bind(BINDING_WAVE_CONES, m.cones);
+        k->bind(BINDING_WAVE_TREE_VERTEX, m.treeVertex);
         m.stages[stage] = std::move(k);
     }
 }

@@ -42,12 +42,8 @@ struct RenderSettings {
     std::uint32_t mis = gpu::kMisPower; // gpu::kMis*: light and BSDF sampling by the power
                                         // heuristic, or one technique alone (for comparisons)
     IntegratorKind integrator = IntegratorKind::Megakernel;
-    // --light-sampler: the light tree or the alias table alone (pack/light_tree.h);
-    // the wavefront integrator has no tree (its auto is power).
+    // --light-sampler: the light tree or the alias table alone (pack/light_tree.h).
     LightSampler lightSampler = LightSampler::Auto;
-    LightSampler packedLightSampler() const {
-        return integrator == IntegratorKind::Wavefront ? LightSampler::Power : lightSampler;
-    }
     // --texture-lod: textures read at the level of each lookup's ray-cone
     // footprint (mip chains, kFeatureTextureLod), by either integrator.
     bool textureLod = true;

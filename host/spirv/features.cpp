@@ -55,7 +55,7 @@ const Axis kAxes[] = {
      "the ray time, the thin lens and the instance poses (lib/camera.glsl, lib/motion.glsl)"},
     {"aov", "STRATA_AOV", bit(KernelId::Pathtrace), 0, 0, [](const VariantInputs& in) { return in.aov; },
      "`--aov`, `--denoise`", "the AOV sums (lib/film.glsl `accumulateAov`)"},
-    {"lighttree", "STRATA_LIGHT_TREE", bit(KernelId::Pathtrace) | bit(KernelId::SampleTest), 0, 0,
+    {"lighttree", "STRATA_LIGHT_TREE", bit(KernelId::Pathtrace) | bit(KernelId::Wavefront) | bit(KernelId::SampleTest), 0, 0,
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureLightTree) != 0u; },
      "lights chosen by the light tree (`kFeatureLightTree`: `--light-sampler tree`, or `auto` where the lights form 16 clusters or more)",
      "the tree's descent and probabilities (lib/light_tree.glsl): lights chosen by power alone"},

@@ -20,7 +20,7 @@ SceneRequest sceneRequest(const RenderSettings& settings, const RenderTuning& tu
     r.load.motion = motionOptions(settings);
     r.camera = CameraChoice{{}, settings.width, settings.height};
     r.bvhWidth = settings.bvhWidth;
-    r.lights = settings.packedLightSampler();
+    r.lights = settings.lightSampler;
     r.textureLod = settings.textureLod;
     r.stack = settings.bvhStack;
     r.reads = settings.reads;

@@ -62,7 +62,9 @@ STRATA_BINDING(BINDING_ACTIVE_BLOCKS, 46);  // storage uint[]: 1 per 8x8 block o
                                             // (SPEC_ADAPTIVE; 16 bytes otherwise)
 STRATA_BINDING(BINDING_WAVE_CONES, 47);  // storage vec2[]: each path's ray cone, width and spread
                                          // (STRATA_TEXTURE_LOD; 16 bytes otherwise)
-STRATA_BINDING(BINDING_COUNT, 48);
+STRATA_BINDING(BINDING_WAVE_TREE_VERTEX, 48);  // storage vec4[2]: each path's last point and normal
+                                               // (STRATA_LIGHT_TREE's MIS; 16 bytes otherwise)
+STRATA_BINDING(BINDING_COUNT, 49);
 
 // Specialization constant ids.
 STRATA_BINDING(SPEC_TEXEL_FETCH, 0);      // kReads* (types.h): which scene arrays are read through texel views
