@@ -24,6 +24,15 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;
 layout(constant_id = SPEC_WAVE_STAGE) const uint kStage = kStageCamera;  // kStage* (types.h)
+layout(constant_id = SPEC_ADAPTIVE) const uint kAdaptive = 0u;           // 1: converged blocks are skipped
+
+// Adaptive sampling (SPEC_ADAPTIVE), as pathtrace.comp reads it: 1 per 8x8
+// block of the image while it is sampled.
+layout(std430, set = 0, binding = BINDING_ACTIVE_BLOCKS) readonly buffer ActiveBlocks { uint activeBlocks[]; };
+bool pixelActive(uint pixelIndex) {
+    uint x = pixelIndex % frame.image.x, y = pixelIndex / frame.image.x;
+    return kAdaptive == 0u || activeBlocks[(y / 8u) * ((frame.image.x + 7u) / 8u) + x / 8u] != 0u;
+}
 
 layout(std430, set = 0, binding = BINDING_WAVE_STATE) buffer StateBuffer { PathState state[]; };
 layout(std430, set = 0, binding = BINDING_WAVE_LIVE) readonly buffer LiveBuffer { uint live[]; };
@@ -81,8 +90,19 @@ void cameraStage(uint k) {
     treeVertex[2u * k] = vec4(0.0);
     treeVertex[2u * k + 1u] = vec4(0.0);
 #endif
-    nextRays[k] = TraceRay(origin, 0.0, dir, kRayMax);
-    nextLive[k] = k;
+    if (kAdaptive == 0u) {
+        nextRays[k] = TraceRay(origin, 0.0, dir, kRayMax);
+        nextLive[k] = k;
+        return;
+    }
+    // Adaptive: only the paths of blocks still sampled go on (the host reads
+    // their count); the others are never traced or accumulated.
+    bool sampled = pixelActive(pixelIndex);
+    uint i = appendIndex(0u, sampled);
+    if (sampled) {
+        nextRays[i] = TraceRay(origin, 0.0, dir, kRayMax);
+        nextLive[i] = k;
+    }
 }
 
 void shadeStage(uint k) {
@@ -151,7 +171,10 @@ void resolveStage(uint j) {
 }
 
 // Path k's radiance into its pixel's sums.
-void accumulateStage(uint k) { accumulateSample(state[k].misc.x, state[k].lDelta.xyz); }
+void accumulateStage(uint k) {
+    uint pixelIndex = state[k].misc.x;
+    if (pixelActive(pixelIndex)) accumulateSample(pixelIndex, state[k].lDelta.xyz);
+}
 
 void main() {
     uint k = gl_GlobalInvocationID.x;

@@ -52,8 +52,6 @@ TEST_CASE("adaptive: a bad threshold or minimum, or a shard, is one error line, 
     expectError(r + " --noise-threshold 0.1 --min-spp 4", "strata: error: --min-spp 4 is above the cap --spp 1");
     expectError(r + " --min-spp 4", "strata: error: --min-spp needs --noise-threshold");
     expectError(r + " --noise-threshold 0.1 --shard 0/2", "strata: error: --shard and --noise-threshold exclude");
-    expectError(r + " --noise-threshold 0.1 --integrator wavefront",
-                "strata: error: --noise-threshold needs the megakernel integrator");
 }
 
 TEST_SUITE_END();
@@ -151,7 +149,7 @@ TEST_CASE("adaptive: the AOV layers read each pixel's own sample count") {
     CHECK(vk::validationMessageCount() == 0);
 }
 
-TEST_CASE("adaptive: the same bits however the submissions are cut, and a render resumed from its state") {
+TEST_CASE("adaptive: the same bits however the submissions are cut, by either integrator, and a render resumed from its state") {
     const RenderSettings s = adaptiveSettings();
     SceneRequest request = keptRequest(s);
     request.file = sourcePath("scenes/cornell-box.gltf");
@@ -161,6 +159,13 @@ TEST_CASE("adaptive: the same bits however the submissions are cut, and a render
     RenderTuning oneByOne;
     oneByOne.fixedBatch = 1;
     CHECK(sameImage(render(context(), dev, host.camera, s, oneByOne).film, whole.film));
+    // The wavefront integrator skips the same blocks: the same counts and sums.
+    RenderSettings wave = s;
+    wave.integrator = IntegratorKind::Wavefront;
+    const RenderResult waved = render(context(), dev, host.camera, wave);
+    CHECK(waved.spp == whole.spp);
+    CHECK(waved.film.count == whole.film.count);
+    CHECK(sameImage(waved.film, whole.film));
     // Stopped inside the batch after the first blocks retired, then resumed:
     // the resumed render must skip those blocks from its first sample on.
     const std::uint32_t firstRetired =

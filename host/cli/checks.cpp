@@ -79,8 +79,6 @@ void checkSamplingFlags(const RenderSettings& s, std::uint32_t cap) {
     if (!s.adaptive()) return;
     if (s.minSpp > cap)
         badFlag("--min-spp " + std::to_string(s.minSpp) + " is above the cap --spp " + std::to_string(cap));
-    if (s.integrator == IntegratorKind::Wavefront)
-        badFlag("--noise-threshold needs the megakernel integrator; the wavefront integrator samples every pixel");
 }
 
 void checkRenderFlags(const Parsed& parsed, const RenderCommand& cmd) {

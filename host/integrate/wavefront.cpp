@@ -55,7 +55,7 @@ struct WavefrontIntegrator::Impl {
 
 WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s,
                                          const RenderTuning& t, std::uint32_t maxPaths, const FilmBuffers& film)
-    : impl_(std::make_unique<Impl>(ctx, useWorkQueue(ctx, t.workQueue))), countRays_(t.countRays) {
+    : impl_(std::make_unique<Impl>(ctx, useWorkQueue(ctx, t.workQueue))), countRays_(t.countRays), adaptive_(s.adaptive()) {
     using namespace gpu;
     Impl& m = *impl_;
     const VkDeviceSize n = std::max<std::uint32_t>(1, maxPaths);
@@ -98,8 +98,8 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     m.anyHit->bind(BINDING_HIT_INSTANCES, m.hitInstances);  // not written by any-hit
 
     for (std::uint32_t stage = kStageCamera; stage <= kStageAccumulate; ++stage) {
-        std::vector<std::uint32_t> spec = pathSpec(dev, s);
-        spec.resize(SPEC_WAVE_STAGE + 1, 0u);
+        std::vector<std::uint32_t> spec = pathSpec(dev, s);  // SPEC_ADAPTIVE included
+        spec.resize(std::max<std::size_t>(spec.size(), SPEC_WAVE_STAGE + 1), 0u);
         spec[SPEC_WAVE_STAGE] = stage;
         std::vector<vk::BindingDesc> b = pathBindings();
         for (std::uint32_t i = BINDING_WAVE_STATE; i <= BINDING_WAVE_SHADOW_HITS; ++i)
@@ -172,9 +172,16 @@ double WavefrontIntegrator::addSample(VkCommandBuffer, const gpu::DispatchParams
     };
 
     bindLists(1);  // the camera stage writes the first bounce's lists, rays[0] and live[0]
-    seconds += m.run([&](VkCommandBuffer cmd) { stage(cmd, kStageCamera, n); });
+    seconds += m.run([&](VkCommandBuffer cmd) {
+        if (adaptive_) {  // the paths of the blocks still sampled are appended
+            vkCmdFillBuffer(cmd, m.counts.handle(), 0, VK_WHOLE_SIZE, 0u);
+            barrier(cmd);
+        }
+        stage(cmd, kStageCamera, n);
+    });
     const auto* counts = static_cast<const std::uint32_t*>(m.counts.mapped());
-    std::uint32_t count = n;
+    if (adaptive_) m.counts.invalidate();
+    std::uint32_t count = adaptive_ ? counts[0] : n;
     for (int cur = 0; count > 0; cur = 1 - cur) {
         bindLists(cur);
         seconds += m.run([&](VkCommandBuffer cmd) {

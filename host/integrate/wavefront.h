@@ -35,6 +35,7 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     bool countRays_ = true;
+    bool adaptive_ = false;  // SPEC_ADAPTIVE: the camera stage appends the active blocks' paths alone
     std::uint64_t closestRays_ = 0, shadowRays_ = 0, dispatches_ = 0;
 };
 
