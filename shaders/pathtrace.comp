@@ -21,11 +21,6 @@ layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;  // any li
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;             // kMis* (types.h)
 layout(constant_id = SPEC_COUNT_RAYS) const uint kCountRays = 1u;       // count rays in RenderCounters
 layout(constant_id = SPEC_WORK_QUEUE) const uint kWorkQueue = 0u;       // 1: blocks in a permuted order
-layout(constant_id = SPEC_ADAPTIVE) const uint kAdaptive = 0u;          // 1: converged blocks are skipped
-
-// Adaptive sampling (SPEC_ADAPTIVE): per 8x8 block of the image, 1 while
-// it is sampled, 0 once the host found it converged (render/adaptive.h).
-layout(std430, set = 0, binding = BINDING_ACTIVE_BLOCKS) readonly buffer ActiveBlocks { uint activeBlocks[]; };
 
 layout(push_constant) uniform Push { DispatchParams params; };
 
@@ -82,7 +77,7 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
 void shadePixel(uvec2 local) {
     if (local.x >= params.tileW || local.y >= params.tileH) return;
     uvec2 pixel = uvec2(params.tileX, params.tileY) + local;
-    if (kAdaptive != 0u && activeBlocks[(pixel.y / 8u) * ((frame.image.x + 7u) / 8u) + pixel.x / 8u] == 0u) return;
+    if (!pixelSampled(pixel)) return;  // adaptive: a converged block
     Sampler smp;
     vec3 dir;
     vec3 origin;

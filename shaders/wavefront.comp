@@ -24,14 +24,9 @@ layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 layout(constant_id = SPEC_HAS_EMITTERS) const uint kHasEmitters = 1u;
 layout(constant_id = SPEC_MIS) const uint kMis = kMisPower;
 layout(constant_id = SPEC_WAVE_STAGE) const uint kStage = kStageCamera;  // kStage* (types.h)
-layout(constant_id = SPEC_ADAPTIVE) const uint kAdaptive = 0u;           // 1: converged blocks are skipped
-
-// Adaptive sampling (SPEC_ADAPTIVE), as pathtrace.comp reads it: 1 per 8x8
-// block of the image while it is sampled.
-layout(std430, set = 0, binding = BINDING_ACTIVE_BLOCKS) readonly buffer ActiveBlocks { uint activeBlocks[]; };
+// Adaptive sampling: lib/film.glsl's pixelSampled, for a pixel's index.
 bool pixelActive(uint pixelIndex) {
-    uint x = pixelIndex % frame.image.x, y = pixelIndex / frame.image.x;
-    return kAdaptive == 0u || activeBlocks[(y / 8u) * ((frame.image.x + 7u) / 8u) + x / 8u] != 0u;
+    return pixelSampled(uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x));
 }
 
 layout(std430, set = 0, binding = BINDING_WAVE_STATE) buffer StateBuffer { PathState state[]; };

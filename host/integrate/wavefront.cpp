@@ -71,13 +71,14 @@ WavefrontIntegrator::WavefrontIntegrator(const vk::Context& ctx, const DeviceSce
     m.rays[1] = list(sizeof(TraceRay));
     m.live[0] = list(4);
     m.live[1] = list(4);
-    // The paths' ray cones, read only with the texlod axis (STRATA_TEXTURE_LOD).
-    m.cones = (dev.features.bits & kFeatureTextureLod) != 0u ? list(8)
-                                                              : vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Device);
-    // Their last points and normals, read only with the lighttree axis (STRATA_LIGHT_TREE).
-    m.treeVertex = (dev.features.bits & kFeatureLightTree) != 0u
-                       ? list(32)
-                       : vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Device);
+    // A list that only the shader variants of one feature read: a 16-byte
+    // placeholder binding where the scene lacks it.
+    auto featureList = [&](std::uint32_t feature, VkDeviceSize bytes) {
+        return (dev.features.bits & feature) != 0u ? list(bytes)
+                                                   : vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Device);
+    };
+    m.cones = featureList(kFeatureTextureLod, 8);         // the paths' ray cones (STRATA_TEXTURE_LOD)
+    m.treeVertex = featureList(kFeatureLightTree, 32);    // their last points and normals (STRATA_LIGHT_TREE)
     m.counts = vk::Buffer(ctx, 16, kListUsage, vk::MemoryUse::Readback);
     m.work = vk::Buffer(ctx, traceWorkBytes(n),
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |

@@ -14,6 +14,15 @@ layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms f
 layout(std430, set = 0, binding = BINDING_ACCUM) buffer AccumBuffer { vec4 accum[]; };
 layout(std430, set = 0, binding = BINDING_COUNTERS) buffer CounterBuffer { RenderCounters counters; };
 
+// Adaptive sampling (SPEC_ADAPTIVE): per 8x8 block of the image, 1 while it
+// is sampled, 0 once converged (render/adaptive.h). Without the constant
+// every pixel is sampled and the buffer is never read.
+layout(constant_id = SPEC_ADAPTIVE) const uint kAdaptive = 0u;
+layout(std430, set = 0, binding = BINDING_ACTIVE_BLOCKS) readonly buffer ActiveBlocks { uint activeBlocks[]; };
+bool pixelSampled(uvec2 pixel) {
+    return kAdaptive == 0u || activeBlocks[(pixel.y / 8u) * ((frame.image.x + 7u) / 8u) + pixel.x / 8u] != 0u;
+}
+
 // The sampler of sample `sampleIndex` of `pixel`.
 Sampler pixelSampler(uvec2 pixel, uint sampleIndex) {
     return samplerInit(pixel, frame.image.x, sampleIndex, frame.counts.w, frame.image.w);

@@ -78,7 +78,7 @@ STRATA_BINDING(SPEC_TRACE_MODE, 7);       // trace kernel: kTraceClosest, kTrace
 STRATA_BINDING(SPEC_WORK_QUEUE, 8);       // 1 (CPU devices): trace.comp's subgroups take rays from a counter,
                                           // pathtrace.comp shades a tile's 8x8 blocks in a permuted order
 STRATA_BINDING(SPEC_WAVE_STAGE, 9);       // wavefront.comp: kStage* (types.h), one pipeline each
-STRATA_BINDING(SPEC_ADAPTIVE, 10);        // 1: adaptive sampling; pathtrace.comp skips the 8x8 blocks
+STRATA_BINDING(SPEC_ADAPTIVE, 10);        // 1: adaptive sampling; converged 8x8 blocks skipped (lib/film.glsl)
                                           // BINDING_ACTIVE_BLOCKS marks converged
 
 #ifdef __cplusplus
