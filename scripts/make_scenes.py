@@ -22,7 +22,7 @@ sys.dont_write_bytecode = True  # keep the tree free of __pycache__
 sys.path.insert(0, HERE)
 
 import square_light as analytic  # noqa: E402
-from gltf_writer import GltfWriter, f32  # noqa: E402
+from gltf_writer import UNSIGNED_INT, GltfWriter, f32  # noqa: E402
 
 GENERATOR = "strata scripts/make_scenes.py"
 COPYRIGHT = "CC0 1.0 (public domain), the strata authors"
@@ -209,6 +209,32 @@ def cornell_box():
     return w.gltf_text()
 
 
+def cornell_gold():
+    """The Cornell box with a rough gold sphere (radius 0.3, metallic 1,
+    roughness 0.3) where the short box stands: the glossy scene of the time
+    to error against Cycles (issue 43)."""
+    sys.path.insert(0, os.path.join(ROOT, "tests", "data"))
+    from make_lights import icosphere  # noqa: E402
+    w = writer()
+    mats = cornell_materials(w)
+    gold = w.add_material("Gold", base_color=[1.0, 0.766, 0.336, 1.0], metallic=1.0, roughness=0.3)
+    room = cornell_room()
+    walls = [w.add_node(name, mesh=mesh(w, name, q, mats[m])) for name, q, m in room[:-1]]
+    verts, faces = icosphere(4)
+    sphere = w.add_triangles("Sphere", verts, normals=verts, indices=[i for f in faces for i in f],
+                             material=gold, index_type=UNSIGNED_INT)
+    ball = w.add_node("GoldSphere", mesh=sphere, translation=[0.4, 0.3, 0.4], scale=[0.3, 0.3, 0.3])
+    name, t, deg, s = CORNELL_BOXES[1]
+    box = w.add_node(name, mesh=mesh(w, "Box", cornell_unit_box(), mats["White"]),
+                     translation=list(t), rotation=rotation_y(deg), scale=list(s))
+    name, q, m = room[-1]
+    lamp = w.add_node(name, mesh=mesh(w, name, q, mats[m]))
+    cam = w.add_node("Camera", camera=camera(w, "Camera", 40.0),
+                     translation=list(CORNELL_CAMERA))
+    w.set_scene(walls + [ball, box, lamp, cam], name="Scene")
+    return w.gltf_text()
+
+
 def cornell_box_baked(transform, znear, lamp_grid=None):
     """The Cornell box with `transform` (affine, det > 0, no rotation) baked
     into the vertex data: every node has the identity transform, so the
@@ -334,6 +360,7 @@ def main():
         scenes_dir = os.path.join(ROOT, "scenes")
         invariance_dir = os.path.join(ROOT, "tests", "data", "invariance")
     write(scenes_dir, "cornell-box.gltf", cornell_box())
+    write(scenes_dir, "cornell-gold.gltf", cornell_gold())
     write(scenes_dir, "furnace.gltf", furnace())
     # Le = 0.1 is not a float32 dyadic: sums of it drift in float32.
     write(scenes_dir, "furnace-a0.8-le0.1.gltf", furnace(albedo=0.8, le=0.1))

@@ -5,7 +5,7 @@
         [--spp 4,16,64,256] [--rounds 3] [--ref-spp 4096] [--threads 2]
         [--max-depth 16] [--strata build/strata] [--strata-arg='ARGS' ...]
         [--cycles-arg='ARGS' ...] [--adaptive [--noise-threshold 0.01]]
-        [--strata-reference] [--reference cycles|strata] [--two-sided-emission]
+        [--strata-reference] [--reference cycles|strata|own] [--two-sided-emission]
         [--time render|sampling|wall]
         [--out DIR] [--ref-cache DIR] [--json FILE] [--blender blender]
         [--cycles-peer ../shared/peers/cycles/cycles_render.py]
@@ -46,6 +46,13 @@ Times (both are kept; --time picks the one the ratios use):
     sync (Cycles' log has 0.01 s steps): the sampling alone on both sides.
   - wall: the whole process of each (strata render; blender with start-up
     and import), measured here.
+
+With --reference own each renderer's relMSE is against its own reference
+(strata's and Cycles', both at --ref-spp): the time each takes to its own
+converged image. That is the fair race where the two BRDFs differ (a
+glTF metal against Cycles' Principled conductor, --material lambert keeping
+metals as Principled), and it still counts either renderer's bias against
+its own answer as error only where that bias fades with spp.
 
 The reference (default: Cycles at --ref-spp) is cached in --ref-cache keyed
 by the scene's bytes, size, depth, spp and renderer, and reused. With
@@ -108,8 +115,9 @@ def parse_args(argv):
     ap.add_argument("--strata-noise-threshold", type=float, default=None,
                     help="strata's (default: --noise-threshold); strata's is another measure: the "
                          "standard error over sqrt(I^2 + 0.01), the root of a pixel's relMSE term")
-    ap.add_argument("--reference", choices=["cycles", "strata"], default="cycles",
-                    help="the renderer of the common reference (default cycles)")
+    ap.add_argument("--reference", choices=["cycles", "strata", "own"], default="cycles",
+                    help="the renderer of the common reference (default cycles); own: each "
+                         "renderer against its own reference")
     ap.add_argument("--strata-reference", action="store_true",
                     help="also render a strata reference and print its relMSE to Cycles'")
     ap.add_argument("--two-sided-emission", action="store_true",
@@ -402,10 +410,13 @@ def measure_scene(a, rnd, scene):
         scene, changed = two_sided_copy(scene, work)
         notes.append("rendered %s: %d emissive material(s) made doubleSided" % (scene, changed))
     t_start = time.perf_counter()
-    refs = {a.reference: reference(a, rnd, scene, a.reference)}
+    own = a.reference == "own"
+    if own:
+        refs = {n: reference(a, rnd, scene, n) for n in ("cycles", "strata")}
+    else:
+        refs = {a.reference: reference(a, rnd, scene, a.reference)}
     if a.strata_reference and "strata" not in refs:
         refs["strata"] = reference(a, rnd, scene, "strata")
-    ref_exr, ref_info = refs[a.reference]
 
     series = ["strata", "cycles"]
     if a.adaptive:
@@ -434,8 +445,9 @@ def measure_scene(a, rnd, scene):
                 err = {name: compare(a.strata, img, exr, img) for name, (exr, _) in refs.items()}
                 if not a.keep_images:
                     os.remove(img)
+                mine = ("strata" if s.startswith("strata") else "cycles") if own else a.reference
                 run_ = {"series": s, "spp": spp, "round": r, "seed": seed, "load1": load,
-                        "relmse": err[a.reference], "relmse_vs": err, **times}
+                        "relmse": err[mine], "relmse_vs": err, **times}
                 runs.append(run_)
                 log("  round %d %-16s spp %-5d relMSE %.4g  render %.3f s  wall %.3f s" % (
                     r, s, spp, run_["relmse"], times["render_s"], times["wall_s"]))
@@ -485,7 +497,8 @@ def measure_scene(a, rnd, scene):
                          os.path.join(work, "refs"))
         means = reference_means(refs["strata"][0], refs["cycles"][0])
     return {"scene": scene, "stem": stem, "series": series, "notes": notes,
-            "reference": ref_info, "references": {n: i for n, (_, i) in refs.items()},
+            "reference": refs["cycles" if own else a.reference][1],
+            "references": {n: i for n, (_, i) in refs.items()},
             "reference_relmse_strata_vs_cycles": ref_vs, "reference_means": means,
             "time_basis": a.time,
             "summary": summary, "time_to_error": tte, "runs": runs,
@@ -501,15 +514,18 @@ def markdown(a, res, rnd):
                          "the first sample (from its log, 0.01 s steps)",
              "wall": "whole-process wall time of each"}[a.time]
     ref = res["reference"]
+    refs_text = ("each renderer's own, %d spp, seed %d" % (ref["spp"], ref["seed"])
+                 if a.reference == "own" else
+                 "%s, %d spp, seed %d" % (ref["renderer"], ref["spp"], ref["seed"]))
     out.append("### %s (%dx%d, max depth %d / Cycles bounces %d, %d threads, %d rounds)" % (
         res["stem"], a.width, a.height, a.max_depth, a.max_depth - 1, a.threads, a.rounds))
     out.append("")
-    out.append("strata %s (sha256 %s)%s; %s, Cycles peer%s. Reference: %s, "
-               "%d spp, seed %d. Times: %s. Medians over rounds; 1-minute load average "
+    out.append("strata %s (sha256 %s)%s; %s, Cycles peer%s. Reference: %s. "
+               "Times: %s. Medians over rounds; 1-minute load average "
                "(median) %.2f." % (
                    a.strata, rnd.strata_id, " " + " ".join(a.strata_arg) if a.strata_arg else "",
                    rnd.blender_version, " " + " ".join(a.cycles_arg) if a.cycles_arg else "",
-                   ref["renderer"], ref["spp"], ref["seed"], basis, res["load1_median"]))
+                   refs_text, basis, res["load1_median"]))
     out.append("")
     head = "| spp | strata relMSE | Cycles relMSE | Cycles/strata relMSE | strata s | Cycles s |"
     sep = "|---:|---:|---:|---:|---:|---:|"
