@@ -33,8 +33,8 @@ layout(push_constant) uniform Push { DispatchParams params; };
 uint gClosestRays = 0u;
 uint gShadowRays = 0u;
 
-vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
-    PathVertex v = pathStart();
+// A path's state at its start: the vertex, and the globals its shading keeps.
+PathVertex pathBegin() {
 #ifdef STRATA_DISPERSION
     gWavelength = 0.0;  // each sample's path starts RGB
 #endif
@@ -45,48 +45,67 @@ vec3 tracePath(inout Sampler smp, vec3 origin, vec3 dir) {
 #ifdef STRATA_AOV
     aovStart();
 #endif
-    for (uint depth = 0u;; ++depth) {
-        TraceHit hit;
-        if (kCountRays != 0u) ++gClosestRays;
-        if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) {
-            pathEscaped(v, dir);
-            break;
-        }
-        PathNext o = pathShadeHit(v, smp, dir, hit, depth);
-        if (o.shadowTried) {
-            if (kCountRays != 0u) ++gShadowRays;
-#ifdef PATH_MEDIUM_SHADOWS
-            if (o.shadowOpen && o.shadowMedium) {
-                if (kCountRays != 0u) ++gClosestRays;
-                o.shadowOpen = pathMediumShadow(o);
-            }
+#if defined(STRATA_MOTION) && defined(STRATA_INSTANCING)
+    gPoseRecord = kNoInstance;  // the poses cached were at the last sample's time
 #endif
-            // One call site for both kinds of light: each call is inlined,
-            // and a second copy of the traversal adds to pipeline creation.
-            bool visible = o.shadowOpen && !bvhTraceAny(o.shadow.origin, o.shadow.dir, 0.0, o.shadow.tmax);
-            if (visible) v.L += o.contrib;
-        }
-        if (!o.alive) break;
-        origin = o.next.origin;
-        dir = o.next.dir;
-    }
-    return v.L;
+    return pathStart();
 }
 
-// One path through pixel `local` of the dispatch's tile, added to its sums.
+// Samples params.sampleIndex to params.sampleIndex + params.sampleCount - 1
+// of the pixel at `local` of the dispatch's tile, each path added to the
+// pixel's sums as it ends, in sample order. One loop of path segments runs
+// them all: a path that ends starts the invocation's next sample in the
+// next segment, so a subgroup's lanes trace together until each has taken
+// its samples, instead of each sample waiting for the subgroup's longest
+// path.
 void shadePixel(uvec2 local) {
     if (local.x >= params.tileW || local.y >= params.tileH) return;
     uvec2 pixel = uvec2(params.tileX, params.tileY) + local;
     if (!pixelSampled(pixel)) return;  // adaptive: a converged block
+    // The sampler keeps the pixel and the sample's index: no more live values in the loop.
     Sampler smp;
-    vec3 dir;
-    vec3 origin;
+    vec3 origin, dir;
     cameraSample(pixel, params.sampleIndex, smp, origin, dir);
-    vec3 L = tracePath(smp, origin, dir);
-    accumulateSample(pixel.y * frame.image.x + pixel.x, L);
-#ifdef STRATA_AOV
-    accumulateAov(pixel.y * frame.image.x + pixel.x, params.sampleIndex, L);
+    PathVertex v = pathBegin();
+    uint depth = 0u;
+    for (;;) {
+        TraceHit hit;
+        bool ended = false;
+        if (kCountRays != 0u) ++gClosestRays;
+        if (!bvhTraceClosest(origin, dir, 0.0, kRayMax, hit)) {
+            pathEscaped(v, dir);
+            ended = true;
+        } else {
+            PathNext o = pathShadeHit(v, smp, dir, hit, depth);
+            if (o.shadowTried) {
+                if (kCountRays != 0u) ++gShadowRays;
+#ifdef PATH_MEDIUM_SHADOWS
+                if (o.shadowOpen && o.shadowMedium) {
+                    if (kCountRays != 0u) ++gClosestRays;
+                    o.shadowOpen = pathMediumShadow(o);
+                }
 #endif
+                // One call site for both kinds of light: each call is inlined,
+                // and a second copy of the traversal adds to pipeline creation.
+                bool visible = o.shadowOpen && !bvhTraceAny(o.shadow.origin, o.shadow.dir, 0.0, o.shadow.tmax);
+                if (visible) v.L += o.contrib;
+            }
+            ended = !o.alive;
+            origin = o.next.origin;
+            dir = o.next.dir;
+            ++depth;
+        }
+        if (ended) {
+            accumulateSample(smp.pixelIndex, v.L);
+#ifdef STRATA_AOV
+            accumulateAov(smp.pixelIndex, smp.sampleIndex, v.L);
+#endif
+            if (smp.sampleIndex - params.sampleIndex + 1u >= params.sampleCount) break;
+            cameraSample(smp.pixel, smp.sampleIndex + 1u, smp, origin, dir);
+            v = pathBegin();
+            depth = 0u;
+        }
+    }
 }
 
 void main() {
@@ -97,8 +116,10 @@ void main() {
         // the other its bottom ones, and one waits for the other. Workgroup
         // w shades block (w * blockStride) mod blocks instead (a permutation;
         // each share spreads over the whole tile). A path's loops cannot be
-        // bounded, so the trace kernel's work queue, which runs many in one
-        // invocation, is not an option here (lib/bvh_common.glsl, gBvhTicks).
+        // bounded, so the trace kernel's work queue, which takes rays until
+        // lavapipe's loop budget runs low, is not an option here
+        // (lib/bvh_common.glsl, gBvhTicks); the host keeps a CPU device's
+        // paths an invocation to kCpuSamplesPerDispatch (integrate/megakernel.cpp).
         uint blocksX = (params.tileW + 7u) / 8u, blocks = blocksX * ((params.tileH + 7u) / 8u);
         uint w = (gl_WorkGroupID.y * blocksX + gl_WorkGroupID.x) * params.blockStride % blocks;
         local = uvec2(w % blocksX, w / blocksX) * 8u + gl_LocalInvocationID.xy;

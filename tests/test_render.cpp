@@ -101,18 +101,28 @@ TEST_CASE("the permuted block order gives the image of the row order, bit for bi
     CHECK(vk::validationMessageCount() == 0);
 }
 
-// Submissions are sized by timing; the image must not depend on where they end.
-TEST_CASE("the image does not depend on how samples are split into submissions") {
+// Submissions are sized by timing; the image must not depend on where they
+// end, nor on how many samples the megakernel takes in one dispatch (each
+// invocation runs them one after another).
+TEST_CASE("the image does not depend on how samples are split into submissions and dispatches") {
     RenderSettings s = small(100, 16, 9);  // 100 = one full fold group of 64 and a partial one
     RenderTuning t;
     t.submitSeconds = 1e-9;                // one sample per submission
+    t.maxSubmitSeconds = 0.0;
     Rendered a = renderFile("scenes/cornell-box.gltf", s, t);
-    t.submitSeconds = 1e9;                 // as many as a fold group allows
+    t.submitSeconds = 1e9;                 // as many as a fold group allows: batches of 1, 63, 36
     Rendered b = renderFile("scenes/cornell-box.gltf", s, t);
+    t.samplesPerDispatch = 3;              // batches of 1, 63, 36: dispatches of 1, 21 x 3, 12 x 3
+    Rendered c = renderFile("scenes/cornell-box.gltf", s, t);
     CHECK(a.result.submissions == 100);
-    CHECK(b.result.submissions <= 3);
-    const auto ma = a.result.film.mean(), mb = b.result.film.mean();
+    CHECK(a.result.dispatches == 100);
+    CHECK(b.result.submissions == 3);
+    // 64 samples a dispatch (8 on a CPU device: 1, 7 x 8 + 7, 4 x 8 + 4).
+    CHECK(b.result.dispatches == (context().info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 + 8 + 5 : 3));
+    CHECK(c.result.dispatches == 1 + 21 + 12);
+    const auto ma = a.result.film.mean(), mb = b.result.film.mean(), mc = c.result.film.mean();
     CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(ma.data(), mc.data(), ma.size() * sizeof(float)) == 0);
     CHECK(vk::validationMessageCount() == 0);
 }
 

@@ -223,8 +223,8 @@ std::vector<Flag<T>> traceFlags(Settings settings, bool tuning) {
             .withOldName("--traversal")
             .inTuning(tuning),
         choice<T, IntegratorKind>("--integrator",
-                              "one path per invocation (megakernel), or stages with ray lists on the device "
-                              "(wavefront); the same image",
+                              "one pixel per invocation, its paths one after another (megakernel), or "
+                              "stages with ray lists on the device (wavefront); the same image",
                               {{"megakernel", IntegratorKind::Megakernel}, {"wavefront", IntegratorKind::Wavefront}},
                               [settings](auto& c) -> auto& { return settings(c).integrator; }),
     };

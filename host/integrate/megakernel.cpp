@@ -1,6 +1,8 @@
-// The megakernel: shaders/pathtrace.comp, one path per invocation, both
+// The megakernel: shaders/pathtrace.comp, one pixel per invocation, its
+// paths for up to tuning.samplesPerDispatch samples one after another, both
 // traversals inlined; every dispatch is recorded into the loop's command
 // buffer.
+#include <algorithm>
 #include <memory>
 
 #include "../../shaders/shared/bindings.h"
@@ -10,10 +12,21 @@
 namespace strata {
 namespace {
 
+// lavapipe ends every loop of an invocation, silently, once 65535 loop
+// passes are spent in all (docs/experiments/lavapipe.md): a CPU device's
+// invocation runs at most this many paths. At 8, the heaviest lane of the
+// materials board, the glass Cornell box and a 994k-triangle field, all at
+// depth 64, spent about 1,000 traversal passes a dispatch
+// (docs/experiments/integrators.md, "Samples one after another").
+constexpr std::uint32_t kCpuSamplesPerDispatch = 8;
+
 class Megakernel final : public Integrator {
 public:
     Megakernel(const vk::Context& ctx, const DeviceScene& dev, const RenderSettings& s, const RenderTuning& t,
-               const FilmBuffers& film) {
+               const FilmBuffers& film)
+        : samplesPerDispatch_(std::max(1u, ctx.info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU
+                                               ? std::min(kCpuSamplesPerDispatch, t.samplesPerDispatch)
+                                               : t.samplesPerDispatch)) {
         using namespace gpu;
         std::vector<std::uint32_t> spec = pathSpec(dev, s);
         spec[SPEC_COUNT_RAYS] = t.countRays ? 1u : 0u;
@@ -23,6 +36,7 @@ public:
         bindPathInputs(*kernel_, dev, film);
     }
 
+    std::uint32_t samplesPerDispatch() const override { return samplesPerDispatch_; }
     double addSample(VkCommandBuffer cmd, const gpu::DispatchParams& p) override {
         kernel_->dispatch(cmd, &p, (p.tileW + 7) / 8, (p.tileH + 7) / 8);
         ++dispatches_;
@@ -40,6 +54,7 @@ public:
 private:
     std::unique_ptr<vk::Kernel> kernel_;
     std::uint64_t dispatches_ = 0;
+    std::uint32_t samplesPerDispatch_;
 };
 
 }  // namespace

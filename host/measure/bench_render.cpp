@@ -148,12 +148,17 @@ nlohmann::ordered_json benchDispatch(const vk::Context& ctx, const GpuScene& sce
     j["sample_budget_per_size"] = budget;
     j["tile"] = defaults.tileSize;
     j["submission_target_s"] = defaults.submitSeconds;
+    j["samples_per_dispatch"] = 1;
+    // One sample a dispatch (the megakernel otherwise runs a submission's
+    // samples in one): what is timed is a dispatch's cost.
+    RenderTuning oneEach = benchTuning();
+    oneEach.samplesPerDispatch = 1;
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (int size : sizes) {
         const double pixels = static_cast<double>(size) * size;
         const auto spp = static_cast<std::uint32_t>(std::max(1.0, std::floor(budget / pixels)));
         const RenderResult r =
-            timedRender(ctx, scene, camera, settingsFor(cmd, size, size, spp), benchTuning(), pipelines);
+            timedRender(ctx, scene, camera, settingsFor(cmd, size, size, spp), oneEach, pipelines);
         nlohmann::ordered_json row = {{"size", size}, {"spp", r.spp},
                                       {"dispatches_per_sample", r.spp ? r.dispatches / r.spp : 0}};
         row.update(dispatchFigures(r));
@@ -169,7 +174,7 @@ nlohmann::ordered_json benchDispatch(const vk::Context& ctx, const GpuScene& sce
     nlohmann::ordered_json runs = nlohmann::ordered_json::array();
     double first = 0.0, last = 0.0;
     for (std::uint32_t n : perSubmit) {
-        RenderTuning t = benchTuning();
+        RenderTuning t = oneEach;
         t.fixedBatch = n;
         const RenderResult r = timedRender(ctx, scene, camera, settingsFor(cmd, size, size, spp), t, pipelines);
         nlohmann::ordered_json run = {{"recorded_per_submission", n}};

@@ -24,6 +24,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The samples a submission grows towards where the integrator takes many
+// in one dispatch (RenderTuning::maxSubmitSeconds bounds its time): from 8
+// on, the megakernel's lanes idled little in the measurements
+// (docs/experiments/integrators.md, "Samples one after another").
+constexpr double kDispatchSamples = 8.0;
+
 // DispatchParams::blockStride for a tile: the integer nearest 0.618 times
 // its count of 8x8 blocks that shares no factor with it, so that workgroup w
 // shading block (w * stride) mod blocks visits every block once and any run
@@ -286,7 +292,8 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         const auto t0 = Clock::now();
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
-        for (std::uint32_t k = 0; k < batch; ++k) {
+        const std::uint32_t perDispatch = std::max(1u, integrator->samplesPerDispatch());
+        for (std::uint32_t k = 0; k < batch; k += perDispatch) {
             for (std::size_t i = split ? tileNext : 0; i < tileEnd; ++i) {
                 DispatchParams p{};
                 p.tileX = tiles[i].x;
@@ -294,6 +301,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
                 p.tileW = tiles[i].w;
                 p.tileH = tiles[i].h;
                 p.sampleIndex = cur + k;
+                p.sampleCount = std::min(perDispatch, batch - k);
                 p.blockStride = blockStride(p.tileW, p.tileH);
                 ownSeconds += integrator->addSample(cmd, p);
             }
@@ -370,6 +378,12 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         if (s.timeLimit > 0.0 && elapsed() >= s.timeLimit) break;
         if ((result.interrupted = interruptSignal()) != 0) break;  // SIGINT or SIGTERM: the samples reached
         double target = t.submitSeconds;
+        // The megakernel runs a submission's samples of a tile in one
+        // dispatch, and its lanes idle less the more it runs (a lane whose
+        // path ends starts its next sample): a render whose samples are
+        // long lets a submission grow towards kDispatchSamples of them.
+        if (!t.splitSamples && integrator->samplesPerDispatch() > 1)
+            target = std::max(target, std::min(t.maxSubmitSeconds, perSample * kDispatchSamples));
         if (s.timeLimit > 0.0) target = std::min(target, s.timeLimit - elapsed());
         batch = t.fixedBatch ? t.fixedBatch
                              : static_cast<std::uint32_t>(std::max(1.0, target / std::max(perSample, 1e-6)));

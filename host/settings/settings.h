@@ -76,6 +76,13 @@ struct RenderTuning {
     std::uint32_t maxBatch = 64;        // samples per float32 device batch before folding
     double submitSeconds = 0.25;        // target wall time of one submission (sets how many
                                         // samples each carries; never changes the image)
+    double maxSubmitSeconds = 2.0;      // with samplesPerDispatch > 1 a render that does not
+                                        // split samples lets a submission grow towards
+                                        // kDispatchSamples samples, up to this long
+    std::uint32_t samplesPerDispatch = 64;  // the megakernel's most samples of a tile in one
+                                        // dispatch (a submission's, one after another in each
+                                        // invocation; the same image; at most 8 on a CPU
+                                        // device, integrate/megakernel.cpp); 1: one each
     std::uint32_t tileSize = 512;       // a dispatch covers at most tileSize^2 pixels
     std::uint32_t fixedBatch = 0;       // samples per submission (cut at folds and checkpoints);
                                         // 0: adapt to submitSeconds

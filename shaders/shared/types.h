@@ -445,7 +445,7 @@ struct DispatchParams {
     uint sampleIndex;   // index of the sample being taken (0-based)
     uint blockStride;   // SPEC_WORK_QUEUE: workgroup w shades the tile's 8x8 block
                         // (w * blockStride) mod blocks (coprime to blocks)
-    uint pad1;
+    uint sampleCount;   // pathtrace.comp: samples sampleIndex.. of this many (0 counts as 1)
     uint pad2;
 };
 
