@@ -7,6 +7,7 @@
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
 #include "shared/types.h"
+#include "shared/sample_test.h"
 #include "shared/bindings.h"
 
 layout(std140, set = 0, binding = BINDING_FRAME) uniform Frame { FrameUniforms frame; };

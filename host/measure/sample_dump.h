@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "../../shaders/shared/sample_test.h"
 #include "../../shaders/shared/types.h"
 #include "settings/filter.h"
 #include "pack/gpu_scene.h"
