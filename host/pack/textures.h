@@ -7,26 +7,10 @@
 #include <vector>
 
 #include "../../shaders/shared/types.h"
+#include "pack/texture_levels.h"
 #include "scene/scene.h"
 
 namespace strata {
-
-// How a texture slot reads its image, for downsampling: colour in sRGB
-// (base colour, emissive, sheen and specular colour), a normal map, or
-// other linear data.
-enum class TexelCoding { Srgb, Normal, Linear };
-
-// How the used materials' alpha reads an image as their base colour, for
-// downsampling and mip chains: MASK with alphaCutoff and baseColorFactor's
-// alpha takes colour over the texels that pass the cutoff, and
-// downsampling keeps the share of lookups that pass (the alpha test reads
-// the first level); BLEND weights colour by alpha; None (no alpha read, or
-// read two different ways) takes plain means.
-struct AlphaUse {
-    enum class Mode { None, Mask, Blend } mode = Mode::None;
-    float cutoff = 0.5f;
-    float factor = 1.0f;
-};
 
 // One packed image: its name, its size as packed and as the file has it,
 // its bytes on the device (--stats), and where its words start, their bits
@@ -62,20 +46,6 @@ struct PackedTextures {
 PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
                             std::vector<gpu::Material>& materials, std::uint32_t maxSize = 0, bool mips = false);
 
-// The mip levels after `image`: each the one before halved as `coding`
-// reads it (halving's rule: ceil sides, the mean of up to 2x2), down to 1x1;
-// colour as `alpha` says (AlphaUse), alpha the plain mean.
-std::vector<TextureImage> textureMips(const TextureImage& image, TexelCoding coding, AlphaUse alpha = {});
-
-// The image halved (each side to ceil(side / 2), a texel the mean of the up
-// to 2x2 it covers) until neither side exceeds `maxSize` (>= 1): the mean
-// taken in linear light for sRGB colour, and a normal map's mean vector
-// renormalised; alpha is averaged as it is, except as `alpha` says
-// (AlphaUse: MASK keeps the share of bilinear lookups that pass). Bits per
-// channel kept.
-TextureImage downsampledTexture(const TextureImage& image, std::uint32_t maxSize, TexelCoding coding,
-                                AlphaUse alpha = {});
-
 // Halves the largest packed images, one halving at a time, until the texel
 // words take at most `maxBytes` (or every image is 1x1), then lays the
 // words out again and points the refs at them. Returns the indices into
@@ -85,14 +55,6 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
 
 // KHR_materials_sheen's albedo table as texel words (tools/sheen-albedo).
 std::vector<std::uint32_t> sheenAlbedoWords();
-
-// The exact sRGB decoding curve (IEC 61966-2-1): c / 12.92 for c <= 0.04045,
-// else ((c + 0.055) / 1.055)^2.4; c in [0, 1].
-double srgbToLinear(double c);
-
-// Mean linear RGB of an image (sRGB-decoded when `srgb`), for the power of
-// emitters with an emissive texture.
-glm::dvec3 meanColor(const TextureImage& image, bool srgb);
 
 // The 2x3 matrix of a KHR_texture_transform (uv' = M (uv, 1)) as the rows
 // of gpu::TextureRef.
