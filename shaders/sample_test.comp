@@ -122,7 +122,8 @@ void main() {
 #ifdef STRATA_LIGHT_TREE
     } else if (params.routine == kSampleLightTree) {
         float pmf;
-        uint light = sampleLightTree(params.bsdf0.xyz, params.bsdf1.xyz, sample1D(smp), pmf);
+        float leafImportance;
+        uint light = sampleLightTree(params.bsdf0.xyz, params.bsdf1.xyz, sample1D(smp), pmf, leafImportance);
         out4.x = light == kNoLight ? -1.0 : float(light);
         out4.y = pmf;
         out4.z = light == kNoLight ? 0.0 : lightTreePmf(params.bsdf0.xyz, params.bsdf1.xyz, emitterAt(light).trail);

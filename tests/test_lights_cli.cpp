@@ -75,6 +75,15 @@ TEST_CASE("lights cli: bad environment input is one line, exit 2, no output" * d
                 bright + ": error: the brightest texel times --env-intensity is 1e+39, beyond the float range (3.4e+38)");
 }
 
+TEST_CASE("lights cli: a bad --light-candidates is one line, exit 2, no output" * doctest::test_suite("unit")) {
+    const std::string room = "render " + std::string(STRATA_SOURCE_DIR) + "/scenes/many-lights.gltf";
+    for (const char* bad : {"0", "9", "-1", "two", "1.5", ""})
+        expectError(room + " --light-candidates '" + std::string(bad) + "'",
+                    "strata: error: --light-candidates expects an integer in [1, 8], got '" + std::string(bad) + "'");
+    expectError(room + " --light-sampler power --light-candidates 2",
+                "strata: error: --light-candidates resamples the light tree's choices: not with --light-sampler power");
+}
+
 TEST_CASE("lights cli: a scene lit only by the environment renders with render, reference and a map" * doctest::test_suite("slow")) {
     TempDir out;
     const std::string sphere = lights("sphere.gltf");

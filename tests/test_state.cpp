@@ -457,7 +457,7 @@ TEST_CASE("state: shards from different devices merge to an image statistically 
     StateInfo info;
     info.scene = kCornell;
     info.sceneHash = sceneContentHash(gpu, camera);
-    info.settings = stateSettings(s, camera);
+    info.settings = stateSettings(s, camera, false);
     info.spp = s.spp;
     info.shards = 2;
     std::string files;

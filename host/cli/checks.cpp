@@ -75,6 +75,8 @@ void checkEnvFlags(const Parsed& parsed, const EnvironmentOptions& env) {
 }
 
 void checkSamplingFlags(const RenderSettings& s, std::uint32_t cap) {
+    if (s.lightCandidates > 0 && s.lightSampler == LightSampler::Power)
+        badFlag("--light-candidates resamples the light tree's choices: not with --light-sampler power");
     if (s.minSpp > 0 && !s.adaptive()) badFlag("--min-spp needs --noise-threshold");
     if (!s.adaptive()) return;
     if (s.minSpp > cap)

@@ -180,6 +180,11 @@ std::vector<Flag<T>> pathFlags(Settings settings) {
                                 "clusters",
                                 {{"auto", LightSampler::Auto}, {"tree", LightSampler::Tree}, {"power", LightSampler::Power}},
                                 [settings](auto& c) -> auto& { return settings(c).lightSampler; }),
+        integer<T>("--light-candidates", "N",
+                   "with the light tree: each shadow ray's light is one of N descents of the tree, kept in "
+                   "proportion to its bound at the shading point over its probability (resampled importance "
+                   "sampling); 1: one descent (default 2; not with --light-sampler power)",
+                   1, 8, [settings](auto& c) -> auto& { return settings(c).lightCandidates; }),
         choice<T, bool>("--texture-lod",
                         "on: each texture lookup reads the mip level of its ray cone's footprint (one level or the "
                         "next at random, bilinear within it); off: every lookup at full resolution",

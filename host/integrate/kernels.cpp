@@ -101,13 +101,14 @@ void bindPathInputs(vk::Kernel& kernel, const DeviceScene& dev, const FilmBuffer
 
 std::vector<std::uint32_t> pathSpec(const DeviceScene& dev, const RenderSettings& s) {
     using namespace gpu;
-    std::vector<std::uint32_t> spec(SPEC_ADAPTIVE + 1, 0u);
+    std::vector<std::uint32_t> spec(SPEC_LIGHT_CANDIDATES + 1, 0u);
     setTraversalSpec(dev, spec);
     spec[SPEC_HAS_EMITTERS] = dev.features.emitters ? 1u : 0u;
     spec[SPEC_ADAPTIVE] = s.adaptive() ? 1u : 0u;
     spec[SPEC_SAMPLER] = s.sampler;
     spec[SPEC_FEATURES] = dev.features.bits;
     spec[SPEC_MIS] = s.mis;
+    spec[SPEC_LIGHT_CANDIDATES] = (dev.features.bits & kFeatureLightTree) != 0u ? s.lightCandidateCount() : 1u;
     return spec;
 }
 

@@ -67,6 +67,11 @@ void setDeviceBudget(const RenderCommand& cmd, const vk::Context* ctx, SceneRequ
     };
 }
 
+// The settings a state of this render records (stateSettings).
+nlohmann::ordered_json settingsOf(const RenderCommand& cmd, const Loaded& l) {
+    return stateSettings(cmd.settings, l.host.camera, (l.host.gpu.features.bits & gpu::kFeatureLightTree) != 0u);
+}
+
 // Load, build, pack and upload `cmd.scene`; `shared` is the device, created
 // on first use (after the scene loaded; the loader may read its memory
 // before: setDeviceBudget). A --resume state (`resumed`) is checked against
@@ -80,7 +85,7 @@ Loaded load(const RenderCommand& cmd, std::unique_ptr<vk::Context>& shared, cons
     if (resumed) {
         StateInfo here;
         here.sceneHash = l.sceneHash;
-        here.settings = stateSettings(cmd.settings, l.host.camera);
+        here.settings = settingsOf(cmd, l);
         here.batch = cmd.tuning.maxBatch;
         checkResumable(cmd, *resumed, here);
     }
@@ -115,7 +120,7 @@ StateInfo stateInfo(const RenderCommand& cmd, const vk::Context& ctx, const Load
     StateInfo in;
     in.scene = cmd.scene;
     in.sceneHash = l.sceneHash;
-    in.settings = stateSettings(cmd.settings, l.host.camera);
+    in.settings = settingsOf(cmd, l);
     in.implementation = stateImplementation(ctx.info.name, ctx.info.driver, cmd.settings);
     in.spp = cmd.settings.spp;
     in.shard = cmd.shard;

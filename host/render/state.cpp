@@ -98,7 +98,7 @@ std::string sceneContentHash(const GpuScene& g, const Camera& camera) {
     return h.hex();
 }
 
-nlohmann::ordered_json stateSettings(const RenderSettings& s, const Camera& camera) {
+nlohmann::ordered_json stateSettings(const RenderSettings& s, const Camera& camera, bool lightTree) {
     nlohmann::ordered_json j;
     j["width"] = s.width;
     j["height"] = s.height;
@@ -110,6 +110,7 @@ nlohmann::ordered_json stateSettings(const RenderSettings& s, const Camera& came
     j["filter"] = filterName(s.filter.kind);
     j["filter-radius"] = s.filter.radius;
     j["mis"] = misName(s.mis);
+    if (lightTree) j["light-candidates"] = s.lightCandidateCount();  // scenes without the tree keep their header
     j["aov"] = s.aov;
     if (s.adaptive()) {  // a state without them renders every pixel to the cap
         j["noise-threshold"] = s.noiseThreshold;

@@ -54,7 +54,9 @@ std::string sceneContentHash(const GpuScene& scene, const Camera& camera);
 // their flags' names, so that a difference reads as the flag). `spp`
 // only for the samplers whose pattern it sizes (SamplerInfo::prefixesAreSamplings
 // false): for the others a state can be resumed to more samples.
-nlohmann::ordered_json stateSettings(const RenderSettings& s, const Camera& camera);
+// `lightTree`: the scene's lights are chosen by the light tree (then
+// --light-candidates is one of them).
+nlohmann::ordered_json stateSettings(const RenderSettings& s, const Camera& camera, bool lightTree);
 nlohmann::ordered_json stateImplementation(const std::string& device, const std::string& driver,
                                            const RenderSettings& s);
 

@@ -44,6 +44,12 @@ struct RenderSettings {
     IntegratorKind integrator = IntegratorKind::Megakernel;
     // --light-sampler: the light tree or the alias table alone (pack/light_tree.h).
     LightSampler lightSampler = LightSampler::Auto;
+    // --light-candidates: with the light tree, each light sample is one of
+    // this many descents, resampled (SPEC_LIGHT_CANDIDATES, lib/lights.glsl);
+    // 0: not given, kLightCandidates.
+    std::uint32_t lightCandidates = 0;
+    static constexpr std::uint32_t kLightCandidates = 2;
+    std::uint32_t lightCandidateCount() const { return lightCandidates ? lightCandidates : kLightCandidates; }
     // --texture-lod: textures read at the level of each lookup's ray-cone
     // footprint (mip chains, kFeatureTextureLod), by either integrator.
     bool textureLod = true;

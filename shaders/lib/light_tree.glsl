@@ -80,10 +80,13 @@ float lightFirstChildProb(float ia, float ib) { return ia / (ia + ib); }
 // One light for p and n: its emitter index and probability `pmf` (of the
 // tree alone), kNoLight with pmf 0 where no light can reach p. `u` is
 // rescaled at each choice. A tree of one light always gives it (pmf 1).
-uint sampleLightTree(vec3 p, vec3 n, float u, out float pmf) {
+// `leafImportance`: the chosen leaf's lightNodeImportance (resampling's
+// target, lib/lights.glsl).
+uint sampleLightTree(vec3 p, vec3 n, float u, out float pmf, out float leafImportance) {
     pmf = 1.0;
     uint i = 0u;
     LightNode nd = lightNodeAt(0u);
+    leafImportance = lightNodeIsLeaf(nd) ? lightNodeImportance(nd, p, n) : 0.0;
     while (!lightNodeIsLeaf(nd)) {
         LightNode a = lightNodeAt(i + 1u), b = lightNodeAt(lightNodeIndex(nd));
         float ia = lightNodeImportance(a, p, n), ib = lightNodeImportance(b, p, n);
@@ -97,11 +100,13 @@ uint sampleLightTree(vec3 p, vec3 n, float u, out float pmf) {
             pmf *= pa;
             i = i + 1u;
             nd = a;
+            leafImportance = ia;
         } else {
             u = min((u - pa) / (1.0 - pa), 0.99999994);
             pmf *= 1.0 - pa;
             i = lightNodeIndex(nd);
             nd = b;
+            leafImportance = ib;
         }
     }
     return lightNodeIndex(nd);

@@ -31,7 +31,12 @@ struct LightSample {
     vec3 target;    // shadow ray end (dist < kLightFar): the triangle point moved off
                     // the emitter towards p (spawnOriginOnEmitter), or the light position
     bool isDelta;   // point, spot, directional: BSDF sampling cannot find them, no MIS
+    float scale;    // with resampled light candidates, the factor on f Li / pdf (1 without)
 };
+
+// Light tree descents a light sample resamples (SPEC_LIGHT_CANDIDATES,
+// --light-candidates; 1: the tree's choice as it is).
+layout(constant_id = SPEC_LIGHT_CANDIDATES) const uint kLightCandidates = 1u;
 
 // u.x picks the alias slot; its leftover fraction decides slot-or-alias and
 // is then rescaled to [0,1) again (`rest`) for use as the sample's first
@@ -123,7 +128,7 @@ float lightPdfEnvironment(vec3 dir) {
 }
 
 LightSample noLight(vec3 p) {
-    return LightSample(vec3(0.0, 0.0, 1.0), kLightFar, vec3(0.0), 0.0, p, false);
+    return LightSample(vec3(0.0, 0.0, 1.0), kLightFar, vec3(0.0), 0.0, p, false, 1.0);
 }
 
 // A point on the triangle, the triangle chosen with probability `pmf`: by
@@ -232,13 +237,43 @@ LightSample sampleLight(vec3 p, vec3 n, vec2 u, float uTree) {
         if (hasFeature(kFeatureEnvironment) && e.kind == kLightEnvironment) return sampleEnvironmentLight(e, p, u2);
         if (hasFeature(kFeaturePunctual) && e.kind == kLightDirectional) return samplePunctualLight(e, e.pmf, p);
     }
-    float pmf;
-    uint light = sampleLightTree(p, n, uTree, pmf);
+    float pmf, g;
+    uint light = sampleLightTree(p, n, uTree, pmf, g);
+    float scale = 1.0;
+    if (kLightCandidates > 1u) {
+        // Resampled importance sampling (Talbot et al. 2005): candidates
+        // from kLightCandidates descents at numbers uTree + m / count (each
+        // uniform, the set stratified), one kept with probability in
+        // proportion to w = its leaf's importance g over its probability,
+        // and weighted by the mean w over its own: f Li / pdf x pmf mean(w)
+        // / g. The target is g times the point's density on the light, so a
+        // candidate needs no point; it covers every light that can reach p
+        // (g is a bound), which keeps the estimate unbiased, and MIS keeps
+        // the tree's pdf on both sides (weights that sum to one).
+        float wSum = light != kNoLight && g > 0.0 ? g / pmf : 0.0;
+        if (wSum == 0.0) light = kNoLight;
+        uvec4 h = pcg4d(uvec4(floatBitsToUint(uTree), floatBitsToUint(u.x), floatBitsToUint(u.y), floatBitsToUint(p.x)));
+        for (uint m = 1u; m < kLightCandidates; ++m) {
+            float pm, gm;
+            uint lm = sampleLightTree(p, n, min(fract(uTree + float(m) / float(kLightCandidates)), 0.99999994), pm, gm);
+            float w = lm != kNoLight && gm > 0.0 ? gm / pm : 0.0;
+            wSum += w;
+            if (w > 0.0 && uintToUnit(pcg4d(h + uvec4(m)).x) * wSum < w) {
+                light = lm;
+                pmf = pm;
+                g = gm;
+            }
+        }
+        if (light != kNoLight) scale = pmf * (wSum / float(kLightCandidates)) / g;
+    }
     if (light == kNoLight) return noLight(p);
     Emitter e = emitterAt(light);
     pmf *= frame.scene.y;
-    if (hasFeature(kFeaturePunctual) && e.kind != kLightTriangle) return samplePunctualLight(e, pmf, p);
-    return sampleTriangleLight(e, pmf, p, u2);
+    LightSample ls;
+    if (hasFeature(kFeaturePunctual) && e.kind != kLightTriangle) ls = samplePunctualLight(e, pmf, p);
+    else ls = sampleTriangleLight(e, pmf, p, u2);
+    ls.scale = scale;
+    return ls;
 }
 #else
 // One light sample for shading point p from one 2D pair u.

@@ -193,7 +193,11 @@ PathNext pathShadeMedium(inout PathVertex v, inout Sampler smp, vec3 dir, vec3 p
             o.shadowMedium = true;
             o.shadowSigma = mat.attenuation;
             float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, phase);
+#ifdef STRATA_LIGHT_TREE
+            o.contrib = v.beta * phase * PATH_SPECTRAL(ls.Li) * (w / ls.pdf * ls.scale);
+#else
             o.contrib = v.beta * phase * PATH_SPECTRAL(ls.Li) * (w / ls.pdf);
+#endif
         }
 #else
         // A light at infinity is behind the medium's boundary.
@@ -473,7 +477,11 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
                     o.shadowOpen = open;
                     o.shadow = TraceRay(from, 0.0, shadowDir, shadowMax);
                     float w = ls.isDelta || kMis == kMisLight ? 1.0 : powerHeuristic(ls.pdf, bsdfPdf);
+#ifdef STRATA_LIGHT_TREE
+                    o.contrib = v.beta * PATH_SPECTRAL(f) * PATH_SPECTRAL(ls.Li) * (w / ls.pdf * ls.scale);
+#else
                     o.contrib = v.beta * PATH_SPECTRAL(f) * PATH_SPECTRAL(ls.Li) * (w / ls.pdf);
+#endif
                 }
             }
         }

@@ -80,6 +80,8 @@ STRATA_BINDING(SPEC_WORK_QUEUE, 8);       // 1 (CPU devices): trace.comp's subgr
 STRATA_BINDING(SPEC_WAVE_STAGE, 9);       // wavefront.comp: kStage* (types.h), one pipeline each
 STRATA_BINDING(SPEC_ADAPTIVE, 10);        // 1: adaptive sampling; converged 8x8 blocks skipped (lib/film.glsl)
                                           // BINDING_ACTIVE_BLOCKS marks converged
+STRATA_BINDING(SPEC_LIGHT_CANDIDATES, 11);  // with the light tree: descents a light sample resamples
+                                            // (lib/lights.glsl; 1 otherwise)
 
 #ifdef __cplusplus
 }  // namespace strata::gpu
