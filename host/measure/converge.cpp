@@ -177,13 +177,20 @@ std::vector<ConvergeReport> measureConvergence(const ConvergeCommand& cmd) {
             }
             ++level;
         };
+        // The first render dispatches once before its timed loop (measured
+        // apart, cleared: the same image): lavapipe compiles a pipeline's
+        // code on its first dispatch, which a cold shader cache made part of
+        // the first seed's device seconds.
+        RenderTuning tuning;
+        tuning.warmUp = k == 0;
         if (prefixes) {
-            render(ctx, dev, camera, s, {}, Checkpoints{cmd.spp, measure});
+            render(ctx, dev, camera, s, tuning, Checkpoints{cmd.spp, measure});
         } else {
             for (std::uint32_t spp : cmd.spp) {
                 RenderSettings one = s;
                 one.spp = spp;
-                measure(render(ctx, dev, camera, one));
+                measure(render(ctx, dev, camera, one, tuning));
+                tuning.warmUp = false;
             }
         }
         if (!cmd.quiet) std::fprintf(stderr, "strata: converge: seed %u of %u done\n", k + 1, cmd.seeds);
