@@ -14,6 +14,8 @@
 #include <numbers>
 #include <random>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "measure/sample_dump.h"
@@ -436,7 +438,8 @@ TEST_CASE("resampled tree candidates among point, spot and triangle lights, afte
                           {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
     g["scenes"][0]["nodes"].push_back(first);
     g["scenes"][0]["nodes"].push_back(first + 1);
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "strata-test-room-punctual.gltf";
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("strata-test-room-punctual-" + std::to_string(::getpid()) + ".gltf");
     std::ofstream(file) << g.dump();
 
     RenderSettings s;
