@@ -43,7 +43,8 @@ nlohmann::json statsJson(const StatsInput& in) {
                            {"max_depth", in.gpu->lightTreeDepth},
                            {"build_ms", in.gpu->lightTreeMs},
                            {"tree_probability", in.gpu->lightTreeProb},
-                           {"clusters", in.gpu->lightClusters}};
+                           {"clusters", in.gpu->lightClusters},
+                           {"candidates", in.settings ? in.settings->lightCandidateCount() : 1u}};
     if (!in.gpu->images.empty()) {
         nlohmann::json list = nlohmann::json::array();
         std::uint64_t bytes = 0;
@@ -132,9 +133,10 @@ std::string statsText(const nlohmann::json& j) {
         const auto& t = j["light_tree"];
         std::snprintf(line, sizeof line,
                       "lights     light tree of %llu nodes (%llu clusters), max depth %u, build %.1f ms; chosen "
-                      "through it with probability %.4g\n",
+                      "through it with probability %.4g, %u candidates a light sample\n",
                       t["nodes"].get<unsigned long long>(), t["clusters"].get<unsigned long long>(),
-                      t["max_depth"].get<unsigned>(), t["build_ms"].get<double>(), t["tree_probability"].get<double>());
+                      t["max_depth"].get<unsigned>(), t["build_ms"].get<double>(), t["tree_probability"].get<double>(),
+                      t.value("candidates", 1u));
         o << line;
     }
     if (j.contains("textures")) o << "textures   " << texturesText(j["textures"]) << "\n";
