@@ -2,8 +2,9 @@
 // (every bounded light one leaf reached by its trail, nodes bounding their
 // lights, depth within the trail's 32 bits), its sampling on the device
 // against its own probabilities (chi-square at random shading points; the
-// probabilities sum to 1), and renders with the tree agreeing with renders
-// choosing by power (per-pixel Z-test).
+// probabilities sum to 1), and renders with the tree, its light samples
+// resampled from several descents (--light-candidates), agreeing with
+// renders choosing by power (per-pixel Z-test).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -390,7 +391,7 @@ TEST_CASE("the many-light room renders the same image with the light tree, its c
     CHECK((power.gpu.features.bits & gpu::kFeatureLightTree) == 0u);
     const auto refMean = power.result.film.mean(), refVar = power.result.film.varianceOfMean();
     s.lightSampler = LightSampler::Tree;
-    double previous = 0.0;  // summed variance of the mean
+    double previous = 0.0;  // the last summed relative variance of the mean
     for (const std::uint32_t candidates : {1u, 0u, 3u}) {  // 0: the default, 2
         CAPTURE(candidates);
         s.lightCandidates = candidates;

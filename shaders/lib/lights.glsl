@@ -250,13 +250,13 @@ LightSample sampleLight(vec3 p, vec3 n, vec2 u, float uTree) {
         // candidate needs no point; it covers every light that can reach p
         // (g is a bound), which keeps the estimate unbiased, and MIS keeps
         // the tree's pdf on both sides (weights that sum to one).
-        float wSum = light != kNoLight && g > 0.0 ? g / pmf : 0.0;
+        float wSum = light != kNoLight && g > 0.0 && pmf > 0.0 ? g / pmf : 0.0;
         if (wSum == 0.0) light = kNoLight;
         uvec4 h = pcg4d(uvec4(floatBitsToUint(uTree), floatBitsToUint(u.x), floatBitsToUint(u.y), floatBitsToUint(p.x)));
         for (uint m = 1u; m < kLightCandidates; ++m) {
             float pm, gm;
             uint lm = sampleLightTree(p, n, min(fract(uTree + float(m) / float(kLightCandidates)), 0.99999994), pm, gm);
-            float w = lm != kNoLight && gm > 0.0 ? gm / pm : 0.0;
+            float w = lm != kNoLight && gm > 0.0 && pm > 0.0 ? gm / pm : 0.0;
             wSum += w;
             if (w > 0.0 && uintToUnit(pcg4d(h + uvec4(m)).x) * wSum < w) {
                 light = lm;
