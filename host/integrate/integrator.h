@@ -30,7 +30,7 @@ public:
     // buffer: recorded into `cmd` (returns 0), or submitted and waited for
     // on its own (returns the device seconds of those submissions).
     virtual double addSample(VkCommandBuffer cmd, const gpu::DispatchParams& p) = 0;
-    // The most samples one addSample may take (p.sampleCount; 1: it reads p.sampleIndex alone).
+    // The most samples one addSample may take (p.sampleCount), at least 1 (1: it reads p.sampleIndex alone).
     virtual std::uint32_t samplesPerDispatch() const { return 1; }
 
     // Rays traced since the last resetCounts; `device` is what the kernels

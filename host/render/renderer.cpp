@@ -292,7 +292,7 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
         const auto t0 = Clock::now();
         VkCommandBuffer cmd = submit.begin();
         timer.begin(cmd);
-        const std::uint32_t perDispatch = std::max(1u, integrator->samplesPerDispatch());
+        const std::uint32_t perDispatch = integrator->samplesPerDispatch();  // at least 1
         for (std::uint32_t k = 0; k < batch; k += perDispatch) {
             for (std::size_t i = split ? tileNext : 0; i < tileEnd; ++i) {
                 DispatchParams p{};
