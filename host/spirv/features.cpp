@@ -40,7 +40,7 @@ const Axis kAxes[] = {
     {"layers", "STRATA_LAYERS", kShading, 0, 0,
      [](const VariantInputs& in) { return (in.features & gpu::kFeaturesLayers) != 0u; },
      "a material with clearcoat, sheen, specular colour or iridescence (`kFeaturesLayers`)",
-     "the layered BSDF's code (lib/bsdf.glsl, lib/sheen.glsl): pipeline creation as without layers"},
+     "the layered BSDF's code (lib/bsdf.glsl, lib/bsdf_layers.glsl, lib/sheen.glsl): pipeline creation as without layers"},
     {"iridescence", "STRATA_IRIDESCENCE", kShading, kLayers, 0,
      [](const VariantInputs& in) { return (in.features & gpu::kFeatureIridescence) != 0u; },
      "a KHR_materials_iridescence material (`kFeatureIridescence`)",
