@@ -70,8 +70,8 @@ TEST_CASE("validator corpus: a texture without a source reads as absent") {
 
 TEST_CASE("validator corpus: an image no texture uses may be undecodable") {
     loadChecked("unused-undecodable-image.gltf",
-                "1 image(s) not decoded, left unused (first: image 0: cannot decode 3 bytes: corrupt, too large, or "
-                "not a PNG/JPEG that stb_image reads)");
+                "1 image(s) not decoded, left unused (first: image 0: cannot decode 3 bytes: not a PNG or JPEG (the "
+                "image formats of glTF 2.0), nor a WebP or AVIF image)");
 }
 
 TEST_CASE("validator corpus: KHR_animation_pointer moves a node through its pointer, other targets are ignored") {

@@ -7,6 +7,9 @@
 // material uses the texture.
 #include <doctest/doctest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "cli_util.h"
@@ -94,6 +97,33 @@ void checkFormatFiles(const std::string& dir, const std::string& name, const std
 }
 
 }  // namespace
+
+TEST_CASE("images other than PNG and JPEG (and WebP, AVIF) are refused where used, not handed to stb_image") {
+    // A valid 1 x 1 GIF and PPM, which stb_image would decode, and the image
+    // fuzzer's PNM that tinygltf copied out of bounds: glTF 2.0's images
+    // are PNG and JPEG, so each is one line where a material reads it.
+    const std::string gif("GIF89a\x01\x00\x01\x00\x80\x00\x00\xff\xff\xff\x00\x00\x00,\x00\x00\x00\x00\x01\x00"
+                          "\x01\x00\x00\x02\x02"
+                          "D\x01\x00;",
+                          35);
+    const std::string ppm = "P6\n1 1\n255\n\x10\x20\x30";
+    const std::string fuzzed("P61 \n\n1 \n\n967 967 25\xff\x10\x10\x10", 24);
+    std::ifstream in(dataPath("textures/broken/corrupt-image.gltf"));
+    std::string gltf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string uri = "corrupt.png";
+    REQUIRE(gltf.find(uri) != std::string::npos);
+    gltf.replace(gltf.find(uri), uri.size(), "image.bin");
+    for (const std::string& bytes : {gif, ppm, fuzzed}) {
+        TempDir dir;
+        std::ofstream(dir.path / "image.bin", std::ios::binary) << bytes;
+        const std::string path = (dir.path / "scene.gltf").string();
+        std::ofstream(path) << gltf;
+        CHECK(loadError(path) == path + ": error: material 0 (\"Emitter\") emissiveTexture: texture 0: image 0 "
+                                        "(\"image.bin\"): cannot decode " + std::to_string(bytes.size()) +
+                                        " bytes: not a PNG or JPEG (the image formats of glTF 2.0), nor a WebP or AVIF "
+                                        "image");
+    }
+}
 
 #ifdef STRATA_WEBP_DIR
 TEST_CASE("EXT_texture_webp: the WebP source through libwebp, else the fallback image") {

@@ -178,6 +178,16 @@ bool isKtx2(const unsigned char* bytes, int size) {
     return size >= 12 && std::memcmp(bytes, kId, sizeof kId) == 0;
 }
 
+// PNG and JPEG, glTF 2.0's own image formats, by their signatures: the
+// only files handed to stb_image, whose other readers (GIF, PSD, PNM, HDR,
+// PIC, TGA, BMP) glTF never needs and which tinygltf copies out of bounds
+// for some PNM files (the image fuzzer's finding).
+bool isPng(const unsigned char* bytes, int size) {
+    static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    return size >= 8 && std::memcmp(bytes, kPng, sizeof kPng) == 0;
+}
+bool isJpeg(const unsigned char* bytes, int size) { return size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF; }
+
 #if STRATA_AVIF
 // An AVIF file: an ISO BMFF 'ftyp' box of major brand avif (or avis).
 bool isAvif(const unsigned char* bytes, int size) {
@@ -234,7 +244,6 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     bool known = false;
     // A PNG's IHDR is read here: stb_image's reader refuses a size over
     // 2^30 bytes with a message of its own, which would hide the limit.
-    static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     const auto bigEndian = [&](int at) {
         return std::uint32_t(bytes[at]) << 24 | std::uint32_t(bytes[at + 1]) << 16 | std::uint32_t(bytes[at + 2]) << 8 |
                std::uint32_t(bytes[at + 3]);
@@ -244,7 +253,7 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
     const avif::Api* avifApi = nullptr;
     std::string avifError;
 #endif
-    if (size >= 24 && std::memcmp(bytes, kPng, 8) == 0 && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
+    if (size >= 24 && isPng(bytes, size) && std::memcmp(bytes + 12, "IHDR", 4) == 0) {
         w = bigEndian(16);
         h = bigEndian(20);
         known = true;
@@ -259,7 +268,7 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
         if ((known = avifApi && avifApi->size(bytes, std::size_t(size), &aw, &ah))) w = aw, h = ah;
     }
 #endif
-    else known = stbi_info_from_memory(bytes, size, &claimedWidth, &claimedHeight, &channels) != 0;
+    else if (isJpeg(bytes, size)) known = stbi_info_from_memory(bytes, size, &claimedWidth, &claimedHeight, &channels) != 0;
     if (known && w == 0 && h == 0) {
         w = std::uint64_t(std::max(claimedWidth, 0));
         h = std::uint64_t(std::max(claimedHeight, 0));
@@ -278,7 +287,7 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
         }
     }
     bool decoded = false;
-    const char* what = "corrupt, too large, or not a PNG/JPEG that stb_image reads";
+    const char* what = "a corrupt or too large PNG/JPEG image (stb_image)";
 #if STRATA_WEBP
     if (isWebp(bytes, size)) {
         decoded = decodeWebp(image, bytes, size);
@@ -291,9 +300,11 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string* err, std:
         what = avifApi ? "a corrupt AVIF image (libavif)" : avifError.c_str();
     } else
 #endif
-    {
+    if (isPng(bytes, size) || isJpeg(bytes, size)) {
         std::string ignored;
         decoded = tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr);
+    } else {
+        what = "not a PNG or JPEG (the image formats of glTF 2.0), nor a WebP or AVIF image";
     }
     if (decoded) return true;
     // glTF 2.0 lets a texture fall back from an image strata cannot read
