@@ -30,4 +30,5 @@ struct Api {
 
 }  // namespace strata::avif
 
-extern "C" const strata::avif::Api* strata_avif_api();
+// The module's one exported symbol: its Api (util/module.h says why as const void*).
+extern "C" const void* strata_avif_api();

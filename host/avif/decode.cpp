@@ -54,4 +54,4 @@ const strata::avif::Api kApi{strata::avif::kApiVersion, &size, &decode};
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) const strata::avif::Api* strata_avif_api() { return &kApi; }
+extern "C" __attribute__((visibility("default"))) const void* strata_avif_api() { return &kApi; }

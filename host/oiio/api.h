@@ -39,5 +39,5 @@ struct Api {
 
 }  // namespace strata::oiio
 
-// The module's one exported symbol.
-extern "C" const strata::oiio::Api* strata_oiio_api();
+// The module's one exported symbol: its Api (util/module.h says why as const void*).
+extern "C" const void* strata_oiio_api();

@@ -87,7 +87,7 @@ std::string drawChart(const std::vector<Panel>& panels, int panelWidth, int heig
 
 }  // namespace strata::oiio
 
-extern "C" const strata::oiio::Api* strata_oiio_api() {
+extern "C" const void* strata_oiio_api() {
     static const strata::oiio::Api api{strata::oiio::kApiVersion, strata::oiio::writeExr, strata::oiio::writePng,
                                        strata::oiio::read, strata::oiio::drawChart};
     return &api;

@@ -10,7 +10,9 @@ struct ModuleSpec {
     const char* env;       // $ENV names the module to load (only that one) when set
     const char* built;     // where CMake built it; "" when this build has none
     const char* fileName;  // else this file beside the running executable
-    const char* symbol;    // its one exported function, returning its Api
+    const char* symbol;    // its one exported function, returning its Api as const void* (the
+                           // type it is called through: calling through another type is
+                           // undefined, and clang's -fsanitize=function reports it)
     int version;           // the Api's first member (an int) must be this
     const char* missing;   // the error when the build has none
     const char* what;      // "image module", ...: the error when a file is another build's

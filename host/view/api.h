@@ -98,5 +98,5 @@ struct Api {
 
 }  // namespace strata::view
 
-// The module's one exported symbol.
-extern "C" const strata::view::Api* strata_view_api();
+// The module's one exported symbol: its Api (util/module.h says why as const void*).
+extern "C" const void* strata_view_api();

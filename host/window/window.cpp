@@ -571,6 +571,6 @@ const Api kApi{kApiVersion, openWindow, instanceExtensions, createSurface, attac
 }  // namespace
 }  // namespace strata::view
 
-extern "C" __attribute__((visibility("default"))) const strata::view::Api* strata_view_api() {
+extern "C" __attribute__((visibility("default"))) const void* strata_view_api() {
     return &strata::view::kApi;
 }
