@@ -6,7 +6,7 @@
 // (emissive triangles, KHR_lights_punctual, the environment; lib/lights.glsl)
 // combined with BSDF sampling by the power heuristic (Veach 1997; delta
 // lights and delta lobes take no MIS; SPEC_MIS can keep one technique only);
-// Russian roulette after depth 3 (lib/path.glsl pathSurvives). maxDepth
+// Russian roulette after depth 4 (lib/path.glsl pathSurvives). maxDepth
 // counts scattering events (pbrt's convention): 0 shows emitters and the
 // environment seen directly, 1 is direct lighting.
 #extension GL_GOOGLE_include_directive : require
