@@ -4,7 +4,7 @@
 // source pixels exactly; without the decoder the fallback image and the
 // required-extension error), and KHR_texture_basisu, which strata
 // cannot decode: the texture's fallback source, or an error only where a
-// material uses the texture.
+// material uses the texture. Other formats (GIF, PNM) never reach stb_image.
 #include <doctest/doctest.h>
 
 #include <filesystem>

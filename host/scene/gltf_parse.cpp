@@ -186,7 +186,9 @@ bool isPng(const unsigned char* bytes, int size) {
     static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     return size >= 8 && std::memcmp(bytes, kPng, sizeof kPng) == 0;
 }
-bool isJpeg(const unsigned char* bytes, int size) { return size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF; }
+bool isJpeg(const unsigned char* bytes, int size) {
+    return size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+}
 
 #if STRATA_AVIF
 // An AVIF file: an ISO BMFF 'ftyp' box of major brand avif (or avis).
