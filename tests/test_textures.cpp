@@ -8,6 +8,7 @@
 // pixel is exactly emissiveFactor x the decoded texture there.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -273,24 +274,36 @@ TEST_CASE("texture: LOD on a receding checker: the same mean, at least 10x less 
 namespace {
 
 // Texture LOD's level, measured: a scene whose texture is a checker of
-// single texels (1/32 world units), 32x32 pixels at 16 spp. Where the
-// footprint asks for a level lambda in (0, 1) a lookup reads level 0 with
-// probability 1 - lambda and level 1, the checker's uniform grey, otherwise:
-// so a pixel's variance a sample is 1 - lambda times the variance without
-// LOD. `analytic(direction)` gives a camera ray's level: log2 of the pixel
-// angle x the cone's length / texel (the footprint's minor axis: no 1/|cos|)
-// less half a level (kLodBias), NaN off the measured part.
+// single texels (1/32 world units), 32x32 pixels, samples [first, first +
+// 16) of the pixels. Where sample s asks for a level lambda_s in (0, 1) a
+// lookup reads level 0 with probability 1 - lambda_s and level 1, the
+// checker's uniform grey, otherwise: so a pixel's variance a sample is 1 -
+// the mean of clamp(lambda_s, 0, 1) times the variance without LOD.
+// `analytic(direction)` gives a camera ray's footprint level: log2 of the
+// pixel angle x the cone's length / texel (the footprint's minor axis: no
+// 1/|cos|), NaN off the measured part; lambda_s adds sample s's bias.
 // Returns the level measured, 1 - sum(var on) / sum(var off), and the mean
-// analytic one over the pixels whose analytic level is in [0.15, 0.85].
+// expected one over the pixels whose expected level is in [0.15, 0.85].
 struct MeasuredLevel {
     double measured = 0.0, analytic = 0.0;
     std::size_t pixels = 0;
 };
 
+// Sample s's level bias, as lib/material.glsl lodBiasForSample gives it.
+double lodBiasForSample(std::uint32_t s) {
+    return std::max(double(gpu::kLodBiasMin),
+                    double(gpu::kLodBiasFirst) - double(gpu::kLodBiasPerDoubling) * std::log2(double(s) + 1.0));
+}
+
+constexpr std::uint32_t kLevelSamples = 16;
+
 MeasuredLevel measureLevel(const std::string& file, RenderSettings s, const ViewOptions& view,
-                           const std::function<double(const CameraRays&, double, glm::dvec3)>& analytic) {
+                           const std::function<double(const CameraRays&, double, glm::dvec3)>& analytic,
+                           std::uint32_t first = 0) {
     s.width = s.height = 32;
-    s.spp = 16;
+    s.spp = first + kLevelSamples;
+    SampleRun run;
+    run.begin = first;
     std::vector<double> variance[2];
     Camera camera;
     for (int lod = 0; lod < 2; ++lod) {
@@ -300,9 +313,10 @@ MeasuredLevel measureLevel(const std::string& file, RenderSettings s, const View
         request.camera->view = view;
         HostScene host = prepareScene(request);
         camera = host.camera;
-        const RenderResult r = render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s);
+        const RenderResult r =
+            render(context(), uploadPrepared(context(), request, host.gpu), host.camera, s, {}, {}, run);
         const auto v = r.film.varianceOfMean();
-        for (std::size_t i = 0; i < 32 * 32; ++i) variance[lod].push_back(v[i * 3 + 1] * s.spp);
+        for (std::size_t i = 0; i < 32 * 32; ++i) variance[lod].push_back(v[i * 3 + 1] * kLevelSamples);
     }
     const CameraRays rays(camera, 32, 32);
     const double spread = 2.0 * std::tan(0.5 * double(camera.yfov)) / 32.0;
@@ -310,7 +324,10 @@ MeasuredLevel measureLevel(const std::string& file, RenderSettings s, const View
     double on = 0.0, off = 0.0;
     for (int py = 0; py < 32; ++py)
         for (int px = 0; px < 32; ++px) {
-            const double lambda = analytic(rays, spread, rays.dir(px + 0.5, py + 0.5));
+            const double footprint = analytic(rays, spread, rays.dir(px + 0.5, py + 0.5));
+            double lambda = 0.0;
+            for (std::uint32_t k = first; k < first + kLevelSamples; ++k)
+                lambda += std::clamp(footprint + lodBiasForSample(k), 0.0, 1.0) / kLevelSamples;
             if (!(lambda >= 0.15 && lambda <= 0.85)) continue;
             const std::size_t i = std::size_t(py) * 32 + std::size_t(px);
             on += variance[1][i];
@@ -345,13 +362,40 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
         const MeasuredLevel m =
             measureLevel("lod-plane.gltf", s, v, [](const CameraRays& rays, double spread, glm::dvec3 d) {
                 const double t = -rays.origin.z / d.z;  // the plane z = 0
-                return std::log2(spread * t * 32.0) - 0.5;
+                return std::log2(spread * t * 32.0);
             });
         MESSAGE(view.what << ": level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
                           << " pixels)");
         REQUIRE(m.pixels >= 200);
         CHECK(std::abs(m.measured - m.analytic) <= 0.25);
     }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// The level's bias follows the sample index (lodBiasForSample): samples
+// 64-79 read about 1.3 levels sharper than the footprint. From 9.4 away the
+// footprint is about 1.75 levels: those samples read a level near 0.45,
+// where a fixed bias of half a level (this test's failure when the index
+// is ignored) would read level 1 and above, the checker's grey (1).
+TEST_CASE("texture: LOD's level bias follows the sample index: later samples read sharper levels") {
+    RenderSettings s;
+    s.maxDepth = 0;
+    s.seed = 3;
+    ViewOptions v;
+    v.lookFrom = glm::vec3(0.0f, 0.0f, 9.4f);
+    v.lookAt = glm::vec3(0.0f);
+    v.fovDegrees = 20.0f;
+    const MeasuredLevel m = measureLevel(
+        "lod-plane.gltf", s, v,
+        [](const CameraRays& rays, double spread, glm::dvec3 d) {
+            const double t = -rays.origin.z / d.z;
+            return std::log2(spread * t * 32.0);
+        },
+        64);
+    MESSAGE("samples 64-79, 9.4 away: level " << m.measured << " measured, " << m.analytic << " analytic ("
+                                               << m.pixels << " pixels)");
+    REQUIRE(m.pixels >= 200);
+    CHECK(std::abs(m.measured - m.analytic) <= 0.25);
     CHECK(vk::validationMessageCount() == 0);
 }
 
@@ -371,7 +415,7 @@ TEST_CASE("texture: LOD with a tent filter of radius 1 reads the level of the fi
     v.fovDegrees = 20.0f;
     const MeasuredLevel m = measureLevel("lod-plane.gltf", s, v, [](const CameraRays& rays, double spread, glm::dvec3 d) {
         const double t = -rays.origin.z / d.z;
-        return std::log2(2.0 * spread * t * 32.0) - 0.5;
+        return std::log2(2.0 * spread * t * 32.0);
     });
     MESSAGE("tent, 2.9 away: level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
                                      << " pixels)");
@@ -394,7 +438,7 @@ TEST_CASE("texture: LOD after a mirror bounce reads the level of the cone's whol
         if (std::abs(p.x) > 0.9 || std::abs(p.y) > 0.6) return std::nan("");  // off the mirror or near its edges
         const glm::dvec3 r = d - 2.0 * glm::dot(d, n) * n;
         const double t2 = -p.z / r.z;
-        return std::log2(spread * (t1 + t2) * 32.0) - 0.5;
+        return std::log2(spread * (t1 + t2) * 32.0);
     });
     MESSAGE("after the mirror: level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
                                        << " pixels)");
@@ -407,7 +451,7 @@ TEST_CASE("texture: LOD after a mirror bounce reads the level of the cone's whol
 // mirror sphere of radius 1. The cone reaches the sphere w1 = spread x t1
 // wide and leaves it spreading by spread + 2 w1 / R (the sphere's
 // curvature, from its vertex normals); the level is that cone's width at
-// the plane (texels of 0.2), half a level sharp. Without the curvature
+// the plane (texels of 0.2). Without the curvature
 // term the level reads about two lower.
 TEST_CASE("texture: LOD after a curved mirror widens the cone by the surface's curvature") {
     RenderSettings s;
@@ -426,7 +470,7 @@ TEST_CASE("texture: LOD after a curved mirror widens the cone by the surface's c
         const glm::dvec3 q = p + t2 * r;
         if (!(t2 > 0.0) || std::abs(q.x) > 12.0 || std::abs(q.y) > 12.0) return std::nan("");
         const double w1 = spread * t1, w2 = w1 + (spread + 2.0 * w1) * t2;
-        return std::log2(w2 / 0.2) - 0.5;
+        return std::log2(w2 / 0.2);
     });
     MESSAGE("after the sphere: level " << m.measured << " measured, " << m.analytic << " analytic (" << m.pixels
                                        << " pixels)");

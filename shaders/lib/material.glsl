@@ -70,19 +70,29 @@ vec4 vertexColorAt(uint triangle, vec2 bary) {
 // Shader and Texture Level of Detail Using Ray Cones", JCGT 2021). gTexLod:
 // per texture-coordinate set, log2 of the cone's width at the hit times the
 // uv units per world unit there (sqrt of the triangle's uv area over its
-// area), plus kLodBias; kNoLod while nothing is being shaded (the first
-// level). The width is the footprint's minor axis: at a grazing angle the
-// footprint stretches by 1/|cos| along the view, and the pixel's own samples
-// integrate that axis, so an isotropic level at the major axis only blurs
-// (docs/experiments/textures.md). A lookup's level is that plus log2 of the
-// texture's texels per uv unit; a fractional level reads one of the two
-// levels around it at random (stochastic trilinear: the expectation of the
-// trilinear blend).
+// area), plus the sample's bias (lodBiasForSample); kNoLod while nothing is
+// being shaded (the first level). The width is the footprint's minor axis:
+// at a grazing angle the footprint stretches by 1/|cos| along the view, and
+// the pixel's own samples integrate that axis, so an isotropic level at the
+// major axis only blurs (docs/experiments/textures.md). A lookup's level is
+// that plus log2 of the texture's texels per uv unit; a fractional level
+// reads one of the two levels around it at random (stochastic trilinear: the
+// expectation of the trilinear blend).
 const float kNoLod = -1.0e30;
-// Half a level sharper than the footprint: a level's box and bilinear
-// lookup span about two of its texels, and the pixel filter already
-// averages over the footprint (measured: docs/experiments/textures.md).
-const float kLodBias = -0.5;
+
+// The level bias of the pixel's sample `s` (shared/types.h): a quarter level
+// blurrier than the footprint for the first sample, a quarter level sharper
+// each time the sample index doubles, down to two and a half levels sharper
+// (from sample 2,047 on). A few samples cannot average a texture's detail
+// and gain from a wide filter; many can, and the blur would then be most
+// of their error. The pixel's mean is over samples of decreasing blur, so
+// at any spp it weighs noise against blur about as the best fixed bias for
+// that spp would (measured: docs/experiments/textures.md, "The level bias
+// by sample index"). A function of the sample index alone: shards, resume
+// and merge keep their bits.
+float lodBiasForSample(uint s) {
+    return max(kLodBiasMin, kLodBiasFirst - kLodBiasPerDoubling * log2(float(s) + 1.0));
+}
 vec2 gTexLod = vec2(kNoLod);
 uint gTexLodHash = 0u;
 
@@ -99,13 +109,14 @@ float triCurvature(TriVerts tv, TriShading sh, vec3 n) {
 }
 
 // The hit at `t`, barycentrics `bary`, on `triangle` (world edges e1, e2),
-// reached by a cone `width` wide (negative past a focus: its size is |width|).
-void texLodAt(uint triangle, vec3 e1, vec3 e2, float width, float t, vec2 bary) {
+// reached by a cone `width` wide (negative past a focus: its size is |width|),
+// for the pixel's sample `sampleIndex`.
+void texLodAt(uint triangle, vec3 e1, vec3 e2, float width, float t, vec2 bary, uint sampleIndex) {
     float area2 = length(cross(e1, e2));
     TriTexcoords tc = sceneTexcoords(triangle);
     vec4 d1 = tc.uv1 - tc.uv0, d2 = tc.uv2 - tc.uv0;
     vec2 uvArea2 = abs(vec2(d1.x * d2.y - d1.y * d2.x, d1.z * d2.w - d1.w * d2.z));
-    gTexLod = vec2(log2(abs(width)) + kLodBias) + 0.5 * log2(uvArea2 / area2);
+    gTexLod = vec2(log2(abs(width)) + lodBiasForSample(sampleIndex)) + 0.5 * log2(uvArea2 / area2);
     gTexLodHash = hash4(floatBitsToUint(t), triangle, floatBitsToUint(bary.x), floatBitsToUint(bary.y));
 }
 

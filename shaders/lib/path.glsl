@@ -270,7 +270,7 @@ PathNext pathShadeHit(inout PathVertex v, inout Sampler smp, vec3 dir, TraceHit 
     // The ray cone reaches the hit; its footprint sets the texture levels
     // until the surface point is read.
     gConeWidth += gConeSpread * hit.t;
-    texLodAt(hit.triangle, e1, e2, gConeWidth, hit.t, vec2(hit.u, hit.v));
+    texLodAt(hit.triangle, e1, e2, gConeWidth, hit.t, vec2(hit.u, hit.v), smp.sampleIndex);
 #endif
 #ifdef STRATA_AOV
     if (depth == 0u) gAov.depth = hit.t;

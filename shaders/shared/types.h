@@ -306,6 +306,12 @@ STRATA_CONST(uint, kTexSrgb, 128u);      // rgb is sRGB-encoded (baseColor, emis
 // after the one before, sides halved rounding up (ceil) down to 1x1; 0 or 1:
 // the image alone.
 STRATA_CONST(uint, kTexLevelsShift, 16u);
+// Texture LOD's level bias for sample index s (lib/material.glsl
+// lodBiasForSample): max(kLodBiasMin, kLodBiasFirst - kLodBiasPerDoubling x
+// log2(s + 1)) levels added to the footprint's.
+STRATA_CONST(float, kLodBiasFirst, 0.25f);
+STRATA_CONST(float, kLodBiasPerDoubling, 0.25f);
+STRATA_CONST(float, kLodBiasMin, -2.5f);
 
 // One texture reference of a material slot: the image's place in the packed
 // texel buffer (BINDING_TEXELS, R32UI words, rows top to bottom; an 8-bit
