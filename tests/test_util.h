@@ -88,6 +88,18 @@ inline Rendered renderFile(const std::string& relPath, const RenderSettings& set
     return r;
 }
 
+// Settings whose box filter of radius 1e-5 pixels puts every sample at its
+// pixel's centre (within 1e-6 of its uv on the scenes' planes).
+inline RenderSettings centreSettings(int size, std::uint32_t spp, std::uint32_t maxDepth, std::uint32_t seed) {
+    RenderSettings s;
+    s.width = s.height = size;
+    s.spp = spp;
+    s.maxDepth = maxDepth;
+    s.seed = seed;
+    s.filter.radius = 1e-5f;
+    return s;
+}
+
 // A scene file lit by a uniform environment of radiance 1 (--env-color 1,1,1).
 // Fresnel reflectance of a dielectric (relative index eta) for unpolarised
 // light at incidence cosine c (Born & Wolf).
