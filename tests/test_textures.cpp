@@ -11,16 +11,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <functional>
-#include <numbers>
 
 #include "pack/textures.h"
 #include "render/report.h"
 #include "measure/tracer.h"
-#include "scene/tangents.h"
-#include "stats/stats.h"
-#include "settings/filter.h"
 #include "test_util.h"
 
 using namespace strata;

@@ -100,7 +100,6 @@ inline RenderSettings centreSettings(int size, std::uint32_t spp, std::uint32_t 
     return s;
 }
 
-// A scene file lit by a uniform environment of radiance 1 (--env-color 1,1,1).
 // Fresnel reflectance of a dielectric (relative index eta) for unpolarised
 // light at incidence cosine c (Born & Wolf).
 inline double fresnelDielectric(double c, double eta) {
