@@ -145,6 +145,24 @@ void checkLevel(const std::string& what, const MeasuredLevel& m, std::size_t min
     CHECK(std::abs(m.measured - m.analytic) <= 0.25);
 }
 
+// The level measured on lod-plane.gltf's checker (the plane z = 0) at max
+// depth 0, seen from `from` looking at its centre through a 20-degree field
+// of view, against the footprint of a cone `pixels` pixels wide there.
+MeasuredLevel measurePlaneLevel(RenderSettings s, glm::vec3 from, double pixels, std::uint32_t first = 0) {
+    s.maxDepth = 0;
+    ViewOptions v;
+    v.lookFrom = from;
+    v.lookAt = glm::vec3(0.0f);
+    v.fovDegrees = 20.0f;
+    return measureLevel(
+        "lod-plane.gltf", s, v,
+        [pixels](const CameraRays& rays, double spread, glm::dvec3 d) {
+            const double t = -rays.origin.z / d.z;
+            return std::log2(pixels * spread * t * 32.0);
+        },
+        first);
+}
+
 }  // namespace
 
 // lod-plane.gltf at max depth 0, seen from 4.5 and 5.9 away and at 40
@@ -158,18 +176,8 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
                              View{{0.0f, -3.0f, 3.6f}, "40 degrees"}}) {
         CAPTURE(view.what);
         RenderSettings s;
-        s.maxDepth = 0;
         s.seed = 9;
-        ViewOptions v;
-        v.lookFrom = view.from;
-        v.lookAt = glm::vec3(0.0f);
-        v.fovDegrees = 20.0f;
-        const MeasuredLevel m =
-            measureLevel("lod-plane.gltf", s, v, [](const CameraRays& rays, double spread, glm::dvec3 d) {
-                const double t = -rays.origin.z / d.z;  // the plane z = 0
-                return std::log2(spread * t * 32.0);
-            });
-        checkLevel(view.what, m);
+        checkLevel(view.what, measurePlaneLevel(s, view.from, 1.0));
     }
     CHECK(vk::validationMessageCount() == 0);
 }
@@ -181,20 +189,8 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
 // is ignored) would read level 1 and above, the checker's grey (1).
 TEST_CASE("texture: LOD's level bias follows the sample index: later samples read sharper levels") {
     RenderSettings s;
-    s.maxDepth = 0;
     s.seed = 3;
-    ViewOptions v;
-    v.lookFrom = glm::vec3(0.0f, 0.0f, 9.4f);
-    v.lookAt = glm::vec3(0.0f);
-    v.fovDegrees = 20.0f;
-    const MeasuredLevel m = measureLevel(
-        "lod-plane.gltf", s, v,
-        [](const CameraRays& rays, double spread, glm::dvec3 d) {
-            const double t = -rays.origin.z / d.z;
-            return std::log2(spread * t * 32.0);
-        },
-        64);
-    checkLevel("samples 64-79, 9.4 away", m);
+    checkLevel("samples 64-79, 9.4 away", measurePlaneLevel(s, glm::vec3(0.0f, 0.0f, 9.4f), 1.0, 64));
     CHECK(vk::validationMessageCount() == 0);
 }
 
@@ -204,19 +200,10 @@ TEST_CASE("texture: LOD's level bias follows the sample index: later samples rea
 // the measured range).
 TEST_CASE("texture: LOD with a tent filter of radius 1 reads the level of the filter's two-pixel footprint") {
     RenderSettings s;
-    s.maxDepth = 0;
     s.seed = 5;
     s.filter = filterByName("tent");
     REQUIRE(s.filter.radius == 1.0f);
-    ViewOptions v;
-    v.lookFrom = glm::vec3(0.0f, 0.0f, 2.9f);
-    v.lookAt = glm::vec3(0.0f);
-    v.fovDegrees = 20.0f;
-    const MeasuredLevel m = measureLevel("lod-plane.gltf", s, v, [](const CameraRays& rays, double spread, glm::dvec3 d) {
-        const double t = -rays.origin.z / d.z;
-        return std::log2(2.0 * spread * t * 32.0);
-    });
-    checkLevel("tent, 2.9 away", m);
+    checkLevel("tent, 2.9 away", measurePlaneLevel(s, glm::vec3(0.0f, 0.0f, 2.9f), 2.0));
     CHECK(vk::validationMessageCount() == 0);
 }
 
