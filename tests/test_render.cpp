@@ -107,23 +107,35 @@ TEST_CASE("the permuted block order gives the image of the row order, bit for bi
 TEST_CASE("the image does not depend on how samples are split into submissions and dispatches") {
     RenderSettings s = small(100, 16, 9);  // 100 = one full fold group of 64 and a partial one
     RenderTuning t;
-    t.submitSeconds = 1e-9;                // one sample per submission
-    t.maxSubmitSeconds = 0.0;
+    t.fixedBatch = 1;                      // one sample per submission
     Rendered a = renderFile("scenes/cornell-box.gltf", s, t);
-    t.submitSeconds = 1e9;                 // as many as a fold group allows: batches of 1, 63, 36
-    Rendered b = renderFile("scenes/cornell-box.gltf", s, t);
-    t.samplesPerDispatch = 3;              // batches of 1, 63, 36: dispatches of 1, 21 x 3, 12 x 3
+    t.fixedBatch = 0;
+    t.submitSeconds = 1e9;                 // as many as a fold group allows: batches of 8 (the
+    Rendered b = renderFile("scenes/cornell-box.gltf", s, t);  // first, 256 pixels), 56, 36
+    t.samplesPerDispatch = 3;              // batches of 3, 61, 36: dispatches of 1, 21 (20 x 3 + 1), 12 x 3
     Rendered c = renderFile("scenes/cornell-box.gltf", s, t);
     CHECK(a.result.submissions == 100);
     CHECK(a.result.dispatches == 100);
     CHECK(b.result.submissions == 3);
-    // 64 samples a dispatch (8 on a CPU device: 1, 7 x 8 + 7, 4 x 8 + 4).
-    CHECK(b.result.dispatches == (context().info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 + 8 + 5 : 3));
+    // 64 samples a dispatch (8 on a CPU device: 8, 7 x 8, 4 x 8 + 4).
+    CHECK(b.result.dispatches == (context().info.vkType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 + 7 + 5 : 3));
     CHECK(c.result.dispatches == 1 + 21 + 12);
     const auto ma = a.result.film.mean(), mb = b.result.film.mean(), mc = c.result.film.mean();
     CHECK(std::memcmp(ma.data(), mb.data(), ma.size() * sizeof(float)) == 0);
     CHECK(std::memcmp(ma.data(), mc.data(), ma.size() * sizeof(float)) == 0);
     CHECK(vk::validationMessageCount() == 0);
+}
+
+TEST_CASE("the first submission takes up to 8 samples of a small image, one of a large one") {
+    CHECK(firstSubmissionSamples(128 * 128, 8) == 8);
+    CHECK(firstSubmissionSamples(256 * 256, 8) == 2);
+    CHECK(firstSubmissionSamples(256 * 256, 64) == 2);
+    CHECK(firstSubmissionSamples(362 * 362, 8) == 1);
+    CHECK(firstSubmissionSamples(1920 * 1080, 64) == 1);
+    CHECK(firstSubmissionSamples(16 * 16, 64) == 8);  // a GPU's 64 a dispatch: still 8
+    CHECK(firstSubmissionSamples(16 * 16, 3) == 3);   // no more than a dispatch takes
+    CHECK(firstSubmissionSamples(16 * 16, 1) == 1);
+    CHECK(firstSubmissionSamples(0, 8) == 8);
 }
 
 TEST_CASE("the four-wide BVH (register or memory stack) and the binary BVH render the same image") {

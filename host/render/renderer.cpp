@@ -30,6 +30,10 @@ using Clock = std::chrono::steady_clock;
 // (docs/experiments/integrators.md, "Samples one after another").
 constexpr double kDispatchSamples = 8.0;
 
+// The pixel samples of a render's first submission (firstSubmissionSamples).
+constexpr double kFirstSubmissionPixelSamples = 131072.0;
+
+
 // DispatchParams::blockStride for a tile: the integer nearest 0.618 times
 // its count of 8x8 blocks that shares no factor with it, so that workgroup w
 // shading block (w * stride) mod blocks visits every block once and any run
@@ -79,6 +83,12 @@ void printProgress(std::uint32_t done, std::uint32_t total, double elapsed, doub
 }
 
 }  // namespace
+
+std::uint32_t firstSubmissionSamples(std::size_t pixels, std::uint32_t samplesPerDispatch) {
+    const double fit = std::floor(kFirstSubmissionPixelSamples / double(std::max<std::size_t>(pixels, 1)));
+    return static_cast<std::uint32_t>(
+        std::clamp(fit, 1.0, std::max(1.0, std::min(kDispatchSamples, double(samplesPerDispatch)))));
+}
 
 void checkImageFits(const vk::Context& ctx, const RenderSettings& s, const SceneLimits& limits) {
     // The sample sums are one device buffer (and one readback buffer).
@@ -204,7 +214,9 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
-    std::uint32_t batch = t.fixedBatch ? t.fixedBatch : 1u;  // samples in the next submission
+    std::uint32_t batch = t.fixedBatch ? t.fixedBatch  // samples in the next submission
+                          : t.splitSamples ? 1u
+                                           : firstSubmissionSamples(pixels, integrator->samplesPerDispatch());
     std::size_t nextCheckpoint = 0;
     // The tiles of a sample, in dispatch order. With t.splitSamples a
     // sample slower than the submission target goes a run of `tileRun`

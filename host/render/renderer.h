@@ -96,6 +96,14 @@ struct RenderResult {
 // with AOVs; one buffer) exceed the device's maxMemoryAllocationSize (or limits'). render
 // checks it after the scene's own limits (a scene that does not fit is named
 // first).
+// The samples of a render's first submission, before any time per sample is
+// known: as many as 2^17 pixel samples allow (128x128: 8), at most 8 and
+// the integrator's samples a dispatch, at least 1 (from about 362x362 on).
+// A dispatch of one sample runs each lane's path alone: on lavapipe its
+// sample costs 1.4x one of eight (docs/experiments/integrators.md, "The
+// first submission"); 2^17 pixel samples are about 0.3 s of many-lights.
+std::uint32_t firstSubmissionSamples(std::size_t pixels, std::uint32_t samplesPerDispatch);
+
 void checkImageFits(const vk::Context& ctx, const RenderSettings& settings, const SceneLimits& limits = {});
 
 // Renders a scene on the device (upload/device_scene.h) through `camera`:
