@@ -111,7 +111,7 @@ TEST_CASE("the image does not depend on how samples are split into submissions a
     Rendered a = renderFile("scenes/cornell-box.gltf", s, t);
     t.fixedBatch = 0;
     t.submitSeconds = 1e9;                 // as many as a fold group allows: batches of 8 (the
-    Rendered b = renderFile("scenes/cornell-box.gltf", s, t);  // first, 256 pixels), 56, 36
+    Rendered b = renderFile("scenes/cornell-box.gltf", s, t);  // first, 576 pixels), 56, 36
     t.samplesPerDispatch = 3;              // batches of 3, 61, 36: dispatches of 1, 21 (20 x 3 + 1), 12 x 3
     Rendered c = renderFile("scenes/cornell-box.gltf", s, t);
     CHECK(a.result.submissions == 100);
@@ -136,6 +136,15 @@ TEST_CASE("the first submission takes up to 8 samples of a small image, one of a
     CHECK(firstSubmissionSamples(16 * 16, 3) == 3);   // no more than a dispatch takes
     CHECK(firstSubmissionSamples(16 * 16, 1) == 1);
     CHECK(firstSubmissionSamples(0, 8) == 8);
+    // In a render: 24x24 pixels take 8 samples first, one where a time
+    // limit must not be passed by more than a sample.
+    RenderSettings s = small(8, 2);
+    RenderTuning t;
+    t.submitSeconds = 1e9;
+    CHECK(renderFile("scenes/cornell-box.gltf", s, t).result.submissions == 1);
+    s.timeLimit = 1e6;
+    CHECK(renderFile("scenes/cornell-box.gltf", s, t).result.submissions == 2);
+    CHECK(vk::validationMessageCount() == 0);
 }
 
 TEST_CASE("the four-wide BVH (register or memory stack) and the binary BVH render the same image") {

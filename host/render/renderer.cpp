@@ -214,9 +214,13 @@ RenderResult render(const vk::Context& ctx, const DeviceScene& dev, const Camera
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const bool showProgress = s.progress && ::isatty(STDERR_FILENO);
-    std::uint32_t batch = t.fixedBatch ? t.fixedBatch  // samples in the next submission
-                          : t.splitSamples ? 1u
-                                           : firstSubmissionSamples(pixels, integrator->samplesPerDispatch());
+    // Samples in the next submission: the first is one sample where the
+    // render splits samples or has a time limit, which it must not pass by
+    // more than a sample of unknown length.
+    std::uint32_t batch = t.fixedBatch ? t.fixedBatch
+                          : t.splitSamples || s.timeLimit > 0.0
+                              ? 1u
+                              : firstSubmissionSamples(pixels, integrator->samplesPerDispatch());
     std::size_t nextCheckpoint = 0;
     // The tiles of a sample, in dispatch order. With t.splitSamples a
     // sample slower than the submission target goes a run of `tileRun`
