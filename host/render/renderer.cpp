@@ -33,7 +33,6 @@ constexpr double kDispatchSamples = 8.0;
 // The pixel samples of a render's first submission (firstSubmissionSamples).
 constexpr double kFirstSubmissionPixelSamples = 131072.0;
 
-
 // DispatchParams::blockStride for a tile: the integer nearest 0.618 times
 // its count of 8x8 blocks that shares no factor with it, so that workgroup w
 // shading block (w * stride) mod blocks visits every block once and any run

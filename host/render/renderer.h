@@ -3,6 +3,7 @@
 // into submissions, float32 batch sums folded into a Film of 128-bit
 // fixed-point sums (image/film.h, toFixed).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -92,10 +93,6 @@ struct RenderResult {
     }
 };
 
-// Throws strata::Error when the image's sample sums (32 bytes a pixel, 112
-// with AOVs; one buffer) exceed the device's maxMemoryAllocationSize (or limits'). render
-// checks it after the scene's own limits (a scene that does not fit is named
-// first).
 // The samples of a render's first submission, before any time per sample is
 // known: as many as 2^17 pixel samples allow (128x128: 8), at most 8 and
 // the integrator's samples a dispatch, at least 1 (from about 362x362 on).
@@ -104,6 +101,10 @@ struct RenderResult {
 // first submission"); 2^17 pixel samples are about 0.3 s of many-lights.
 std::uint32_t firstSubmissionSamples(std::size_t pixels, std::uint32_t samplesPerDispatch);
 
+// Throws strata::Error when the image's sample sums (32 bytes a pixel, 112
+// with AOVs; one buffer) exceed the device's maxMemoryAllocationSize (or limits'). render
+// checks it after the scene's own limits (a scene that does not fit is named
+// first).
 void checkImageFits(const vk::Context& ctx, const RenderSettings& settings, const SceneLimits& limits = {});
 
 // Renders a scene on the device (upload/device_scene.h) through `camera`:
