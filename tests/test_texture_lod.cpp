@@ -85,7 +85,8 @@ struct MeasuredLevel {
     std::size_t pixels = 0;
 };
 
-// Sample s's level bias, as lib/material.glsl lodBiasForSample gives it.
+// Sample s's level bias, as lib/material.glsl lodScale2ForSample takes it
+// (there as exp2(2 x the bias)).
 double lodBiasForSample(std::uint32_t s) {
     return std::max(double(gpu::kLodBiasMin),
                     double(gpu::kLodBiasFirst) - double(gpu::kLodBiasPerDoubling) * std::log2(double(s) + 1.0));
@@ -182,7 +183,7 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
     CHECK(vk::validationMessageCount() == 0);
 }
 
-// The level's bias follows the sample index (lodBiasForSample): samples
+// The level's bias follows the sample index (lodScale2ForSample): samples
 // 64-79 read about 1.3 levels sharper than the footprint. From 9.4 away the
 // footprint is about 1.75 levels: those samples read a level near 0.45,
 // where a fixed bias of half a level (this test's failure when the index

@@ -121,10 +121,16 @@ std::vector<std::size_t> shrinkTextures(std::vector<std::uint32_t>& texels, std:
                 r.height = static_cast<std::uint32_t>(images[i].height);
                 r.flags &= ~levelBits;
                 if (images[i].levels > 1) r.flags |= static_cast<std::uint32_t>(images[i].levels) << gpu::kTexLevelsShift;
+                setTexelDensity(r);
                 break;
             }
     texels = std::move(out);
     return halvedImages;
+}
+
+void setTexelDensity(gpu::TextureRef& r) {
+    const double det = std::abs(double(r.row0.x) * double(r.row1.y) - double(r.row0.y) * double(r.row1.x));
+    r.row0.w = static_cast<float>(0.5 * std::log2(double(r.width) * double(r.height) * det));
 }
 
 void transformRows(const TextureTransform& t, glm::vec4& row0, glm::vec4& row1) {
@@ -302,6 +308,7 @@ PackedTextures packTextures(const Scene& scene, const std::vector<bool>& used,
         r.width = static_cast<std::uint32_t>(p.width);
         r.height = static_cast<std::uint32_t>(p.height);
         if (p.levels > 1) r.flags |= static_cast<std::uint32_t>(p.levels) << gpu::kTexLevelsShift;
+        setTexelDensity(r);
     }
     if (mips) out.mipMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return out;

@@ -59,5 +59,10 @@ std::vector<std::uint32_t> sheenAlbedoWords();
 // The 2x3 matrix of a KHR_texture_transform (uv' = M (uv, 1)) as the rows
 // of gpu::TextureRef.
 void transformRows(const TextureTransform& t, glm::vec4& row0, glm::vec4& row1);
+// The texels a uv unit of `r` spans at its first level, log2, in row0.w:
+// half the log2 of its texel count times the transform's scale of uv area
+// (|det| of its 2x2 part). Texture LOD adds it to the footprint
+// (lib/material.glsl textureLevel); set after the image's size is final.
+void setTexelDensity(gpu::TextureRef& r);
 
 }  // namespace strata

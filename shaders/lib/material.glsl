@@ -70,7 +70,7 @@ vec4 vertexColorAt(uint triangle, vec2 bary) {
 // Shader and Texture Level of Detail Using Ray Cones", JCGT 2021). gTexLod:
 // per texture-coordinate set, log2 of the cone's width at the hit times the
 // uv units per world unit there (sqrt of the triangle's uv area over its
-// area), plus the sample's bias (lodBiasForSample); kNoLod while nothing is
+// area), plus the sample's bias (lodScale2ForSample); kNoLod while nothing is
 // being shaded (the first level). The width is the footprint's minor axis:
 // at a grazing angle the footprint stretches by 1/|cos| along the view, and
 // the pixel's own samples integrate that axis, so an isotropic level at the
@@ -80,18 +80,22 @@ vec4 vertexColorAt(uint triangle, vec2 bary) {
 // expectation of the trilinear blend).
 const float kNoLod = -1.0e30;
 
-// The level bias of the pixel's sample `s` (shared/types.h): a quarter level
-// blurrier than the footprint for the first sample, a quarter level sharper
-// each time the sample index doubles, down to two and a half levels sharper
-// (from sample 2,047 on). A few samples cannot average a texture's detail
-// and gain from a wide filter; many can, and the blur would then be most
-// of their error. The pixel's mean is over samples of decreasing blur, so
-// at any spp it weighs noise against blur about as the best fixed bias for
-// that spp would (measured: docs/experiments/textures.md, "The level bias
-// by sample index"). A function of the sample index alone: shards, resume
-// and merge keep their bits.
-float lodBiasForSample(uint s) {
-    return max(kLodBiasMin, kLodBiasFirst - kLodBiasPerDoubling * log2(float(s) + 1.0));
+// The level bias of the pixel's sample `s` (shared/types.h), bias(s) =
+// max(kLodBiasMin, kLodBiasFirst - kLodBiasPerDoubling log2(s + 1)): a
+// quarter level blurrier than the footprint for the first sample, a quarter
+// level sharper each time the sample index doubles, down to two and a half
+// levels sharper (from sample 2,047 on). A few samples cannot average a
+// texture's detail and gain from a wide filter; many can, and the blur
+// would then be most of their error. The pixel's mean is over samples of
+// decreasing blur, so at any spp it weighs noise against blur about as the
+// best fixed bias for that spp would (measured: docs/experiments/textures.md,
+// "The level bias by sample index"). A function of the sample index alone:
+// shards, resume and merge keep their bits. Returned as exp2(2 bias(s)), a
+// factor of the squared footprint inside texLodAt's one logarithm: with a
+// quarter level a doubling, sqrt(2) (s + 1)^(-1/2) (shared/types.h asserts
+// the constant).
+float lodScale2ForSample(uint s) {
+    return max(exp2(2.0 * kLodBiasMin), exp2(2.0 * kLodBiasFirst) * inversesqrt(float(s) + 1.0));
 }
 vec2 gTexLod = vec2(kNoLod);
 uint gTexLodHash = 0u;
@@ -112,25 +116,23 @@ float triCurvature(TriVerts tv, TriShading sh, vec3 n) {
 // reached by a cone `width` wide (negative past a focus: its size is |width|),
 // for the pixel's sample `sampleIndex`.
 void texLodAt(uint triangle, vec3 e1, vec3 e2, float width, float t, vec2 bary, uint sampleIndex) {
-    float area2 = length(cross(e1, e2));
+    vec3 c = cross(e1, e2);
     TriTexcoords tc = sceneTexcoords(triangle);
     vec4 d1 = tc.uv1 - tc.uv0, d2 = tc.uv2 - tc.uv0;
     vec2 uvArea2 = abs(vec2(d1.x * d2.y - d1.y * d2.x, d1.z * d2.w - d1.w * d2.z));
-    gTexLod = vec2(log2(abs(width)) + lodBiasForSample(sampleIndex)) + 0.5 * log2(uvArea2 / area2);
-    gTexLodHash = hash4(floatBitsToUint(t), triangle, floatBitsToUint(bary.x), floatBitsToUint(bary.y));
+    gTexLod = 0.5 * log2(width * width * lodScale2ForSample(sampleIndex) * inversesqrt(dot(c, c)) * uvArea2);
+    gTexLodHash = hashMix(hashMix(hashMix(triangle, floatBitsToUint(t)), floatBitsToUint(bary.x)), floatBitsToUint(bary.y));
 }
 
 // The level of `r` a lookup at footprint `base` (gTexLod) reads: its offset
 // and size in r (the levels follow the image, sides halved rounding up).
 TextureRef textureLevel(TextureRef r, float base) {
     uint levels = r.flags >> kTexLevelsShift;
-    // The transform's scale of uv area: |det| of its 2x2 part.
-    float det = abs(r.row0.x * r.row1.y - r.row0.y * r.row1.x);
-    float lambda = base + 0.5 * log2(float(r.width) * float(r.height) * det);
+    float lambda = base + r.row0.w;  // log2 of its texels per uv unit (pack/textures.cpp setTexelDensity)
     if (levels <= 1u || !(lambda > 0.0)) return r;
     float top = float(levels - 1u);
     float l = min(floor(lambda), top);
-    gTexLodHash = hash4(gTexLodHash, r.offset, 0x27d4eb2du, 0x165667b1u);
+    gTexLodHash = hashMix(gTexLodHash, r.offset);
     if (l < top && uintToUnit(gTexLodHash) < lambda - l) l += 1.0;
     uint level = uint(l), words = (r.flags & kTex16Bit) != 0u ? 2u : 1u;
     for (uint k = 0u; k < level; ++k) {

@@ -23,6 +23,18 @@ uvec4 pcg4d(uvec4 v) {
 // One 32-bit hash of up to four words.
 uint hash4(uint a, uint b, uint c, uint d) { return pcg4d(uvec4(a, b, c, d)).x; }
 
+// Two words to one, cheaply: a's bits with b's added, through an
+// xorshift-multiply finaliser (two multiplies against pcg4d's twelve).
+uint hashMix(uint a, uint b) {
+    uint x = a ^ (b * 0x9e3779b9u);
+    x ^= x >> 16u;
+    x *= 0x7feb352du;
+    x ^= x >> 15u;
+    x *= 0x846ca68bu;
+    x ^= x >> 16u;
+    return x;
+}
+
 // The top 24 bits as a float in [0, 1): exactly representable, never 1.
 float uintToUnit(uint x) { return float(x >> 8u) * (1.0 / 16777216.0); }
 

@@ -307,11 +307,15 @@ STRATA_CONST(uint, kTexSrgb, 128u);      // rgb is sRGB-encoded (baseColor, emis
 // the image alone.
 STRATA_CONST(uint, kTexLevelsShift, 16u);
 // Texture LOD's level bias for sample index s (lib/material.glsl
-// lodBiasForSample): max(kLodBiasMin, kLodBiasFirst - kLodBiasPerDoubling x
-// log2(s + 1)) levels added to the footprint's.
+// lodScale2ForSample): max(kLodBiasMin, kLodBiasFirst - kLodBiasPerDoubling x
+// log2(s + 1)) levels added to the footprint's. lodScale2ForSample takes
+// its exp2(2 x bias) as an inverse square root: a quarter level a doubling.
 STRATA_CONST(float, kLodBiasFirst, 0.25f);
 STRATA_CONST(float, kLodBiasPerDoubling, 0.25f);
 STRATA_CONST(float, kLodBiasMin, -2.5f);
+#ifdef __cplusplus
+static_assert(kLodBiasPerDoubling == 0.25f, "lib/material.glsl lodScale2ForSample: (s + 1)^(-1/2)");
+#endif
 
 // One texture reference of a material slot: the image's place in the packed
 // texel buffer (BINDING_TEXELS, R32UI words, rows top to bottom; an 8-bit
@@ -323,7 +327,7 @@ struct TextureRef {
     uint width;         // texels
     uint height;
     uint flags;         // wrap modes and kTex* bits
-    vec4 row0;          // w unused
+    vec4 row0;          // w: log2 of the texels a uv unit spans (pack/textures.cpp setTexelDensity)
     vec4 row1;          // w unused
 };
 
