@@ -317,16 +317,20 @@ def receding_bumps_scene(path):
     s.write(path)
 
 
-def lod_plane_scene(path):
+def lod_plane_scene(path, transform=None):
     """The plane z = 0 (x, y in [-10, 10], facing +Z) emitting a 64x64
     checker of single texels (bilinear) repeated 10 times across: a texel is
     20 / 640 world units. The test views it from several places (texture
-    LOD's level against the ray cone's footprint)."""
+    LOD's level against the ray cone's footprint). With `transform`, the
+    emissive texture's KHR_texture_transform (lod-plane-transform.gltf: a
+    scale of 2 turned and shifted, texels of 20 / 1280)."""
     s = Scene()
     mat = checker_emitter(s, "Plane")
+    if transform is not None:
+        s.w.doc["materials"][mat]["emissiveTexture"]["extensions"] = {"KHR_texture_transform": transform}
     s.quad("Plane", view_quad(0.0, 10.0), [(0, 10), (10, 10), (10, 0), (0, 0)], mat, (0, 0, 1))
     s.camera(math.radians(20), (0, 0, 4))
-    s.write(path)
+    s.write(path, ["KHR_texture_transform"] if transform is not None else ())
 
 
 def lod_mirror_scene(path):
@@ -467,6 +471,7 @@ def main():
     receding_octaves_scene(p("receding-octaves.gltf"))
     receding_bumps_scene(p("receding-bumps.gltf"))
     lod_plane_scene(p("lod-plane.gltf"))
+    lod_plane_scene(p("lod-plane-transform.gltf"), {"scale": [2.0, 2.0], "rotation": 0.5, "offset": [0.3, 0.1]})
     lod_mirror_scene(p("lod-mirror.gltf"))
     lod_sphere_scene(p("lod-sphere.gltf"))
     foliage_scene(p("foliage.gltf"))

@@ -1,8 +1,8 @@
 // Texture level of detail (issue 44): the ray cone's level measured
 // against its analytic footprint (camera rays, a mirror, a curved mirror,
-// the tent filter, each sample's bias), a receding checker's variance, and
-// alpha cut-outs' coverage minified and downsampled. The real shaders on
-// lavapipe, validation on. Scenes: tests/data/textures/, written by
+// the tent filter, KHR_texture_transform's scale, each sample's bias), a
+// receding checker's variance, and alpha cut-outs' coverage minified and
+// downsampled. The real shaders on lavapipe, validation on. Scenes: tests/data/textures/, written by
 // scripts/make_texture_scenes.py.
 #include <doctest/doctest.h>
 
@@ -148,18 +148,20 @@ void checkLevel(const std::string& what, const MeasuredLevel& m, std::size_t min
 
 // The level measured on lod-plane.gltf's checker (the plane z = 0) at max
 // depth 0, seen from `from` looking at its centre through a 20-degree field
-// of view, against the footprint of a cone `pixels` pixels wide there.
-MeasuredLevel measurePlaneLevel(RenderSettings s, glm::vec3 from, double pixels, std::uint32_t first = 0) {
+// of view, against the footprint of a cone `pixels` pixels wide there;
+// `file` another such plane with `texelsPerUnit` texels a world unit.
+MeasuredLevel measurePlaneLevel(RenderSettings s, glm::vec3 from, double pixels, std::uint32_t first = 0,
+                                const std::string& file = "lod-plane.gltf", double texelsPerUnit = 32.0) {
     s.maxDepth = 0;
     ViewOptions v;
     v.lookFrom = from;
     v.lookAt = glm::vec3(0.0f);
     v.fovDegrees = 20.0f;
     return measureLevel(
-        "lod-plane.gltf", s, v,
-        [pixels](const CameraRays& rays, double spread, glm::dvec3 d) {
+        file, s, v,
+        [pixels, texelsPerUnit](const CameraRays& rays, double spread, glm::dvec3 d) {
             const double t = -rays.origin.z / d.z;
-            return std::log2(pixels * spread * t * 32.0);
+            return std::log2(pixels * spread * t * texelsPerUnit);
         },
         first);
 }
@@ -180,6 +182,19 @@ TEST_CASE("texture: LOD reads the level of the ray cone's footprint on a plane (
         s.seed = 9;
         checkLevel(view.what, measurePlaneLevel(s, view.from, 1.0));
     }
+    CHECK(vk::validationMessageCount() == 0);
+}
+
+// KHR_texture_transform scales the texels a world unit: lod-plane-transform.gltf
+// is lod-plane.gltf's checker scaled by 2 (turned and shifted too: |det| 4,
+// one level more), so from 2.95 away it reads the level lod-plane.gltf
+// reads from 5.9, about 0.6. A level that ignored the transform's scale
+// would read the first level only (0), one that counted it twice level 1.
+TEST_CASE("texture: LOD counts KHR_texture_transform's scale in the level") {
+    RenderSettings s;
+    s.seed = 9;
+    checkLevel("scaled by 2, 2.95 away",
+               measurePlaneLevel(s, glm::vec3(0.0f, 0.0f, 2.95f), 1.0, 0, "lod-plane-transform.gltf", 64.0));
     CHECK(vk::validationMessageCount() == 0);
 }
 
