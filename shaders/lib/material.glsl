@@ -121,7 +121,8 @@ void texLodAt(uint triangle, vec3 e1, vec3 e2, float width, float t, vec2 bary, 
     vec4 d1 = tc.uv1 - tc.uv0, d2 = tc.uv2 - tc.uv0;
     vec2 uvArea2 = abs(vec2(d1.x * d2.y - d1.y * d2.x, d1.z * d2.w - d1.w * d2.z));
     gTexLod = 0.5 * log2(width * width * lodScale2ForSample(sampleIndex) * inversesqrt(dot(c, c)) * uvArea2);
-    gTexLodHash = hashMix(hashMix(hashMix(triangle, floatBitsToUint(t)), floatBitsToUint(bary.x)), floatBitsToUint(bary.y));
+    gTexLodHash = hashMix(hashMix(hashMix(triangle, floatBitsToUint(t)), floatBitsToUint(bary.x)),
+                          floatBitsToUint(bary.y));
 }
 
 // The level of `r` a lookup at footprint `base` (gTexLod) reads: its offset

@@ -23,8 +23,9 @@ uvec4 pcg4d(uvec4 v) {
 // One 32-bit hash of up to four words.
 uint hash4(uint a, uint b, uint c, uint d) { return pcg4d(uvec4(a, b, c, d)).x; }
 
-// Two words to one, cheaply: a's bits with b's added, through an
-// xorshift-multiply finaliser (two multiplies against pcg4d's twelve).
+// Two words to one, cheaply: a xor b times the golden ratio's 32 bits,
+// through an xorshift-multiply finaliser (three multiplies against
+// pcg4d's twelve).
 uint hashMix(uint a, uint b) {
     uint x = a ^ (b * 0x9e3779b9u);
     x ^= x >> 16u;
