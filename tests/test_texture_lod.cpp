@@ -2,8 +2,8 @@
 // against its analytic footprint (camera rays, a mirror, a curved mirror,
 // the tent filter, KHR_texture_transform's scale, each sample's bias), a
 // receding checker's variance, and alpha cut-outs' coverage minified and
-// downsampled. The real shaders on lavapipe, validation on. Scenes: tests/data/textures/, written by
-// scripts/make_texture_scenes.py.
+// downsampled. The real shaders on lavapipe, validation on. Scenes:
+// tests/data/textures/, written by scripts/make_texture_scenes.py.
 #include <doctest/doctest.h>
 
 #include <algorithm>
